@@ -1,0 +1,78 @@
+// Registration of kernel microbenchmarks: every kernel x method x width x
+// ray mix, named kind/method/wW/mix[/scan|/occluded], reporting ray-primitive
+// tests per second as items_per_second.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "geometry/streams.h"
+#include "simd/isa.h"
+
+namespace quiver::bench {
+
+inline constexpr std::size_t kBenchRays = 4096;
+inline constexpr std::size_t kBenchPrimitives = 64;
+
+struct RayMixes {
+  RaySoA hits;    // most rays hit some primitive
+  RaySoA misses;  // most rays miss every primitive
+};
+
+// Registers closest-hit packets and scan on both mixes, and any-hit packets
+// on the miss mix (where no early exit makes the test count inexact), for
+// each width this CPU supports.
+template <class S>
+void register_kernel_benchmarks(const std::string& kind_and_method,
+                                const std::function<KernelStreams<S>(int width)>& streams_for_width,
+                                std::shared_ptr<const S> prims, std::shared_ptr<const RayMixes> rays) {
+  for (int width : {1, 4, 8}) {
+    if (!isa_supported(isa_for_width(width))) continue;
+    const KernelStreams<S> streams = streams_for_width(width);
+    const std::string prefix = kind_and_method + "/w" + std::to_string(width);
+    for (bool hit_mix : {true, false}) {
+      const RaySoA* mix = hit_mix ? &rays->hits : &rays->misses;
+      const std::string name = prefix + (hit_mix ? "/hits" : "/misses");
+      const double tests = double(mix->count) * double(prims->size());
+      auto closest = [=](benchmark::State& state, auto stream) {
+        const auto keep_alive = rays;
+        HitSoA hits(*mix);
+        for (auto _ : state) {
+          stream(*mix, *prims, hits);
+          benchmark::DoNotOptimize(hits.t.data());
+          benchmark::ClobberMemory();
+        }
+        state.SetItemsProcessed(static_cast<std::int64_t>(tests * double(state.iterations())));
+      };
+      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { closest(st, streams.closest_packets); });
+      if (streams.closest_scan) {
+        benchmark::RegisterBenchmark((name + "/scan").c_str(),
+                                     [=](benchmark::State& st) { closest(st, streams.closest_scan); });
+      }
+      if (!hit_mix) {
+        benchmark::RegisterBenchmark((name + "/occluded").c_str(), [=](benchmark::State& state) {
+          const auto keep_alive = rays;
+          for (auto _ : state) {
+            OcclusionSoA occlusion(*mix);
+            streams.occluded_packets(*mix, *prims, occlusion);
+            benchmark::DoNotOptimize(occlusion.occluded.data());
+          }
+          state.SetItemsProcessed(static_cast<std::int64_t>(tests * double(state.iterations())));
+        });
+      }
+    }
+  }
+}
+
+// Dispatches a kind's streams template (e.g. plane_streams<W>) on a run-time width.
+template <class S, class Method, class StreamsOf>
+std::function<KernelStreams<S>(int)> streams_by_width(Method method, StreamsOf streams_of) {
+  return [=](int width) {
+    return with_lane_width(width, [&](auto w) { return streams_of(w, method); });
+  };
+}
+
+}  // namespace quiver::bench

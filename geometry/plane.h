@@ -1,0 +1,36 @@
+// Ray / infinite plane, the seed's formula: the plane is n.P + d = 0 with
+// unit n, so t = -(d + n.o) / (n.dir).
+// t-range: hit iff tmin < t < tmax. A ray parallel to the plane (n.dir == 0)
+// misses, even when its origin lies on the plane; the division is then fed
+// 1 so no lane makes a NaN or a division by zero.
+// Masks: only active lanes can hit. u = v = 0 (planar texture coordinates
+// come from the hit point at shading); ng = n (both sides hit).
+#pragma once
+
+#include "geometry/hit.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+template <class F>
+struct PlaneLanes {
+  Vec3<F> normal;  // unit length
+  F d;             // n.P + d = 0 on the plane
+};
+
+struct PlaneSeed {
+  template <class F>
+  static Mask<F> intersect(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    const F denom = dot(plane.normal, ray.direction);
+    const Mask<F> crosses = denom != F(0.f);
+    const F numer = -(plane.d + dot(plane.normal, ray.origin));
+    out.t = numer / select(crosses, denom, F(1.f));
+    out.u = F(0.f);
+    out.v = F(0.f);
+    out.ng = plane.normal;
+    return active && crosses && out.t > ray.tmin && out.t < tmax;
+  }
+};
+
+}  // namespace quiver

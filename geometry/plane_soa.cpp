@@ -1,0 +1,46 @@
+#include "geometry/plane_soa.h"
+
+#include <cmath>
+
+namespace quiver {
+
+namespace {
+bool finite(const Vec3<float>& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+}  // namespace
+
+PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
+  PlaneSoA soa;
+  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) c->reserve(padded_size(planes.size()));
+  for (const PlaneDesc& p : planes) {
+    if (!finite(p.point) || !finite(p.normal)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    const float len = length(p.normal);
+    if (!(len > 0.f) || !std::isfinite(len)) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    const Vec3<float> n = p.normal / len;
+    const float d = -dot(n, p.point);
+    if (!std::isfinite(d)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    soa.nx.push_back(n.x);
+    soa.ny.push_back(n.y);
+    soa.nz.push_back(n.z);
+    soa.d.push_back(d);
+  }
+  soa.count = soa.nx.size();
+  report.kept += soa.count;
+  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) {
+    c->resize(padded_size(soa.count));
+    pad_column(*c, soa.count);
+  }
+  return soa;
+}
+
+}  // namespace quiver

@@ -1,0 +1,36 @@
+// Infinite planes in SoA: unit normal (nx, ny, nz) and offset d.
+#pragma once
+
+#include <span>
+
+#include "geometry/build_report.h"
+#include "geometry/plane.h"
+#include "geometry/soa.h"
+
+namespace quiver {
+
+// A plane through `point` with normal `normal` (any non-zero length).
+struct PlaneDesc {
+  Vec3<float> point;
+  Vec3<float> normal;
+};
+
+struct PlaneSoA {
+  AlignedFloats nx, ny, nz, d;
+  std::size_t count = 0;
+
+  std::size_t size() const { return count; }
+  template <class F>
+  PlaneLanes<F> broadcast(std::size_t i) const {
+    return {broadcast_vec3<F>(nx, ny, nz, i), F(d[i])};
+  }
+  template <class F>
+  PlaneLanes<F> load(std::size_t first) const {
+    return {load_vec3<F>(nx, ny, nz, first), load_lanes<F>(d.data() + first)};
+  }
+};
+
+// Drops planes with a non-finite number or a zero (or underflowing) normal.
+PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report);
+
+}  // namespace quiver

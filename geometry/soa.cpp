@@ -1,0 +1,62 @@
+#include "geometry/soa.h"
+
+#include <algorithm>
+
+namespace quiver {
+
+namespace {
+template <class Column>
+void pad_any(Column& column, std::size_t count) {
+  if (count == 0) return;
+  std::fill(column.begin() + static_cast<std::ptrdiff_t>(count), column.end(), column[count - 1]);
+}
+}  // namespace
+
+void pad_column(AlignedFloats& column, std::size_t count) { pad_any(column, count); }
+void pad_column(AlignedInts& column, std::size_t count) { pad_any(column, count); }
+
+RaySoA::RaySoA(std::size_t n) : count(n) {
+  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->assign(padded_size(n), 0.f);
+}
+
+void RaySoA::set(std::size_t i, const Ray<float>& ray) {
+  ox[i] = ray.origin.x;
+  oy[i] = ray.origin.y;
+  oz[i] = ray.origin.z;
+  dx[i] = ray.direction.x;
+  dy[i] = ray.direction.y;
+  dz[i] = ray.direction.z;
+  tmin[i] = ray.tmin;
+  tmax[i] = ray.tmax;
+}
+
+Ray<float> RaySoA::get(std::size_t i) const {
+  return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
+}
+
+void RaySoA::pad() {
+  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) pad_column(*c, count);
+}
+
+HitSoA::HitSoA(const RaySoA& rays) : t(rays.tmax), count(rays.count) {
+  for (AlignedFloats* c : {&u, &v, &ngx, &ngy, &ngz}) c->assign(t.size(), 0.f);
+  id.assign(t.size(), kNoHit);
+}
+
+Hit<float> HitSoA::get(std::size_t i) const {
+  return {t[i], u[i], v[i], {ngx[i], ngy[i], ngz[i]}, id[i]};
+}
+
+void HitSoA::set(std::size_t i, const Hit<float>& hit) {
+  t[i] = hit.t;
+  u[i] = hit.u;
+  v[i] = hit.v;
+  ngx[i] = hit.ng.x;
+  ngy[i] = hit.ng.y;
+  ngz[i] = hit.ng.z;
+  id[i] = hit.id;
+}
+
+OcclusionSoA::OcclusionSoA(const RaySoA& rays) : occluded(padded_size(rays.count), 0), count(rays.count) {}
+
+}  // namespace quiver

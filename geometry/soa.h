@@ -1,0 +1,100 @@
+// Structure-of-arrays storage shared by every primitive kind and by ray and
+// hit streams: 64-byte aligned columns padded to a multiple of kMaxLanes, so
+// any width loads whole lanes. Padding lanes hold copies of the last real
+// element (valid numbers, no NaN) and are always masked off.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <xsimd/xsimd.hpp>
+
+#include "geometry/hit.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+using AlignedFloats = std::vector<float, xsimd::aligned_allocator<float, 64>>;
+using AlignedInts = std::vector<std::int32_t, xsimd::aligned_allocator<std::int32_t, 64>>;
+
+constexpr std::size_t padded_size(std::size_t n) {
+  return (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+}
+
+// Fills column[count, padded) with column[count - 1] (nothing when count is 0).
+void pad_column(AlignedFloats& column, std::size_t count);
+void pad_column(AlignedInts& column, std::size_t count);
+
+template <class F>
+inline Vec3<F> load_vec3(const AlignedFloats& x, const AlignedFloats& y, const AlignedFloats& z,
+                         std::size_t first) {
+  return {load_lanes<F>(x.data() + first), load_lanes<F>(y.data() + first),
+          load_lanes<F>(z.data() + first)};
+}
+template <class F>
+inline Vec3<F> broadcast_vec3(const AlignedFloats& x, const AlignedFloats& y,
+                              const AlignedFloats& z, std::size_t i) {
+  return {F(x[i]), F(y[i]), F(z[i])};
+}
+
+// Rays in SoA; a closest-hit stream reads (tmin, tmax) from here.
+struct RaySoA {
+  AlignedFloats ox, oy, oz, dx, dy, dz, tmin, tmax;
+  std::size_t count = 0;
+
+  RaySoA() = default;
+  explicit RaySoA(std::size_t n);
+  void set(std::size_t i, const Ray<float>& ray);
+  Ray<float> get(std::size_t i) const;
+  // Call after the last set(): copies the last ray into the padding lanes.
+  void pad();
+
+  template <class F>
+  Ray<F> load(std::size_t first) const {
+    return {load_vec3<F>(ox, oy, oz, first), load_vec3<F>(dx, dy, dz, first),
+            load_lanes<F>(tmin.data() + first), load_lanes<F>(tmax.data() + first)};
+  }
+};
+
+// Closest hits in SoA. t holds the current closest distance and is read as
+// each ray's tmax, so streams over several primitive kinds compose.
+struct HitSoA {
+  AlignedFloats t, u, v, ngx, ngy, ngz;
+  AlignedInts id;
+  std::size_t count = 0;
+
+  HitSoA() = default;
+  // t = ray tmax, id = kNoHit for every ray.
+  explicit HitSoA(const RaySoA& rays);
+  Hit<float> get(std::size_t i) const;
+  void set(std::size_t i, const Hit<float>& hit);
+
+  template <class F>
+  Hit<F> load(std::size_t first) const {
+    return {load_lanes<F>(t.data() + first), load_lanes<F>(u.data() + first),
+            load_lanes<F>(v.data() + first), load_vec3<F>(ngx, ngy, ngz, first),
+            load_int_lanes<F>(id.data() + first)};
+  }
+  template <class F>
+  void store(std::size_t first, const Hit<F>& hit) {
+    store_lanes(hit.t, t.data() + first);
+    store_lanes(hit.u, u.data() + first);
+    store_lanes(hit.v, v.data() + first);
+    store_lanes(hit.ng.x, ngx.data() + first);
+    store_lanes(hit.ng.y, ngy.data() + first);
+    store_lanes(hit.ng.z, ngz.data() + first);
+    store_int_lanes<F>(hit.id, id.data() + first);
+  }
+};
+
+// Any-hit results: occluded[i] is 1 once ray i is blocked within (tmin, tmax).
+struct OcclusionSoA {
+  AlignedInts occluded;
+  std::size_t count = 0;
+
+  OcclusionSoA() = default;
+  explicit OcclusionSoA(const RaySoA& rays);
+};
+
+}  // namespace quiver

@@ -1,0 +1,161 @@
+// Streams: the loops that drive one kernel over many rays and primitives,
+// written once for every width, in the two orientations:
+//   packets: W rays against one primitive at a time (primitive broadcast);
+//   scan:    one ray against W primitives at a time (ray broadcast), then the
+//            closest lane wins (smallest t, then smallest id, as the scalar
+//            loop's strict '<' keeps the first of equal hits).
+//
+// A Method is a struct with
+//   template <class F, class P> static Mask<F> intersect(
+//       const Ray<F>&, const P& prim, const F& tmax, const Mask<F>& active,
+//       Candidate<F>& out);
+// returning the lanes that hit within (ray.tmin, tmax), never an inactive
+// lane. out.t depends on the ray, the primitive and tmin only; tmax only
+// accepts or rejects (so the scan and packet orders agree bit for bit).
+// A primitive store S has size(), broadcast<F>(i) and load<F>(first).
+//
+// Each kind's <kind>_streams.cpp is compiled once per ISA and instantiates
+// these loops for its width.
+#pragma once
+
+#include <cstddef>
+#include <utility>
+
+#include "geometry/soa.h"
+
+namespace quiver {
+
+template <class S>
+struct KernelStreams {
+  using Store = S;
+  void (*closest_packets)(const RaySoA&, const S&, HitSoA&) = nullptr;
+  void (*occluded_packets)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
+  // nullptr where a kind has no scan orientation (it does not pay).
+  void (*closest_scan)(const RaySoA&, const S&, HitSoA&) = nullptr;
+  void (*occluded_scan)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
+};
+
+// Calls fn(std::integral_constant<int, W>{}) for a run-time width 1, 4 or 8.
+template <class Fn>
+decltype(auto) with_lane_width(int width, Fn&& fn) {
+  switch (width) {
+    case 8: return fn(std::integral_constant<int, 8>{});
+    case 4: return fn(std::integral_constant<int, 4>{});
+    default: return fn(std::integral_constant<int, 1>{});
+  }
+}
+
+template <class F, class Method, class S>
+void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Mask<F> active = first_lanes<F>(rays.count - first);
+    const Ray<F> ray = rays.load<F>(first);
+    Hit<F> hit = hits.load<F>(first);
+    for (std::size_t p = 0; p < prims.size(); ++p) {
+      Candidate<F> c;
+      const Mask<F> closer = Method::intersect(ray, prims.template broadcast<F>(p), hit.t, active, c);
+      hit.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(p)));
+    }
+    hits.store(first, hit);
+  }
+}
+
+template <class F, class Method, class S>
+void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Ray<F> ray = rays.load<F>(first);
+    const Mask<F> valid = first_lanes<F>(rays.count - first);
+    Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
+    for (std::size_t p = 0; p < prims.size(); ++p) {
+      const Mask<F> active = valid && !occluded;
+      if (none(active)) break;
+      Candidate<F> unused;
+      occluded = occluded || Method::intersect(ray, prims.template broadcast<F>(p), ray.tmax, active, unused);
+    }
+    store_int_lanes<F>(select(occluded, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
+  }
+}
+
+// The closest of a lane set's hits; ties go to the smaller id.
+template <class F>
+Hit<float> closest_lane(const Hit<F>& hit, float tmax) {
+  if constexpr (lane_count<F> == 1) {
+    return hit;
+  } else {
+    alignas(64) float t[kMaxLanes], u[kMaxLanes], v[kMaxLanes], nx[kMaxLanes], ny[kMaxLanes], nz[kMaxLanes];
+    alignas(64) std::int32_t id[kMaxLanes];
+    store_lanes(hit.t, t);
+    store_lanes(hit.u, u);
+    store_lanes(hit.v, v);
+    store_lanes(hit.ng.x, nx);
+    store_lanes(hit.ng.y, ny);
+    store_lanes(hit.ng.z, nz);
+    store_int_lanes<F>(hit.id, id);
+    int best = -1;
+    for (int lane = 0; lane < lane_count<F>; ++lane) {
+      if (id[lane] == kNoHit) continue;
+      if (best < 0 || t[lane] < t[best] || (t[lane] == t[best] && id[lane] < id[best])) best = lane;
+    }
+    if (best < 0) return Hit<float>::none(tmax);
+    return {t[best], u[best], v[best], {nx[best], ny[best], nz[best]}, id[best]};
+  }
+}
+
+template <class F, class Method, class S>
+void closest_scan(const RaySoA& rays, const S& prims, HitSoA& hits) {
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t r = 0; r < rays.count; ++r) {
+    const Ray<F> ray = broadcast_ray<F>(rays.get(r));
+    const Hit<float> before = hits.get(r);
+    Hit<F> best = Hit<F>::none(F(before.t));
+    for (std::size_t first = 0; first < prims.size(); first += W) {
+      Candidate<F> c;
+      const Mask<F> active = first_lanes<F>(prims.size() - first);
+      const Mask<F> closer = Method::intersect(ray, prims.template load<F>(first), best.t, active, c);
+      best.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(first)) + lane_index<F>());
+    }
+    const Hit<float> found = closest_lane(best, before.t);
+    if (found.id != kNoHit) hits.set(r, found);
+  }
+}
+
+template <class F, class Method, class S>
+void occluded_scan(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t r = 0; r < rays.count; ++r) {
+    if (result.occluded[r] != 0) continue;
+    const Ray<F> ray = broadcast_ray<F>(rays.get(r));
+    for (std::size_t first = 0; first < prims.size(); first += W) {
+      Candidate<F> unused;
+      const Mask<F> active = first_lanes<F>(prims.size() - first);
+      if (any(Method::intersect(ray, prims.template load<F>(first), ray.tmax, active, unused))) {
+        result.occluded[r] = 1;
+        break;
+      }
+    }
+  }
+}
+
+// The four streams of one method at lane type F.
+template <class F, class Method, class S>
+KernelStreams<S> make_streams() {
+  KernelStreams<S> s;
+  s.closest_packets = &closest_packets<F, Method, S>;
+  s.occluded_packets = &occluded_packets<F, Method, S>;
+  s.closest_scan = &closest_scan<F, Method, S>;
+  s.occluded_scan = &occluded_scan<F, Method, S>;
+  return s;
+}
+
+// Packets only, for kinds whose scan orientation does not pay.
+template <class F, class Method, class S>
+KernelStreams<S> make_packet_streams() {
+  KernelStreams<S> s;
+  s.closest_packets = &closest_packets<F, Method, S>;
+  s.occluded_packets = &occluded_packets<F, Method, S>;
+  return s;
+}
+
+}  // namespace quiver

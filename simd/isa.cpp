@@ -1,0 +1,77 @@
+#include "simd/isa.h"
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace quiver {
+
+int lane_width(Isa isa) {
+  switch (isa) {
+    case Isa::scalar: return 1;
+    case Isa::sse4: return 4;
+    case Isa::avx2: return 8;
+  }
+  return 1;
+}
+
+Isa isa_for_width(int width) {
+  return width >= 8 ? Isa::avx2 : (width >= 4 ? Isa::sse4 : Isa::scalar);
+}
+
+std::string_view isa_name(Isa isa) {
+  switch (isa) {
+    case Isa::scalar: return "scalar";
+    case Isa::sse4: return "sse4";
+    case Isa::avx2: return "avx2";
+  }
+  return "scalar";
+}
+
+std::optional<Isa> parse_isa(std::string_view name) {
+  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+    if (name == isa_name(isa)) return isa;
+  }
+  return std::nullopt;
+}
+
+bool isa_supported(Isa isa) {
+  // GCC's CPU model also checks that the OS saves AVX state (xsimd 8.1's
+  // avx flag reads false on some AVX2 machines, so it is not used).
+  switch (isa) {
+    case Isa::scalar: return true;
+    // The 4-wide unit is built with -msse4.2 -mfma, which implies VEX (AVX) encoding.
+    case Isa::sse4:
+      return __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
+    case Isa::avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }
+  return false;
+}
+
+Isa best_supported_isa() {
+  for (Isa isa : {Isa::avx2, Isa::sse4}) {
+    if (isa_supported(isa)) return isa;
+  }
+  return Isa::scalar;
+}
+
+Isa resolve_isa(std::string_view requested) {
+  if (requested.empty() || requested == "auto") return best_supported_isa();
+  const auto isa = parse_isa(requested);
+  if (!isa) {
+    throw std::runtime_error("unknown SIMD choice '" + std::string(requested) +
+                             "': expected auto, scalar, sse4 or avx2");
+  }
+  if (!isa_supported(*isa)) {
+    throw std::runtime_error("SIMD choice '" + std::string(requested) +
+                             "' is not supported by this CPU");
+  }
+  return *isa;
+}
+
+Isa isa_from_environment() {
+  const char* value = std::getenv("QUIVER_SIMD");
+  return resolve_isa(value ? std::string_view(value) : std::string_view());
+}
+
+}  // namespace quiver

@@ -1,0 +1,235 @@
+// Lane types and the operations every kernel is written with.
+//
+// A kernel is a template over the number type F: `float` (one ray, the
+// reference), or an xsimd batch of 4 or 8 floats. Masks are `bool` or
+// `batch_bool`. Every function here gives the same bits for a lane of a
+// batch as for the same float, so the scalar path checks the SIMD path:
+//   - select-based min/max (NaN and signed-zero behaviour identical),
+//   - a fused multiply-add at every width (std::fma, vfmadd),
+//   - IEEE sqrt and division only (no reciprocal approximations).
+//
+// Widths per ISA translation unit (CMake builds each with its own flags):
+//   1: float                              (baseline x86-64)
+//   4: xsimd::batch<float, sse4_2>        (-msse4.2 -mfma: FMA3 is required so
+//                                          that fma is fused as in scalar code)
+//   8: xsimd::batch<float, fma3<avx2>>    (-mavx2 -mfma)
+// Only templates over F and trivially inlined helpers belong in headers used
+// by those units: an out-of-line copy compiled with AVX2 flags must never be
+// picked by the linker for the baseline path.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include <xsimd/xsimd.hpp>
+
+#if defined(__SSE4_2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
+namespace quiver {
+
+// Widest lane count any unit uses; SoA arrays are padded to a multiple of it.
+inline constexpr int kMaxLanes = 8;
+
+template <class F>
+struct LaneTraits;
+
+template <>
+struct LaneTraits<float> {
+  using Mask = bool;
+  using Int = std::int32_t;
+  static constexpr int width = 1;
+};
+
+template <class A>
+struct LaneTraits<xsimd::batch<float, A>> {
+  using Mask = xsimd::batch_bool<float, A>;
+  using Int = xsimd::batch<std::int32_t, A>;
+  static constexpr int width = static_cast<int>(xsimd::batch<float, A>::size);
+};
+
+template <class F>
+using Mask = typename LaneTraits<F>::Mask;
+template <class F>
+using IntLanes = typename LaneTraits<F>::Int;
+template <class F>
+inline constexpr int lane_count = LaneTraits<F>::width;
+
+// Width -> lane type; a width exists only in units compiled for its ISA.
+template <int W>
+struct LanesOfWidth;
+template <>
+struct LanesOfWidth<1> {
+  using type = float;
+};
+#if XSIMD_WITH_SSE4_2 && defined(__FMA__)
+template <>
+struct LanesOfWidth<4> {
+  using type = xsimd::batch<float, xsimd::sse4_2>;
+};
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+template <>
+struct LanesOfWidth<8> {
+  using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
+};
+#endif
+template <int W>
+using Lanes = typename LanesOfWidth<W>::type;
+
+// ---- scalar forms -------------------------------------------------------
+
+inline float select(bool m, float a, float b) { return m ? a : b; }
+inline std::int32_t select(bool m, std::int32_t a, std::int32_t b) { return m ? a : b; }
+inline float fma(float a, float b, float c) { return std::fma(a, b, c); }
+inline float sqrt(float a) { return std::sqrt(a); }
+inline float abs(float a) { return std::fabs(a); }
+inline bool any(bool m) { return m; }
+inline bool all(bool m) { return m; }
+inline bool none(bool m) { return !m; }
+inline bool isfinite_lanes(float a) { return std::isfinite(a); }
+
+// ---- batch forms --------------------------------------------------------
+
+template <class A>
+inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
+                                     const xsimd::batch<float, A>& a,
+                                     const xsimd::batch<float, A>& b) {
+  return xsimd::select(m, a, b);
+}
+
+template <class A>
+inline xsimd::batch<std::int32_t, A> select(const xsimd::batch_bool<float, A>& m,
+                                            const xsimd::batch<std::int32_t, A>& a,
+                                            const xsimd::batch<std::int32_t, A>& b) {
+  // Reinterpret the float mask's all-ones lanes as an int mask.
+  const auto bits = xsimd::bitwise_cast<xsimd::batch<std::int32_t, A>>(xsimd::bitwise_cast(m));
+  return xsimd::select(bits != std::int32_t(0), a, b);
+}
+
+template <class A>
+inline xsimd::batch<float, A> fma(const xsimd::batch<float, A>& a, const xsimd::batch<float, A>& b,
+                                  const xsimd::batch<float, A>& c) {
+  return xsimd::fma(a, b, c);
+}
+
+#if XSIMD_WITH_SSE4_2 && defined(__FMA__)
+// xsimd's sse4_2 fma is a multiply then an add; fuse it as std::fma does.
+inline xsimd::batch<float, xsimd::sse4_2> fma(const xsimd::batch<float, xsimd::sse4_2>& a,
+                                              const xsimd::batch<float, xsimd::sse4_2>& b,
+                                              const xsimd::batch<float, xsimd::sse4_2>& c) {
+  return _mm_fmadd_ps(a, b, c);
+}
+#endif
+
+template <class A>
+inline xsimd::batch<float, A> sqrt(const xsimd::batch<float, A>& a) {
+  return xsimd::sqrt(a);
+}
+template <class A>
+inline xsimd::batch<float, A> abs(const xsimd::batch<float, A>& a) {
+  return xsimd::abs(a);
+}
+template <class A>
+inline bool any(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::any(m);
+}
+template <class A>
+inline bool all(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::all(m);
+}
+template <class A>
+inline bool none(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::none(m);
+}
+template <class A>
+inline xsimd::batch_bool<float, A> isfinite_lanes(const xsimd::batch<float, A>& a) {
+  // |a| <= max finite is false for NaN and for +-inf.
+  return xsimd::abs(a) <= xsimd::batch<float, A>(3.40282347e+38f);
+}
+
+// Int lanes != 0 as a float mask (all-ones int bits are a NaN, and NaN != 0).
+template <class A>
+inline xsimd::batch_bool<float, A> nonzero_lanes(const xsimd::batch<std::int32_t, A>& i) {
+  const auto ones = xsimd::bitwise_cast(i != std::int32_t(0));
+  return xsimd::bitwise_cast<xsimd::batch<float, A>>(ones) != xsimd::batch<float, A>(0.f);
+}
+inline bool nonzero_lanes(std::int32_t i) { return i != 0; }
+
+// ---- written once for every width ----------------------------------------
+
+// min/max as selects: identical bits for NaN and +-0 at every width.
+template <class F>
+inline F min(const F& a, const F& b) {
+  return select(b < a, b, a);
+}
+template <class F>
+inline F max(const F& a, const F& b) {
+  return select(a < b, b, a);
+}
+
+// a*b - c*d with one rounding error bound (Kahan's algorithm via fma).
+template <class F>
+inline F difference_of_products(const F& a, const F& b, const F& c, const F& d) {
+  const F cd = c * d;
+  const F error = fma(-c, d, cd);  // exact rounding error of c*d
+  const F dop = fma(a, b, -cd);
+  return dop + error;
+}
+
+// ---- memory <-> lanes (arrays 64-byte aligned, padded to kMaxLanes) ------
+
+template <class F>
+inline F load_lanes(const float* p) {
+  if constexpr (lane_count<F> == 1) {
+    return *p;
+  } else {
+    return F::load_aligned(p);
+  }
+}
+template <class F>
+inline IntLanes<F> load_int_lanes(const std::int32_t* p) {
+  if constexpr (lane_count<F> == 1) {
+    return *p;
+  } else {
+    return IntLanes<F>::load_aligned(p);
+  }
+}
+template <class F>
+inline void store_lanes(const F& v, float* p) {
+  if constexpr (lane_count<F> == 1) {
+    *p = v;
+  } else {
+    v.store_aligned(p);
+  }
+}
+template <class F>
+inline void store_int_lanes(const IntLanes<F>& v, std::int32_t* p) {
+  if constexpr (lane_count<F> == 1) {
+    *p = v;
+  } else {
+    v.store_aligned(p);
+  }
+}
+
+// Lane numbers 0..W-1 as int and float lanes.
+template <class F>
+inline IntLanes<F> lane_index() {
+  alignas(64) static constexpr std::int32_t kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7};
+  return load_int_lanes<F>(kIndex);
+}
+template <class F>
+inline F lane_index_float() {
+  alignas(64) static constexpr float kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7};
+  return load_lanes<F>(kIndex);
+}
+
+// Lanes [0, remaining) active; remaining may exceed the width.
+template <class F>
+inline Mask<F> first_lanes(std::size_t remaining) {
+  const float n = remaining < std::size_t(kMaxLanes) ? float(remaining) : float(kMaxLanes);
+  return lane_index_float<F>() < F(n);
+}
+
+}  // namespace quiver

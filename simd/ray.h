@@ -1,0 +1,31 @@
+// Ray<F>: origin, direction (not necessarily unit length) and the open
+// parameter interval (tmin, tmax) in which hits count.
+#pragma once
+
+#include <limits>
+
+#include "simd/vec3.h"
+
+namespace quiver {
+
+template <class F>
+struct Ray {
+  Vec3<F> origin;
+  Vec3<F> direction;
+  F tmin;
+  F tmax;
+
+  Vec3<F> at(const F& t) const { return origin + direction * t; }
+};
+
+// One ray copied into every lane.
+template <class F>
+inline Ray<F> broadcast_ray(const Ray<float>& r) {
+  if constexpr (lane_count<F> == 1) {
+    return r;
+  } else {
+    return {Vec3<F>(r.origin), Vec3<F>(r.direction), F(r.tmin), F(r.tmax)};
+  }
+}
+
+}  // namespace quiver

@@ -1,0 +1,71 @@
+#include <bit>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "simd/isa.h"
+#include "simd/lanes.h"
+#include "simd/vec3.h"
+
+namespace quiver {
+namespace {
+
+TEST(Lanes, MinMaxSelectNaNAndSignedZeroRule) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // min(a, b) = b < a ? b : a: a NaN in b keeps a, a NaN in a stays.
+  EXPECT_EQ(min(1.f, nan), 1.f);
+  EXPECT_TRUE(std::isnan(min(nan, 1.f)));
+  EXPECT_TRUE(std::signbit(min(-0.f, 0.f)));
+  EXPECT_FALSE(std::signbit(min(0.f, -0.f)));
+  EXPECT_EQ(max(2.f, 3.f), 3.f);
+}
+
+TEST(Lanes, ScalarFmaIsFused) {
+  // (1 + 2^-23)(1 - 2^-23) - 1 = -2^-46 exactly; unfused it rounds to 0.
+  const float a = 1.f + std::ldexp(1.f, -23), b = 1.f - std::ldexp(1.f, -23);
+  EXPECT_EQ(fma(a, b, -1.f), -std::ldexp(1.f, -46));
+}
+
+TEST(Lanes, DifferenceOfProductsBeatsNaiveCancellation) {
+  // a*b - c*d with a*b == c*d after rounding but not exactly.
+  const float a = 1.f + std::ldexp(1.f, -12), b = 1.f + std::ldexp(1.f, -12);
+  const float c = 1.f + std::ldexp(1.f, -11), d = 1.f;
+  const double exact = double(a) * b - double(c) * d;  // 2^-24
+  EXPECT_EQ(difference_of_products(a, b, c, d), float(exact));
+  EXPECT_NE(a * b - c * d, float(exact));
+}
+
+TEST(Lanes, CrossAccurateIsPerpendicular) {
+  const Vec3<float> a{1e4f, 1.f + 1e-4f, 3.f}, b{1e4f, 1.f, 3.f - 1e-4f};
+  const Vec3<float> c = cross_accurate(a, b);
+  const Vec3<double> ad{a.x, a.y, a.z}, bd{b.x, b.y, b.z};
+  const Vec3<double> cd{ad.y * bd.z - ad.z * bd.y, ad.z * bd.x - ad.x * bd.z, ad.x * bd.y - ad.y * bd.x};
+  EXPECT_NEAR(c.x, cd.x, std::abs(cd.x) * 2e-7);
+  EXPECT_NEAR(c.y, cd.y, std::abs(cd.y) * 2e-7);
+  EXPECT_NEAR(c.z, cd.z, std::abs(cd.z) * 2e-7);
+}
+
+TEST(Isa, ResolveNamesAndRejectsUnknown) {
+  EXPECT_EQ(resolve_isa("scalar"), Isa::scalar);
+  EXPECT_EQ(resolve_isa("auto"), best_supported_isa());
+  EXPECT_EQ(resolve_isa(""), best_supported_isa());
+  EXPECT_THROW(resolve_isa("avx512"), std::runtime_error);
+  EXPECT_EQ(lane_width(Isa::sse4), 4);
+  EXPECT_EQ(lane_width(Isa::avx2), 8);
+  EXPECT_EQ(isa_for_width(8), Isa::avx2);
+  EXPECT_TRUE(isa_supported(Isa::scalar));
+}
+
+TEST(Isa, EnvironmentForcesChoice) {
+  ::setenv("QUIVER_SIMD", "scalar", 1);
+  EXPECT_EQ(isa_from_environment(), Isa::scalar);
+  ::setenv("QUIVER_SIMD", "nonsense", 1);
+  EXPECT_THROW(isa_from_environment(), std::runtime_error);
+  ::unsetenv("QUIVER_SIMD");
+  EXPECT_EQ(isa_from_environment(), best_supported_isa());
+}
+
+}  // namespace
+}  // namespace quiver

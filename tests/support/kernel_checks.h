@@ -1,0 +1,75 @@
+// Checks shared by every kernel's tests: bit-exact comparison of stream
+// results and the typed fixture over lane widths 1, 4 and 8.
+#pragma once
+
+#include <type_traits>
+
+#include <gtest/gtest.h>
+
+#include "geometry/streams.h"
+#include "simd/isa.h"
+
+namespace quiver::testing {
+
+// Every ray's t, u, v, ng and id equal bit for bit (first difference shown).
+::testing::AssertionResult hits_bit_equal(const HitSoA& expected, const HitSoA& actual);
+::testing::AssertionResult occlusion_equal(const OcclusionSoA& expected, const OcclusionSoA& actual);
+// Any-hit agrees with closest-hit: occluded iff a closest hit exists.
+::testing::AssertionResult occlusion_matches_hits(const OcclusionSoA& occlusion, const HitSoA& hits);
+std::size_t count_hits(const HitSoA& hits);
+
+template <int W>
+using Width = std::integral_constant<int, W>;
+using LaneWidths = ::testing::Types<Width<1>, Width<4>, Width<8>>;
+
+// Typed fixture: skips, saying why, only when this CPU lacks the width's ISA.
+template <class W>
+class WidthTest : public ::testing::Test {
+ protected:
+  static constexpr int kWidth = W::value;
+  void SetUp() override {
+    if (!isa_supported(isa_for_width(kWidth))) {
+      GTEST_SKIP() << "this CPU lacks " << isa_name(isa_for_width(kWidth)) << " for width " << kWidth;
+    }
+  }
+};
+
+struct StreamResults {
+  HitSoA closest_packets, closest_scan;
+  OcclusionSoA occluded_packets, occluded_scan;
+};
+
+// Runs every stream the kernel has (a missing scan is left as packets).
+template <class S>
+StreamResults run_streams(const KernelStreams<S>& streams, const RaySoA& rays, const S& prims) {
+  StreamResults r{HitSoA(rays), HitSoA(rays), OcclusionSoA(rays), OcclusionSoA(rays)};
+  streams.closest_packets(rays, prims, r.closest_packets);
+  streams.occluded_packets(rays, prims, r.occluded_packets);
+  if (streams.closest_scan) {
+    streams.closest_scan(rays, prims, r.closest_scan);
+    streams.occluded_scan(rays, prims, r.occluded_scan);
+  } else {
+    r.closest_scan = r.closest_packets;
+    r.occluded_scan = r.occluded_packets;
+  }
+  return r;
+}
+
+// The width-W streams equal the scalar packet stream bit for bit, in both
+// orientations, and any-hit agrees with closest-hit. Returns the scalar
+// results for further checks.
+template <class S>
+StreamResults expect_streams_match_scalar(const KernelStreams<S>& scalar, const KernelStreams<S>& wide,
+                                          const RaySoA& rays, const S& prims) {
+  StreamResults ref = run_streams(scalar, rays, prims);
+  const StreamResults got = run_streams(wide, rays, prims);
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, ref.closest_scan)) << "scalar scan vs scalar packets";
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_packets)) << "packets vs scalar";
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
+  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
+  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
+  EXPECT_TRUE(occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
+  return ref;
+}
+
+}  // namespace quiver::testing
