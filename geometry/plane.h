@@ -18,7 +18,7 @@ struct PlaneLanes {
   F d;             // n.P + d = 0 on the plane
 };
 
-struct PlaneSeed {
+struct PlaneSeed : RayAsIs {
   template <class F>
   static Mask<F> intersect(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {

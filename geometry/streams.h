@@ -6,8 +6,10 @@
 //            loop's strict '<' keeps the first of equal hits).
 //
 // A Method is a struct with
+//   template <class F> static R prepare(const Ray<F>&);   per-ray setup, hoisted
+//       out of the primitive loop (derive from RayAsIs when there is none);
 //   template <class F, class P> static Mask<F> intersect(
-//       const Ray<F>&, const P& prim, const F& tmax, const Mask<F>& active,
+//       const R& prepared, const P& prim, const F& tmax, const Mask<F>& active,
 //       Candidate<F>& out);
 // returning the lanes that hit within (ray.tmin, tmax), never an inactive
 // lane. out.t depends on the ray, the primitive and tmin only; tmax only
@@ -51,10 +53,11 @@ void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
+    const auto prepared = Method::prepare(ray);
     Hit<F> hit = hits.load<F>(first);
     for (std::size_t p = 0; p < prims.size(); ++p) {
       Candidate<F> c;
-      const Mask<F> closer = Method::intersect(ray, prims.template broadcast<F>(p), hit.t, active, c);
+      const Mask<F> closer = Method::intersect(prepared, prims.template broadcast<F>(p), hit.t, active, c);
       hit.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(p)));
     }
     hits.store(first, hit);
@@ -66,13 +69,14 @@ void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) 
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Ray<F> ray = rays.load<F>(first);
+    const auto prepared = Method::prepare(ray);
     const Mask<F> valid = first_lanes<F>(rays.count - first);
     Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     for (std::size_t p = 0; p < prims.size(); ++p) {
       const Mask<F> active = valid && !occluded;
       if (none(active)) break;
       Candidate<F> unused;
-      occluded = occluded || Method::intersect(ray, prims.template broadcast<F>(p), ray.tmax, active, unused);
+      occluded = occluded || Method::intersect(prepared, prims.template broadcast<F>(p), ray.tmax, active, unused);
     }
     store_int_lanes<F>(select(occluded, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
   }
@@ -108,12 +112,13 @@ void closest_scan(const RaySoA& rays, const S& prims, HitSoA& hits) {
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t r = 0; r < rays.count; ++r) {
     const Ray<F> ray = broadcast_ray<F>(rays.get(r));
+    const auto prepared = Method::prepare(ray);
     const Hit<float> before = hits.get(r);
     Hit<F> best = Hit<F>::none(F(before.t));
     for (std::size_t first = 0; first < prims.size(); first += W) {
       Candidate<F> c;
       const Mask<F> active = first_lanes<F>(prims.size() - first);
-      const Mask<F> closer = Method::intersect(ray, prims.template load<F>(first), best.t, active, c);
+      const Mask<F> closer = Method::intersect(prepared, prims.template load<F>(first), best.t, active, c);
       best.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(first)) + lane_index<F>());
     }
     const Hit<float> found = closest_lane(best, before.t);
@@ -127,10 +132,11 @@ void occluded_scan(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
   for (std::size_t r = 0; r < rays.count; ++r) {
     if (result.occluded[r] != 0) continue;
     const Ray<F> ray = broadcast_ray<F>(rays.get(r));
+    const auto prepared = Method::prepare(ray);
     for (std::size_t first = 0; first < prims.size(); first += W) {
       Candidate<F> unused;
       const Mask<F> active = first_lanes<F>(prims.size() - first);
-      if (any(Method::intersect(ray, prims.template load<F>(first), ray.tmax, active, unused))) {
+      if (any(Method::intersect(prepared, prims.template load<F>(first), ray.tmax, active, unused))) {
         result.occluded[r] = 1;
         break;
       }

@@ -28,4 +28,12 @@ inline Ray<F> broadcast_ray(const Ray<float>& r) {
   }
 }
 
+// Base of kernel methods that need no per-ray setup: prepare() is the ray.
+struct RayAsIs {
+  template <class F>
+  static const Ray<F>& prepare(const Ray<F>& ray) {
+    return ray;
+  }
+};
+
 }  // namespace quiver
