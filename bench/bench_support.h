@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -22,15 +23,18 @@ struct RayMixes {
   RaySoA misses;  // most rays miss every primitive
 };
 
+// The widths to register: every width this CPU supports, or only the one
+// QUIVER_SIMD names (auto or unset means all).
+std::vector<int> bench_widths();
+
 // Registers closest-hit packets and scan on both mixes, and any-hit packets
 // on the miss mix (where no early exit makes the test count inexact), for
-// each width this CPU supports.
+// each width of bench_widths().
 template <class S>
 void register_kernel_benchmarks(const std::string& kind_and_method,
                                 const std::function<KernelStreams<S>(int width)>& streams_for_width,
                                 std::shared_ptr<const S> prims, std::shared_ptr<const RayMixes> rays) {
-  for (int width : {1, 4, 8}) {
-    if (!isa_supported(isa_for_width(width))) continue;
+  for (int width : bench_widths()) {
     const KernelStreams<S> streams = streams_for_width(width);
     const std::string prefix = kind_and_method + "/w" + std::to_string(width);
     for (bool hit_mix : {true, false}) {
