@@ -38,4 +38,15 @@ struct Hit {
   }
 };
 
+// Early exit of a kernel once no lane can hit: zeroes the candidate (so no
+// lane carries unset values) and returns the all-false mask it is given.
+template <class F>
+inline Mask<F> no_hit(const Mask<F>& no_lane, Candidate<F>& out) {
+  out.t = F(0.f);
+  out.u = F(0.f);
+  out.v = F(0.f);
+  out.ng = Vec3<F>(F(0.f), F(0.f), F(0.f));
+  return no_lane;
+}
+
 }  // namespace quiver
