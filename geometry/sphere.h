@@ -1,0 +1,204 @@
+// Ray / sphere, three methods (all with the same contract):
+//   SphereAlgebraic: the seed's quadratic (Haines, "Essential Ray Tracing
+//     Algorithms", in Glassner (ed.), An Introduction to Ray Tracing, ch. 2):
+//     L = o - c, A = d.d, B = 2 d.L, C = L.L - r^2, disc = B^2 - 4AC,
+//     t0,1 = (-B -+ sqrt(disc)) * (1 / 2A), 1 / 2A once per ray in prepare().
+//     Plain arithmetic, no fma.
+//   SphereGeometric: the seed's geometric method, same chapter: L = c - o,
+//     t_ca = L.d^, d^2 = L.L - t_ca^2, t_hc = sqrt(r^2 - d^2), roots
+//     (t_ca -+ t_hc) * (1 / |d|). d^ = d / |d| and 1 / |d| are computed once
+//     per ray in prepare(), so t_ca and t_hc are distances and t is in units of d.
+//   SphereRobust: Haines, Guenther, Akenine-Moeller, "Precision Improvements
+//     for Ray/Sphere Intersection", Ray Tracing Gems (2019), ch. 7: with
+//     f = o - c, a = d.d, h = f.d, the discriminant is a (r^2 - |l|^2),
+//     l = f - (h/a) d (center to the chord's midpoint, by fma so the large
+//     parallel parts cancel before rounding); the roots are q/a and c/q with
+//     q = -(h + sign(h) sqrt(disc)), c = f.f - r^2 (no cancellation in either).
+//     Beyond the chapter: the part of l left along d by the rounding of h/a
+//     (about eps |f|; 20% false misses at |f| = 1e7 r without this) is
+//     projected out inside the discriminant, disc = a (r^2 - |l|^2) + (l.d)^2.
+//     That makes the rounding of h/a harmless, so it is h * (1/a) with 1/a
+//     from prepare(); the roots are q * (1/a) and the one true division c / q.
+// Per-test divisions are avoided on purpose: vector divide and sqrt units
+// have a fraction of the scalar ones' per-lane throughput, so a division in
+// the test would cap the 8-wide speed-up (bench/README.md).
+// t-range: the nearer root if it is > tmin, else the farther one; hit iff that
+// t is in (tmin, tmax). So an origin inside the sphere hits the far side, in
+// either orientation, and the seed's inside/outside test and "t_ca < 0" early
+// out are replaced by this choice (equivalent for tmin = 0 up to rounding).
+// Tangent rays: a computed discriminant >= 0 is a hit, with t the (double)
+// root at the touching point, so an exact tangent (o = (1,0,-5), d = +z, unit
+// sphere) hits in every method. Near tangency rounding decides: measured, the
+// algebraic and geometric methods can disagree with exact arithmetic for lines
+// up to 5e-5 r from tangency (their discriminants cancel), robust only within
+// 4e-7 r (tests/geometry_sphere_test.cpp, SphereStability.GrazingRays).
+// Masks: only active lanes hit; the kernel returns early (no_hit) once no
+// lane has a real root. A direction whose d.d is 0 (or underflows),
+// Inf or NaN misses. sqrt and the divisions are fed safe values (0, 1) in lanes
+// that miss, so no lane needs a NaN or a division by zero.
+// Output: ng = (o + t d - c) / r, the outward normal (unit up to rounding, never
+// flipped toward the ray), evaluated as fma(d, t, o - c) * (1/r), 1/r stored
+// per sphere. u = v = 0:
+// spherical texture coordinates are derived from ng at shading time.
+#pragma once
+
+#include "geometry/hit.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+template <class F>
+struct SphereLanes {
+  Vec3<F> center;
+  F radius2;         // radius * radius, a normal float
+  F inverse_radius;  // 1 / radius
+};
+
+namespace sphere_detail {
+
+// d.d is a usable length: not 0, not underflowed to 0, not Inf or NaN.
+template <class F>
+inline Mask<F> direction_ok(const F& dd) {
+  return dd > F(0.f) && isfinite_lanes(dd);
+}
+
+// (o + t d - c) / r from f = o - c: one rounding per component, then a
+// multiply by the stored 1/r (within 1.5 ulp of dividing).
+template <class F>
+inline Vec3<F> outward_normal(const Vec3<F>& f, const Vec3<F>& d, const F& t, const F& inv_r) {
+  return {fma(d.x, t, f.x) * inv_r, fma(d.y, t, f.y) * inv_r, fma(d.z, t, f.z) * inv_r};
+}
+
+// Nearer root if it lies beyond tmin, else the farther one.
+template <class F>
+inline F pick_root(const F& near, const F& far, const F& tmin) {
+  return select(near > tmin, near, far);
+}
+
+}  // namespace sphere_detail
+
+// Per-ray values of the algebraic and robust methods: A = d.d and its validity.
+template <class F>
+struct SphereRay {
+  Ray<F> ray;
+  F dd;            // d.d, replaced by 1 where not direction_ok
+  F inv_dd;        // 1 / dd
+  Mask<F> usable;  // direction_ok(d.d)
+};
+
+// Per-ray values of the geometric method: the unit direction and |d|.
+template <class F>
+struct SphereUnitRay {
+  Ray<F> ray;
+  Vec3<F> unit;   // d / |d| (0 where not usable)
+  F inv_length;   // 1 / |d|, 1 where not usable
+  Mask<F> usable;
+};
+
+template <class F>
+inline SphereRay<F> prepare_sphere_ray(const Ray<F>& ray) {
+  const F dd = dot(ray.direction, ray.direction);
+  const Mask<F> usable = sphere_detail::direction_ok(dd);
+  const F safe_dd = select(usable, dd, F(1.f));
+  return {ray, safe_dd, F(1.f) / safe_dd, usable};
+}
+
+struct SphereAlgebraic {
+  template <class F>
+  static SphereRay<F> prepare(const Ray<F>& ray) {
+    return prepare_sphere_ray(ray);
+  }
+
+  template <class F>
+  static Mask<F> intersect(const SphereRay<F>& r, const SphereLanes<F>& s, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    const Ray<F>& ray = r.ray;
+    const Vec3<F> L = ray.origin - s.center;
+    const F A = r.dd;
+    const F B = F(2.f) * dot(ray.direction, L);
+    const F C = dot(L, L) - s.radius2;
+    const F disc = B * B - F(4.f) * A * C;  // the seed's discriminant
+    const Mask<F> real = active && r.usable && disc >= F(0.f);
+    if (none(real)) return no_hit(real, out);
+    const F root = sqrt(select(real, disc, F(0.f)));
+    const F inv_two_a = F(0.5f) * r.inv_dd;  // exact: a power-of-two scale
+    const F t0 = (-B - root) * inv_two_a;
+    const F t1 = (-B + root) * inv_two_a;
+    out.t = sphere_detail::pick_root(t0, t1, ray.tmin);
+    out.u = F(0.f);
+    out.v = F(0.f);
+    out.ng = sphere_detail::outward_normal(L, ray.direction, out.t, s.inverse_radius);
+    return real && out.t > ray.tmin && out.t < tmax;
+  }
+};
+
+struct SphereGeometric {
+  template <class F>
+  static SphereUnitRay<F> prepare(const Ray<F>& ray) {
+    const F dd = dot(ray.direction, ray.direction);
+    const Mask<F> usable = sphere_detail::direction_ok(dd);
+    const F length = sqrt(select(usable, dd, F(1.f)));
+    const Vec3<F> unit = select(usable, ray.direction / length, Vec3<F>(F(0.f), F(0.f), F(0.f)));
+    return {ray, unit, F(1.f) / length, usable};
+  }
+
+  template <class F>
+  static Mask<F> intersect(const SphereUnitRay<F>& r, const SphereLanes<F>& s, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    const Ray<F>& ray = r.ray;
+    const Vec3<F> L = s.center - ray.origin;
+    const F t_ca = dot(L, r.unit);             // distance to the point closest to c
+    const F d2 = dot(L, L) - t_ca * t_ca;      // squared distance of the line from c
+    const F t_hc2 = s.radius2 - d2;            // squared half chord
+    const Mask<F> real = active && r.usable && t_hc2 >= F(0.f);
+    if (none(real)) return no_hit(real, out);
+    const F t_hc = sqrt(select(real, t_hc2, F(0.f)));
+    const F t0 = (t_ca - t_hc) * r.inv_length;
+    const F t1 = (t_ca + t_hc) * r.inv_length;
+    out.t = sphere_detail::pick_root(t0, t1, ray.tmin);
+    out.u = F(0.f);
+    out.v = F(0.f);
+    out.ng = sphere_detail::outward_normal(-L, ray.direction, out.t, s.inverse_radius);
+    return real && out.t > ray.tmin && out.t < tmax;
+  }
+};
+
+struct SphereRobust {
+  template <class F>
+  static SphereRay<F> prepare(const Ray<F>& ray) {
+    return prepare_sphere_ray(ray);
+  }
+
+  template <class F>
+  static Mask<F> intersect(const SphereRay<F>& r, const SphereLanes<F>& s, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    const Ray<F>& ray = r.ray;
+    const Vec3<F>& d = ray.direction;
+    const Vec3<F> f = ray.origin - s.center;
+    const F a = r.dd;
+    const F h = fma(f.x, d.x, fma(f.y, d.y, f.z * d.z));  // half of b = 2 f.d
+    const F along = h * r.inv_dd;  // t of the point closest to c (its rounding is projected out below)
+    // l = f - (h/a) d: fma cancels the large parallel parts before rounding.
+    const Vec3<F> l{fma(-along, d.x, f.x), fma(-along, d.y, f.y), fma(-along, d.z, f.z)};
+    const F r2_minus_l2 = fma(-l.x, l.x, fma(-l.y, l.y, fma(-l.z, l.z, s.radius2)));
+    // disc = h^2 - a c = a (r^2 - |l_perp|^2); the part of l left along d by the
+    // rounding of h/a is removed here: |l_perp|^2 = |l|^2 - (l.d)^2 / a.
+    const F ld = dot(l, d);
+    const F disc = fma(ld, ld, a * r2_minus_l2);
+    const Mask<F> real = active && r.usable && disc >= F(0.f);
+    if (none(real)) return no_hit(real, out);
+    const F root = sqrt(select(real, disc, F(0.f)));
+    const F c = fma(f.x, f.x, fma(f.y, f.y, fma(f.z, f.z, -s.radius2)));
+    const F q = -(h + select(h < F(0.f), -root, root));  // no cancellation: same signs
+    const Mask<F> q_nonzero = q != F(0.f);                // q = 0 only at a double root t = 0
+    const F ta = q * r.inv_dd;
+    const F tb = select(q_nonzero, c / select(q_nonzero, q, F(1.f)), ta);
+    out.t = sphere_detail::pick_root(min(ta, tb), max(ta, tb), ray.tmin);
+    out.u = F(0.f);
+    out.v = F(0.f);
+    out.ng = sphere_detail::outward_normal(f, d, out.t, s.inverse_radius);
+    return real && out.t > ray.tmin && out.t < tmax;
+  }
+};
+
+}  // namespace quiver

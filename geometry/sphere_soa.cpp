@@ -1,0 +1,41 @@
+#include "geometry/sphere_soa.h"
+
+#include <cmath>
+#include <limits>
+
+namespace quiver {
+
+SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report) {
+  SphereSoA soa;
+  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) c->reserve(padded_size(spheres.size()));
+  for (const SphereDesc& s : spheres) {
+    const Vec3<float>& c = s.center;
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(s.radius)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    const float r2 = s.radius * s.radius;
+    if (!std::isfinite(r2)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    if (!(s.radius > 0.f) || r2 < std::numeric_limits<float>::min()) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    soa.cx.push_back(c.x);
+    soa.cy.push_back(c.y);
+    soa.cz.push_back(c.z);
+    soa.r2.push_back(r2);
+    soa.inv_r.push_back(1.f / s.radius);
+  }
+  soa.count = soa.cx.size();
+  report.kept += soa.count;
+  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) {
+    c->resize(padded_size(soa.count));
+    pad_column(*c, soa.count);
+  }
+  return soa;
+}
+
+}  // namespace quiver

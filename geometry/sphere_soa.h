@@ -1,0 +1,38 @@
+// Spheres in SoA: center (cx, cy, cz), r^2 and 1/r.
+#pragma once
+
+#include <span>
+
+#include "geometry/build_report.h"
+#include "geometry/soa.h"
+#include "geometry/sphere.h"
+
+namespace quiver {
+
+struct SphereDesc {
+  Vec3<float> center;
+  float radius;
+};
+
+struct SphereSoA {
+  AlignedFloats cx, cy, cz, r2, inv_r;
+  std::size_t count = 0;
+
+  std::size_t size() const { return count; }
+  template <class F>
+  SphereLanes<F> broadcast(std::size_t i) const {
+    return {broadcast_vec3<F>(cx, cy, cz, i), F(r2[i]), F(inv_r[i])};
+  }
+  template <class F>
+  SphereLanes<F> load(std::size_t first) const {
+    return {load_vec3<F>(cx, cy, cz, first), load_lanes<F>(r2.data() + first),
+            load_lanes<F>(inv_r.data() + first)};
+  }
+};
+
+// Drops spheres with a non-finite center or radius, or whose r^2 overflows
+// (non-finite); and spheres with a radius <= 0 or whose r^2 is below the
+// smallest normal float (degenerate). Negative radii are not mirrored.
+SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report);
+
+}  // namespace quiver
