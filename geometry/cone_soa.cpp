@@ -1,0 +1,68 @@
+#include "geometry/cone_soa.h"
+
+#include <cfloat>
+#include <cmath>
+
+namespace quiver {
+
+namespace {
+bool finite(const Vec3<float>& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+// Squares neither overflow nor underflow to zero.
+bool square_safe(float x) {
+  const float sq = x * x;
+  return std::isfinite(sq) && (x == 0.f || sq >= FLT_MIN);
+}
+}  // namespace
+
+ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
+  ConeSoA soa;
+  AlignedFloats* columns[] = {&soa.bx,     &soa.by,      &soa.bz,    &soa.ax,    &soa.ay,
+                              &soa.az,     &soa.height,  &soa.radius0, &soa.slope, &soa.facing};
+  for (AlignedFloats* c : columns) c->reserve(padded_size(cones.size()));
+  for (const ConeDesc& c : cones) {
+    if (!finite(c.base) || !finite(c.apex) || !std::isfinite(c.base_radius) || !std::isfinite(c.apex_radius)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    // Axis and height in double: exact differences, no overflow in the squares.
+    const double dx = double(c.apex.x) - c.base.x, dy = double(c.apex.y) - c.base.y,
+                 dz = double(c.apex.z) - c.base.z;
+    const double h = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (h > double(FLT_MAX)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    // NFF: negative radii mean "inside visible"; mixed signs mean nothing.
+    const bool inside = c.base_radius < 0.f || c.apex_radius < 0.f;
+    const bool mixed = (c.base_radius < 0.f && c.apex_radius > 0.f) || (c.base_radius > 0.f && c.apex_radius < 0.f);
+    const float r0 = std::fabs(c.base_radius), r1 = std::fabs(c.apex_radius);
+    const float height = float(h);
+    const float slope = float((double(r1) - double(r0)) / h);
+    if (!(height >= FLT_MIN) || mixed || (r0 == 0.f && r1 == 0.f) || !std::isfinite(slope) ||
+        !square_safe(r0) || !square_safe(r1) || !square_safe(slope) || !square_safe(std::max(r0, r1))) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    soa.bx.push_back(c.base.x);
+    soa.by.push_back(c.base.y);
+    soa.bz.push_back(c.base.z);
+    soa.ax.push_back(float(dx / h));
+    soa.ay.push_back(float(dy / h));
+    soa.az.push_back(float(dz / h));
+    soa.height.push_back(height);
+    soa.radius0.push_back(r0);
+    soa.slope.push_back(slope);
+    soa.facing.push_back(inside ? -1.f : 1.f);
+  }
+  soa.count = soa.bx.size();
+  report.kept += soa.count;
+  for (AlignedFloats* c : columns) {
+    c->resize(padded_size(soa.count));
+    pad_column(*c, soa.count);
+  }
+  return soa;
+}
+
+}  // namespace quiver

@@ -1,0 +1,48 @@
+// Open cones and cylinders in SoA: base center, unit axis, height, base
+// radius, slope and facing (see geometry/cone.h).
+#pragma once
+
+#include <span>
+
+#include "geometry/build_report.h"
+#include "geometry/cone.h"
+#include "geometry/soa.h"
+
+namespace quiver {
+
+// NFF `c`: an open cone (a cylinder when the radii are equal) from the base
+// circle (center, radius) to the apex circle. NFF gives negative radii the
+// meaning "inside visible"; both radii <= 0 (not both 0) is kept with |r| and
+// facing -1, a positive and a negative radius together is dropped.
+struct ConeDesc {
+  Vec3<float> base;
+  float base_radius;
+  Vec3<float> apex;
+  float apex_radius;
+};
+
+struct ConeSoA {
+  AlignedFloats bx, by, bz, ax, ay, az, height, radius0, slope, facing;
+  std::size_t count = 0;
+
+  std::size_t size() const { return count; }
+  template <class F>
+  ConeLanes<F> broadcast(std::size_t i) const {
+    return {broadcast_vec3<F>(bx, by, bz, i), broadcast_vec3<F>(ax, ay, az, i), F(height[i]),
+            F(radius0[i]),                    F(slope[i]),                      F(facing[i])};
+  }
+  template <class F>
+  ConeLanes<F> load(std::size_t first) const {
+    return {load_vec3<F>(bx, by, bz, first),          load_vec3<F>(ax, ay, az, first),
+            load_lanes<F>(height.data() + first),     load_lanes<F>(radius0.data() + first),
+            load_lanes<F>(slope.data() + first),      load_lanes<F>(facing.data() + first)};
+  }
+};
+
+// Drops cones with a non-finite number (in the input or in the derived axis
+// length) as non-finite; a zero (or subnormal) axis, both radii zero, radii of
+// mixed sign, or a radius, slope or squared radius/slope that over- or
+// underflows as degenerate.
+ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report);
+
+}  // namespace quiver
