@@ -1,0 +1,186 @@
+// Ray / triangle, two methods, both two-sided.
+//
+// TriangleMollerTrumbore: Moller & Trumbore, "Fast, Minimum Storage
+//   Ray/Triangle Intersection", JGT 2(1), 1997. Cramer's rule in the basis
+//   e1 = v1-v0, e2 = v2-v0: p = d x e2, det = e1.p, T = o-v0, q = T x e1,
+//   u = T.p/det, v = d.q/det, t = e2.q/det (as products with 1/det, like the
+//   paper's code). Epsilon-free: only det == 0 misses (1 is fed to the
+//   division). Not watertight: a ray through a shared edge can miss both
+//   triangles (measured in tests/geometry_triangle_test.cpp).
+// TriangleWatertight: Woop, Benthin & Wald, "Watertight Ray/Triangle
+//   Intersection", JCGT 2(1), 2013. prepare(): per lane kz = argmax|d| (ties
+//   to z, then y), kx, ky cyclic after it and swapped when d[kz] < 0, shear
+//   Sx = d[kx]/d[kz], Sy = d[ky]/d[kz], Sz = 1/d[kz]; the per-lane axis
+//   choice is masks applied with selects. Edge functions w0, w1, w2 (w_i
+//   weighs vertex i) are unfused products, so a shared edge gives exactly
+//   opposite values, and by monotonic rounding the right sign or 0. A 0 is
+//   recomputed with difference_of_products (error <= 2 ulp, so the exact
+//   sign unless the products underflow) in place of the paper's double.
+//   Deviations, both measured: the shear uses fma (fewer misses far from the
+//   origin than unfused), and t is range-tested after the division, not as
+//   the paper's scaled t xor sign(det), so (tmin, tmax) is exact and the
+//   stream orders agree bit for bit; the division still waits until some
+//   lane passes the edge tests.
+//
+// Both: hit iff active, inside (edges and vertices included), det != 0,
+// tmin < t < tmax and ng != 0 (a triangle whose computed ng is exactly zero,
+// e.g. a repeated vertex or exactly proportional edges, never hits).
+// out.u, out.v weigh v1 and v2: hit = (1-u-v) v0 + u v1 + v v2.
+// out.ng = (v1-v0) x (v2-v0), not unit, not flipped toward the ray.
+// Each kernel returns early (no_hit) once no lane passes its inside test;
+// that changes no lane's result.
+#pragma once
+
+#include "geometry/hit.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+template <class F>
+struct TriangleLanes {
+  Vec3<F> v0, v1, v2;
+};
+
+namespace triangle_detail {
+
+template <class F>
+inline Mask<F> nonzero(const Vec3<F>& a) {
+  return a.x != F(0.f) || a.y != F(0.f) || a.z != F(0.f);
+}
+
+// (a && m) || (b && !m) for masks.
+template <class F>
+inline Mask<F> choose(const Mask<F>& m, const Mask<F>& a, const Mask<F>& b) {
+  return (m && a) || (!m && b);
+}
+
+// The component of a named per lane by two masks: x, else y, else z.
+template <class F>
+inline F component(const Vec3<F>& a, const Mask<F>& is_x, const Mask<F>& is_y) {
+  return select(is_x, a.x, select(is_y, a.y, a.z));
+}
+
+}  // namespace triangle_detail
+
+struct TriangleMollerTrumbore : RayAsIs {
+  template <class F>
+  static Mask<F> intersect(const Ray<F>& ray, const TriangleLanes<F>& tri, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    using namespace triangle_detail;
+    const Vec3<F> e1 = tri.v1 - tri.v0;
+    const Vec3<F> e2 = tri.v2 - tri.v0;
+    // det = e1.(d x e2): zero when the ray is parallel to the plane.
+    const Vec3<F> p = cross(ray.direction, e2);
+    const F det = dot(e1, p);
+    const Mask<F> crosses = det != F(0.f);
+    const F inv_det = F(1.f) / select(crosses, det, F(1.f));
+    // u from the origin's offset T projected on p.
+    const Vec3<F> offset = ray.origin - tri.v0;
+    const F u = dot(offset, p) * inv_det;
+    // v from the direction projected on q = T x e1.
+    const Vec3<F> q = cross(offset, e1);
+    const F v = dot(ray.direction, q) * inv_det;
+    const Mask<F> candidate = active && crosses && u >= F(0.f) && v >= F(0.f) && u + v <= F(1.f);
+    if (none(candidate)) return no_hit(candidate, out);
+    const F t = dot(e2, q) * inv_det;
+    const Vec3<F> ng = cross(e1, e2);
+    out.t = t;
+    out.u = u;
+    out.v = v;
+    out.ng = ng;
+    return candidate && t > ray.tmin && t < tmax && nonzero(ng);
+  }
+};
+
+// A ray prepared for the watertight test: per-lane axis masks and shear.
+template <class F>
+struct WatertightRay {
+  Vec3<F> origin;
+  Mask<F> kx_is_x, kx_is_y, ky_is_x, ky_is_y, kz_is_x, kz_is_y;
+  F sx, sy, sz;
+  F tmin;
+  Mask<F> valid;  // direction not zero
+};
+
+struct TriangleWatertight {
+  template <class F>
+  static WatertightRay<F> prepare(const Ray<F>& ray) {
+    using namespace triangle_detail;
+    const Vec3<F> d = ray.direction;
+    const F ax = abs(d.x), ay = abs(d.y), az = abs(d.z);
+    // kz = argmax |d|; ties go to z, then y.
+    const Mask<F> z_is_z = az >= ax && az >= ay;
+    const Mask<F> kz_is_y = !z_is_z && ay >= ax;
+    const Mask<F> kz_is_x = !z_is_z && !kz_is_y;
+    // kx, ky follow kz cyclically: z -> (x, y), x -> (y, z), y -> (z, x).
+    const Mask<F> kx_is_x = z_is_z, kx_is_y = kz_is_x;
+    const Mask<F> ky_is_x = kz_is_y, ky_is_y = z_is_z;
+    const F dz = component(d, kz_is_x, kz_is_y);
+    // Swap kx and ky when d[kz] < 0 to keep the winding.
+    const Mask<F> swap = dz < F(0.f);
+    WatertightRay<F> r;
+    r.origin = ray.origin;
+    r.kx_is_x = choose<F>(swap, ky_is_x, kx_is_x);
+    r.kx_is_y = choose<F>(swap, ky_is_y, kx_is_y);
+    r.ky_is_x = choose<F>(swap, kx_is_x, ky_is_x);
+    r.ky_is_y = choose<F>(swap, kx_is_y, ky_is_y);
+    r.kz_is_x = kz_is_x;
+    r.kz_is_y = kz_is_y;
+    // Shear: d[kz] is zero only for a zero direction; feed 1 there.
+    r.valid = dz != F(0.f);
+    const F safe_dz = select(r.valid, dz, F(1.f));
+    r.sx = component(d, r.kx_is_x, r.kx_is_y) / safe_dz;
+    r.sy = component(d, r.ky_is_x, r.ky_is_y) / safe_dz;
+    r.sz = F(1.f) / safe_dz;
+    r.tmin = ray.tmin;
+    return r;
+  }
+
+  template <class F>
+  static Mask<F> intersect(const WatertightRay<F>& ray, const TriangleLanes<F>& tri, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    using namespace triangle_detail;
+    // Vertices relative to the origin, permuted so the ray runs along kz.
+    const Vec3<F> a = tri.v0 - ray.origin, b = tri.v1 - ray.origin, c = tri.v2 - ray.origin;
+    const F az = component(a, ray.kz_is_x, ray.kz_is_y);
+    const F bz = component(b, ray.kz_is_x, ray.kz_is_y);
+    const F cz = component(c, ray.kz_is_x, ray.kz_is_y);
+    // Shear x, y so the ray is the z axis of the 2D edge tests (fused: one
+    // rounding per coordinate; the paper's unfused form missed more far away).
+    const F ax = fma(-ray.sx, az, component(a, ray.kx_is_x, ray.kx_is_y));
+    const F ay = fma(-ray.sy, az, component(a, ray.ky_is_x, ray.ky_is_y));
+    const F bx = fma(-ray.sx, bz, component(b, ray.kx_is_x, ray.kx_is_y));
+    const F by = fma(-ray.sy, bz, component(b, ray.ky_is_x, ray.ky_is_y));
+    const F cx = fma(-ray.sx, cz, component(c, ray.kx_is_x, ray.kx_is_y));
+    const F cy = fma(-ray.sy, cz, component(c, ray.ky_is_x, ray.ky_is_y));
+    // Edge functions, unfused so a shared edge gives exactly opposite values.
+    F w0 = cx * by - cy * bx;
+    F w1 = ax * cy - ay * cx;
+    F w2 = bx * ay - by * ax;
+    // A zero may be rounding: recompute it with one rounding for its sign.
+    const Mask<F> w0_zero = w0 == F(0.f), w1_zero = w1 == F(0.f), w2_zero = w2 == F(0.f);
+    if (any(w0_zero || w1_zero || w2_zero)) {
+      w0 = select(w0_zero, difference_of_products(cx, by, cy, bx), w0);
+      w1 = select(w1_zero, difference_of_products(ax, cy, ay, cx), w1);
+      w2 = select(w2_zero, difference_of_products(bx, ay, by, ax), w2);
+    }
+    const Mask<F> inside = (w0 >= F(0.f) && w1 >= F(0.f) && w2 >= F(0.f)) ||
+                           (w0 <= F(0.f) && w1 <= F(0.f) && w2 <= F(0.f));
+    const F det = w0 + w1 + w2;
+    const Mask<F> crosses = det != F(0.f);
+    const Mask<F> candidate = active && ray.valid && inside && crosses;
+    if (none(candidate)) return no_hit(candidate, out);
+    // Scaled distance, divided only now that some lane is inside.
+    const F scaled_t = w0 * (ray.sz * az) + w1 * (ray.sz * bz) + w2 * (ray.sz * cz);
+    const F inv_det = F(1.f) / select(crosses, det, F(1.f));
+    const F t = scaled_t * inv_det;
+    const Vec3<F> ng = cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+    out.t = t;
+    out.u = w1 * inv_det;
+    out.v = w2 * inv_det;
+    out.ng = ng;
+    return candidate && t > ray.tmin && t < tmax && nonzero(ng);
+  }
+};
+
+}  // namespace quiver
