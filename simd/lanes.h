@@ -157,6 +157,16 @@ inline xsimd::batch_bool<float, A> nonzero_lanes(const xsimd::batch<std::int32_t
 }
 inline bool nonzero_lanes(std::int32_t i) { return i != 0; }
 
+// a != b for masks. Never write != or == between masks: xsimd 8.1's SSE
+// batch_bool comparison treats the all-ones lanes as floats (NaNs), so
+// true != true there; xor is right at every width.
+inline bool masks_differ(bool a, bool b) { return a != b; }
+template <class A>
+inline xsimd::batch_bool<float, A> masks_differ(const xsimd::batch_bool<float, A>& a,
+                                                const xsimd::batch_bool<float, A>& b) {
+  return a ^ b;
+}
+
 // ---- written once for every width ----------------------------------------
 
 // min/max as selects: identical bits for NaN and +-0 at every width.

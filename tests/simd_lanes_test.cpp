@@ -47,6 +47,12 @@ TEST(Lanes, CrossAccurateIsPerpendicular) {
   EXPECT_NEAR(c.z, cd.z, std::abs(cd.z) * 2e-7);
 }
 
+TEST(Lanes, MasksDifferIsXorAtWidth1) {
+  EXPECT_FALSE(masks_differ(true, true));
+  EXPECT_TRUE(masks_differ(true, false));
+  EXPECT_FALSE(masks_differ(false, false));
+}
+
 TEST(Isa, ResolveNamesAndRejectsUnknown) {
   EXPECT_EQ(resolve_isa("scalar"), Isa::scalar);
   EXPECT_EQ(resolve_isa("auto"), best_supported_isa());

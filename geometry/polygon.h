@@ -1,0 +1,86 @@
+// Ray / planar polygon (n >= 3 vertices, convex or concave), after Haines,
+// "Point in Polygon Strategies" (Graphics Gems IV, 1994) and Glassner, An
+// Introduction to Ray Tracing, ch. 2:
+//   1. plane hit: n.P + d = 0 with unit n, t = -(d + n.o) / (n.dir);
+//   2. project the hit point onto the polygon's dominant plane (drop the axis
+//      k of n's largest |component|, chosen at build time): coordinates
+//      (P[(k+1)%3], P[(k+2)%3]) relative to the first vertex;
+//   3. reject points outside the polygon's closed 2D bounding rectangle;
+//   4. crossing (even-odd, Jordan curve) test: a +u ray from the point toggles
+//      "inside" at every edge it crosses. Half-open rule: an edge (a, b)
+//      counts iff (a.v > v) != (b.v > v), so a vertex on the scan line is
+//      counted once or not at all, consistently. The crossing lies on the +u
+//      side iff sign((v - a.v)(b.u - a.u) - (u - a.u)(b.v - a.v)) matches the
+//      edge's upward direction (Haines's multiply form: no division), the
+//      product difference from difference_of_products. A point exactly on an
+//      edge is inside or outside depending on that edge's direction.
+// All lanes share the polygon, so the edge loop is the same for every lane;
+// an edge no lane straddles is skipped (it could toggle no lane).
+// t-range: hit iff tmin < t < tmax. A ray parallel to the plane (n.dir == 0)
+// misses, even in the plane; its division is fed 1 (no NaN, no division by 0).
+// Masks: only active lanes can hit.
+// Output: ng = the unit plane normal (Newell's method; counter-clockwise
+// vertex order seen from where ng points); u, v = the hit point's projected
+// 2D coordinates relative to the first vertex, (P - V0)[(k+1)%3] and
+// (P - V0)[(k+2)%3] (not normalised; for k = 2 they are x and y).
+#pragma once
+
+#include "geometry/hit.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+template <class F>
+struct PolygonLanes {
+  Vec3<F> normal;          // unit length
+  F d;                     // n.P + d = 0 on the plane
+  int axis_u, axis_v;      // the kept axes, (k+1)%3 and (k+2)%3
+  F origin_u, origin_v;    // the first vertex, projected
+  F umin, umax, vmin, vmax;  // bounding rectangle, relative to the first vertex
+  const float* pu;         // vertex_count projected vertices relative to the first
+  const float* pv;
+  int vertex_count;
+};
+
+struct PolygonCrossing : RayAsIs {
+  template <class F>
+  static Mask<F> intersect(const Ray<F>& ray, const PolygonLanes<F>& poly, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    // Plane hit.
+    const F denom = dot(poly.normal, ray.direction);
+    const Mask<F> crosses = denom != F(0.f);
+    const F numer = -(poly.d + dot(poly.normal, ray.origin));
+    out.t = numer / select(crosses, denom, F(1.f));
+    out.ng = poly.normal;
+    // Projected hit point relative to the first vertex: (o - V0) + t dir.
+    const F u = fma(out.t, ray.direction[poly.axis_u], ray.origin[poly.axis_u] - poly.origin_u);
+    const F v = fma(out.t, ray.direction[poly.axis_v], ray.origin[poly.axis_v] - poly.origin_v);
+    out.u = u;
+    out.v = v;
+    const Mask<F> in_range = active && crosses && out.t > ray.tmin && out.t < tmax;
+    // Bounding rectangle.
+    const Mask<F> candidate = in_range && u >= poly.umin && u <= poly.umax && v >= poly.vmin && v <= poly.vmax;
+    if (none(candidate)) return candidate;
+    // Crossing test over edges (a, b) = (vertex j, vertex i), j = i - 1 cyclic.
+    const int n = poly.vertex_count;
+    Mask<F> inside(false);
+    float au = poly.pu[n - 1], av = poly.pv[n - 1];
+    Mask<F> a_above = F(av) > v;
+    for (int i = 0; i < n; ++i) {
+      const float bu = poly.pu[i], bv = poly.pv[i];
+      const Mask<F> b_above = F(bv) > v;
+      const Mask<F> straddles = masks_differ(a_above, b_above);
+      if (any(straddles)) {
+        // > 0 iff the point is left of a->b (its crossing is on the +u side when b is above).
+        const F side = difference_of_products(v - F(av), F(bu - au), u - F(au), F(bv - av));
+        inside = masks_differ(inside, straddles && !masks_differ(side > F(0.f), b_above));
+      }
+      au = bu;
+      av = bv;
+      a_above = b_above;
+    }
+    return candidate && inside;
+  }
+};
+
+}  // namespace quiver

@@ -1,0 +1,253 @@
+#include "geometry/polygon_soa.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace quiver {
+
+namespace {
+
+struct Vec3d {
+  double x, y, z;
+  double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+Vec3d to_double(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
+double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool same(const Vec3<float>& a, const Vec3<float>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+enum class Verdict { ok, non_finite, degenerate };
+
+// A polygon that passed every check: its vertices without consecutive
+// duplicates, the unit Newell normal and the dominant (dropped) axis.
+struct CleanPolygon {
+  std::vector<Vec3<float>> vertices;
+  Vec3d normal;
+  Vec3d centroid;  // of the vertices
+  int dropped_axis = 2;
+};
+
+// Removes consecutive duplicates, cyclically (the last may equal the first).
+std::vector<Vec3<float>> without_consecutive_duplicates(const std::vector<Vec3<float>>& in) {
+  std::vector<Vec3<float>> out;
+  out.reserve(in.size());
+  for (const Vec3<float>& v : in) {
+    if (out.empty() || !same(out.back(), v)) out.push_back(v);
+  }
+  while (out.size() > 1 && same(out.back(), out.front())) out.pop_back();
+  return out;
+}
+
+Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
+  if (desc.vertices.size() > kMaxPolygonVertices) return Verdict::degenerate;
+  for (const Vec3<float>& v : desc.vertices) {
+    if (!finite(v)) return Verdict::non_finite;
+  }
+  result.vertices = without_consecutive_duplicates(desc.vertices);
+  const std::vector<Vec3<float>>& vs = result.vertices;
+  const std::size_t n = vs.size();
+  if (n < 3) return Verdict::degenerate;
+
+  // Newell's normal (twice the area vector), vertices relative to the first.
+  const Vec3d base = to_double(vs[0]);
+  Vec3d normal{0, 0, 0}, lo = base, hi = base, centroid{0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d a = to_double(vs[i]), b = to_double(vs[(i + 1) % n]);
+    const Vec3d ra{a.x - base.x, a.y - base.y, a.z - base.z}, rb{b.x - base.x, b.y - base.y, b.z - base.z};
+    normal.x += (ra.y - rb.y) * (ra.z + rb.z);
+    normal.y += (ra.z - rb.z) * (ra.x + rb.x);
+    normal.z += (ra.x - rb.x) * (ra.y + rb.y);
+    lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
+    hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
+    centroid = {centroid.x + ra.x, centroid.y + ra.y, centroid.z + ra.z};
+  }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double twice_area = std::sqrt(dot(normal, normal));
+  if (!(twice_area > kPolygonMinAreaRatio * extent * extent) || !std::isfinite(twice_area)) {
+    return Verdict::degenerate;
+  }
+  result.normal = {normal.x / twice_area, normal.y / twice_area, normal.z / twice_area};
+
+  // Planarity: every vertex within tolerance * extent of the plane through the centroid.
+  centroid = {centroid.x / double(n), centroid.y / double(n), centroid.z / double(n)};
+  result.centroid = {base.x + centroid.x, base.y + centroid.y, base.z + centroid.z};
+  double farthest = 0;
+  for (const Vec3<float>& v : vs) {
+    const Vec3d r{double(v.x) - base.x - centroid.x, double(v.y) - base.y - centroid.y,
+                  double(v.z) - base.z - centroid.z};
+    farthest = std::max(farthest, std::abs(dot(result.normal, r)));
+  }
+  if (farthest > kPolygonPlanarityTolerance * extent) return Verdict::degenerate;
+
+  // Dominant axis: the largest |normal component| (first of equals).
+  const Vec3d m{std::abs(result.normal.x), std::abs(result.normal.y), std::abs(result.normal.z)};
+  result.dropped_axis = (m.x >= m.y && m.x >= m.z) ? 0 : (m.y >= m.z ? 1 : 2);
+  return Verdict::ok;
+}
+
+}  // namespace
+
+PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report) {
+  PolygonSoA soa;
+  for (const PolygonDesc& desc : polygons) {
+    CleanPolygon poly;
+    const Verdict verdict = clean(desc, poly);
+    if (verdict == Verdict::non_finite) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    if (verdict == Verdict::degenerate) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    const Vec3<float> n{float(poly.normal.x), float(poly.normal.y), float(poly.normal.z)};
+    // d for the rounded normal through the centroid: n.C + d = 0.
+    const Vec3d& c = poly.centroid;
+    const float d = float(-(double(n.x) * c.x + double(n.y) * c.y + double(n.z) * c.z));
+    const Vec3<float>& v0 = poly.vertices[0];
+    const int au = (poly.dropped_axis + 1) % 3, av = (poly.dropped_axis + 2) % 3;
+
+    // Projected vertices relative to the first; consecutive 2D duplicates dropped.
+    std::vector<float> us, vs;
+    bool all_finite = std::isfinite(d);
+    for (const Vec3<float>& p : poly.vertices) {
+      const float u = p[au] - v0[au], v = p[av] - v0[av];
+      all_finite = all_finite && std::isfinite(u) && std::isfinite(v);
+      if (!us.empty() && us.back() == u && vs.back() == v) continue;
+      us.push_back(u);
+      vs.push_back(v);
+    }
+    while (us.size() > 1 && us.back() == us.front() && vs.back() == vs.front()) {
+      us.pop_back();
+      vs.pop_back();
+    }
+    if (!all_finite) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    if (us.size() < 3) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    soa.nx.push_back(n.x);
+    soa.ny.push_back(n.y);
+    soa.nz.push_back(n.z);
+    soa.d.push_back(d);
+    soa.origin_u.push_back(v0[au]);
+    soa.origin_v.push_back(v0[av]);
+    soa.umin.push_back(*std::min_element(us.begin(), us.end()));
+    soa.umax.push_back(*std::max_element(us.begin(), us.end()));
+    soa.vmin.push_back(*std::min_element(vs.begin(), vs.end()));
+    soa.vmax.push_back(*std::max_element(vs.begin(), vs.end()));
+    soa.axis_u.push_back(au);
+    soa.axis_v.push_back(av);
+    soa.vertex_count.push_back(static_cast<std::int32_t>(us.size()));
+    soa.first_vertex.push_back(soa.pu.size());
+    soa.pu.insert(soa.pu.end(), us.begin(), us.end());
+    soa.pv.insert(soa.pv.end(), vs.begin(), vs.end());
+  }
+  soa.count = soa.nx.size();
+  report.kept += soa.count;
+  const std::size_t padded = padded_size(soa.count);
+  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
+                           &soa.vmin, &soa.vmax}) {
+    c->resize(padded);
+    pad_column(*c, soa.count);
+  }
+  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count}) {
+    c->resize(padded);
+    pad_column(*c, soa.count);
+  }
+  soa.first_vertex.resize(padded, soa.first_vertex.empty() ? 0 : soa.first_vertex.back());
+  return soa;
+}
+
+namespace {
+
+struct Point2d {
+  double x, y;
+};
+
+// Twice the signed area of (a, b, c): > 0 when counter-clockwise.
+double orient(const Point2d& a, const Point2d& b, const Point2d& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+}  // namespace
+
+std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& polygon) {
+  std::vector<std::array<Vec3<float>, 3>> triangles;
+  CleanPolygon poly;
+  if (clean(polygon, poly) != Verdict::ok) return triangles;
+  const std::vector<Vec3<float>>& vs = poly.vertices;
+  const int au = (poly.dropped_axis + 1) % 3, av = (poly.dropped_axis + 2) % 3;
+  std::vector<Point2d> p;
+  p.reserve(vs.size());
+  for (const Vec3<float>& v : vs) p.push_back({double(v[au]) - vs[0][au], double(v[av]) - vs[0][av]});
+  // Winding sign of the projection: ears are convex in this sense.
+  double area = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Point2d& a = p[i];
+    const Point2d& b = p[(i + 1) % p.size()];
+    area += a.x * b.y - a.y * b.x;
+  }
+  const double sense = area >= 0 ? 1.0 : -1.0;
+
+  std::vector<int> ring(vs.size());
+  for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = static_cast<int>(i);
+  triangles.reserve(vs.size() - 2);
+  auto emit = [&](int a, int b, int c) { triangles.push_back({vs[a], vs[b], vs[c]}); };
+  auto coincides = [&](int r, int a) { return p[r].x == p[a].x && p[r].y == p[a].y; };
+
+  std::size_t cursor = 0;
+  while (ring.size() > 3) {
+    const std::size_t m = ring.size();
+    bool clipped = false;
+    std::size_t best = m;  // most convex corner, for the no-ear fallback
+    double best_turn = 0;
+    for (std::size_t step = 0; step < m && !clipped; ++step) {
+      const std::size_t k = (cursor + step) % m;
+      const int a = ring[(k + m - 1) % m], b = ring[k], c = ring[(k + 1) % m];
+      const double turn = sense * orient(p[a], p[b], p[c]);
+      if (turn == 0) {  // collinear corner: no area to cover
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+        cursor = k;
+        clipped = true;
+        break;
+      }
+      if (turn < 0) continue;  // reflex corner
+      if (turn > best_turn) {
+        best_turn = turn;
+        best = k;
+      }
+      // An ear holds no other ring vertex in its closed triangle.
+      bool empty = true;
+      for (const int r : ring) {
+        if (r == a || r == b || r == c || coincides(r, a) || coincides(r, b) || coincides(r, c)) continue;
+        if (sense * orient(p[a], p[b], p[r]) >= 0 && sense * orient(p[b], p[c], p[r]) >= 0 &&
+            sense * orient(p[c], p[a], p[r]) >= 0) {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty) continue;
+      emit(a, b, c);
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+      cursor = k;
+      clipped = true;
+    }
+    if (clipped) continue;
+    // No ear (not simple, or rounding): clip the most convex corner, or drop one.
+    const std::size_t k = best < m ? best : 0;
+    if (best < m) emit(ring[(k + m - 1) % m], ring[k], ring[(k + 1) % m]);
+    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+    cursor = k;
+  }
+  if (sense * orient(p[ring[0]], p[ring[1]], p[ring[2]]) > 0) emit(ring[0], ring[1], ring[2]);
+  return triangles;
+}
+
+}  // namespace quiver

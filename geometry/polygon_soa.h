@@ -1,0 +1,74 @@
+// Planar polygons in SoA: per polygon the unit plane (nx, ny, nz, d), the kept
+// axes of the dominant projection, the first vertex projected, the 2D bounding
+// rectangle and the vertex range; the projected vertices (relative to each
+// polygon's first vertex) live in the flat columns pu, pv. Packets only:
+// broadcast<F>(i) hands every lane the same polygon.
+#pragma once
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "geometry/build_report.h"
+#include "geometry/polygon.h"
+#include "geometry/soa.h"
+
+namespace quiver {
+
+// Vertices in order (either winding; ng follows it counter-clockwise).
+struct PolygonDesc {
+  std::vector<Vec3<float>> vertices;
+};
+
+// Largest vertex count build_polygons accepts per polygon (more: degenerate).
+inline constexpr std::size_t kMaxPolygonVertices = 1'000'000;
+// Non-planar: some vertex lies farther than this times the polygon's extent
+// (largest side of its 3D bounding box) from the fitted plane.
+inline constexpr double kPolygonPlanarityTolerance = 1e-4;
+// Zero area: |Newell normal| (twice the area) at most this times extent^2.
+inline constexpr double kPolygonMinAreaRatio = 1e-10;
+
+struct PolygonSoA {
+  // Per polygon, padded to kMaxLanes like every SoA column.
+  AlignedFloats nx, ny, nz, d;
+  AlignedFloats origin_u, origin_v;
+  AlignedFloats umin, umax, vmin, vmax;
+  AlignedInts axis_u, axis_v, vertex_count;
+  std::vector<std::size_t> first_vertex;
+  // Per vertex, all polygons back to back.
+  AlignedFloats pu, pv;
+  std::size_t count = 0;
+
+  std::size_t size() const { return count; }
+  template <class F>
+  PolygonLanes<F> broadcast(std::size_t i) const {
+    return {broadcast_vec3<F>(nx, ny, nz, i),
+            F(d[i]),
+            axis_u[i],
+            axis_v[i],
+            F(origin_u[i]),
+            F(origin_v[i]),
+            F(umin[i]),
+            F(umax[i]),
+            F(vmin[i]),
+            F(vmax[i]),
+            pu.data() + first_vertex[i],
+            pv.data() + first_vertex[i],
+            vertex_count[i]};
+  }
+};
+
+// Drops (with counts): a non-finite coordinate (also one whose projection
+// overflows) as non-finite; more than kMaxPolygonVertices input vertices,
+// fewer than 3 after removing consecutive duplicates (cyclically), zero area
+// or a non-planar polygon (see the tolerances above) as degenerate.
+PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report);
+
+// Ear-clipping triangulation of a simple (possibly concave) polygon, in its
+// dominant projection, keeping the vertex winding. Consecutive duplicates are
+// removed first; collinear vertices are clipped without a triangle. Empty for
+// input build_polygons would drop. A polygon that is not simple still gives
+// n - 2 triangles or fewer, but they need not cover it.
+std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& polygon);
+
+}  // namespace quiver
