@@ -30,8 +30,8 @@ const bool registered = [] {
   }
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto w, ConeMethod m) { return cone_streams<decltype(w)::value>(m); };
-  register_kernel_benchmarks<ConeSoA>("cone/quadric", streams_by_width<ConeSoA>(ConeMethod::quadric, streams_of),
+  auto streams_of = [](auto u, ConeMethod m) { return cone_streams<decltype(u)::value>(m); };
+  register_kernel_benchmarks<ConeSoA>("cone/quadric", streams_by_unit<ConeSoA>(ConeMethod::quadric, streams_of),
                                       cones, rays);
   return true;
 }();

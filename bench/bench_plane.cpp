@@ -24,8 +24,8 @@ const bool registered = [] {
   }
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto w, PlaneMethod m) { return plane_streams<decltype(w)::value>(m); };
-  register_kernel_benchmarks<PlaneSoA>("plane/seed", streams_by_width<PlaneSoA>(PlaneMethod::seed, streams_of),
+  auto streams_of = [](auto u, PlaneMethod m) { return plane_streams<decltype(u)::value>(m); };
+  register_kernel_benchmarks<PlaneSoA>("plane/seed", streams_by_unit<PlaneSoA>(PlaneMethod::seed, streams_of),
                                        planes, rays);
   return true;
 }();

@@ -37,49 +37,6 @@ std::vector<PolygonDesc> bench_polygons(testing::RaySampler& s) {
   return descs;
 }
 
-// Like register_kernel_benchmarks, but items = rays x polygons whatever the store holds.
-template <class S>
-void register_per_polygon(const std::string& kind_and_method,
-                          const std::function<KernelStreams<S>(int width)>& streams_for_width,
-                          std::shared_ptr<const S> prims, std::size_t polygons, std::shared_ptr<const RayMixes> rays) {
-  for (int width : bench_widths()) {
-    const KernelStreams<S> streams = streams_for_width(width);
-    const std::string prefix = kind_and_method + "/w" + std::to_string(width);
-    for (bool hit_mix : {true, false}) {
-      const RaySoA* mix = hit_mix ? &rays->hits : &rays->misses;
-      const std::string name = prefix + (hit_mix ? "/hits" : "/misses");
-      const double tests = double(mix->count) * double(polygons);
-      auto closest = [=](benchmark::State& state, auto stream) {
-        const auto keep_alive = rays;
-        HitSoA hits(*mix);
-        for (auto _ : state) {
-          stream(*mix, *prims, hits);
-          benchmark::DoNotOptimize(hits.t.data());
-          benchmark::ClobberMemory();
-        }
-        state.SetItemsProcessed(static_cast<std::int64_t>(tests * double(state.iterations())));
-        state.counters["prims_per_polygon"] = double(prims->size()) / double(polygons);
-      };
-      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { closest(st, streams.closest_packets); });
-      if (streams.closest_scan) {
-        benchmark::RegisterBenchmark((name + "/scan").c_str(),
-                                     [=](benchmark::State& st) { closest(st, streams.closest_scan); });
-      }
-      if (!hit_mix) {
-        benchmark::RegisterBenchmark((name + "/occluded").c_str(), [=](benchmark::State& state) {
-          const auto keep_alive = rays;
-          for (auto _ : state) {
-            OcclusionSoA occlusion(*mix);
-            streams.occluded_packets(*mix, *prims, occlusion);
-            benchmark::DoNotOptimize(occlusion.occluded.data());
-          }
-          state.SetItemsProcessed(static_cast<std::int64_t>(tests * double(state.iterations())));
-        });
-      }
-    }
-  }
-}
-
 const bool registered = [] {
   testing::RaySampler s(13);
   const std::vector<PolygonDesc> descs = bench_polygons(s);
@@ -102,7 +59,7 @@ const bool registered = [] {
     hit_rays.push_back(s.toward(s.in_box({-2, -2, -2}, {2, 2, 2}), target));
   }
   // Rays through the cluster, kept when they miss every polygon (scalar check).
-  const auto scalar = polygon_streams<1>(PolygonMethod::crossing);
+  const auto scalar = polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing);
   while (miss_rays.size() < kBenchRays) {
     std::vector<Ray<float>> batch;
     for (int i = 0; i < 1024; ++i) batch.push_back(s.toward(s.in_box({-3, -3, -3}, {3, 3, 3}), s.in_box({-1, -1, -1}, {1, 1, 1})));
@@ -116,13 +73,13 @@ const bool registered = [] {
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
 
-  auto polygon_streams_of = [](auto w, PolygonMethod m) { return polygon_streams<decltype(w)::value>(m); };
+  auto polygon_streams_of = [](auto u, PolygonMethod m) { return polygon_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<PolygonSoA>(
-      "polygon/crossing", streams_by_width<PolygonSoA>(PolygonMethod::crossing, polygon_streams_of), polygons, rays);
-  auto triangle_streams_of = [](auto w, TriangleMethod m) { return triangle_streams<decltype(w)::value>(m); };
-  register_per_polygon<TriangleSoA>("polygon/triangulated",
-                                    streams_by_width<TriangleSoA>(TriangleMethod::watertight, triangle_streams_of),
-                                    triangles, polygons->size(), rays);
+      "polygon/crossing", streams_by_unit<PolygonSoA>(PolygonMethod::crossing, polygon_streams_of), polygons, rays);
+  auto triangle_streams_of = [](auto u, TriangleMethod m) { return triangle_streams<decltype(u)::value>(m); };
+  register_kernel_benchmarks<TriangleSoA>("polygon/triangulated",
+                                    streams_by_unit<TriangleSoA>(TriangleMethod::watertight, triangle_streams_of),
+                                    triangles, rays, polygons->size());
   return true;
 }();
 

@@ -25,11 +25,11 @@ const bool registered = [] {
   }
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto w, SphereMethod m) { return sphere_streams<decltype(w)::value>(m); };
+  auto streams_of = [](auto u, SphereMethod m) { return sphere_streams<decltype(u)::value>(m); };
   for (auto [name, method] : {std::pair{"sphere/algebraic", SphereMethod::algebraic},
                               std::pair{"sphere/geometric", SphereMethod::geometric},
                               std::pair{"sphere/robust", SphereMethod::robust}}) {
-    register_kernel_benchmarks<SphereSoA>(name, streams_by_width<SphereSoA>(method, streams_of), spheres, rays);
+    register_kernel_benchmarks<SphereSoA>(name, streams_by_unit<SphereSoA>(method, streams_of), spheres, rays);
   }
   return true;
 }();

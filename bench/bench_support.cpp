@@ -5,16 +5,16 @@
 
 namespace quiver::bench {
 
-std::vector<int> bench_widths() {
+std::vector<KernelUnit> bench_units() {
   const char* forced = std::getenv("QUIVER_SIMD");
   if (forced && std::string_view(forced) != "auto" && *forced != '\0') {
-    return {lane_width(resolve_isa(forced))};  // throws on an unknown or unsupported choice
+    return {kernel_unit_for(resolve_isa(forced))};  // throws on an unknown or unsupported choice
   }
-  std::vector<int> widths;
-  for (int width : {1, 4, 8}) {
-    if (isa_supported(isa_for_width(width))) widths.push_back(width);
+  std::vector<KernelUnit> units;
+  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+    if (isa_supported(isa)) units.push_back(kernel_unit_for(isa));
   }
-  return widths;
+  return units;
 }
 
 }  // namespace quiver::bench

@@ -23,24 +23,28 @@ struct RayMixes {
   RaySoA misses;  // most rays miss every primitive
 };
 
-// The widths to register: every width this CPU supports, or only the one
-// QUIVER_SIMD names (auto or unset means all).
-std::vector<int> bench_widths();
+// The kernel units to register: the unit each ISA this CPU supports runs
+// with (scalar_fma for scalar where FMA exists), or only the one QUIVER_SIMD
+// names (auto or unset means all). Names carry the unit's lane width.
+std::vector<KernelUnit> bench_units();
 
 // Registers closest-hit packets and scan on both mixes, and any-hit packets
 // on the miss mix (where no early exit makes the test count inexact), for
-// each width of bench_widths().
+// each unit of bench_units(). Items are rays x tests_per_ray, by default
+// rays x primitives (a store of triangulated polygons counts polygons).
 template <class S>
 void register_kernel_benchmarks(const std::string& kind_and_method,
-                                const std::function<KernelStreams<S>(int width)>& streams_for_width,
-                                std::shared_ptr<const S> prims, std::shared_ptr<const RayMixes> rays) {
-  for (int width : bench_widths()) {
-    const KernelStreams<S> streams = streams_for_width(width);
-    const std::string prefix = kind_and_method + "/w" + std::to_string(width);
+                                const std::function<KernelStreams<S>(KernelUnit)>& streams_for_unit,
+                                std::shared_ptr<const S> prims, std::shared_ptr<const RayMixes> rays,
+                                std::size_t tests_per_ray = 0) {
+  if (tests_per_ray == 0) tests_per_ray = prims->size();
+  for (KernelUnit unit : bench_units()) {
+    const KernelStreams<S> streams = streams_for_unit(unit);
+    const std::string prefix = kind_and_method + "/w" + std::to_string(lane_width(unit));
     for (bool hit_mix : {true, false}) {
       const RaySoA* mix = hit_mix ? &rays->hits : &rays->misses;
       const std::string name = prefix + (hit_mix ? "/hits" : "/misses");
-      const double tests = double(mix->count) * double(prims->size());
+      const double tests = double(mix->count) * double(tests_per_ray);
       auto closest = [=](benchmark::State& state, auto stream) {
         const auto keep_alive = rays;
         HitSoA hits(*mix);
@@ -71,11 +75,11 @@ void register_kernel_benchmarks(const std::string& kind_and_method,
   }
 }
 
-// Dispatches a kind's streams template (e.g. plane_streams<W>) on a run-time width.
+// Dispatches a kind's streams template (e.g. plane_streams<U>) on a run-time unit.
 template <class S, class Method, class StreamsOf>
-std::function<KernelStreams<S>(int)> streams_by_width(Method method, StreamsOf streams_of) {
-  return [=](int width) {
-    return with_lane_width(width, [&](auto w) { return streams_of(w, method); });
+std::function<KernelStreams<S>(KernelUnit)> streams_by_unit(Method method, StreamsOf streams_of) {
+  return [=](KernelUnit unit) {
+    return with_kernel_unit(unit, [&](auto u) { return streams_of(u, method); });
   };
 }
 

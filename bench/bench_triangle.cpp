@@ -31,10 +31,10 @@ const bool registered = [] {
   }
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto w, TriangleMethod m) { return triangle_streams<decltype(w)::value>(m); };
+  auto streams_of = [](auto u, TriangleMethod m) { return triangle_streams<decltype(u)::value>(m); };
   for (auto [name, method] : {std::pair{"triangle/moller_trumbore", TriangleMethod::moller_trumbore},
                               std::pair{"triangle/watertight", TriangleMethod::watertight}}) {
-    register_kernel_benchmarks<TriangleSoA>(name, streams_by_width<TriangleSoA>(method, streams_of), triangles,
+    register_kernel_benchmarks<TriangleSoA>(name, streams_by_unit<TriangleSoA>(method, streams_of), triangles,
                                             rays);
   }
   return true;

@@ -1,15 +1,14 @@
-// Compiled once per ISA; QUIVER_LANE_WIDTH names this unit's width.
+// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/cone_streams.h"
 
 namespace quiver {
 
 template <>
-KernelStreams<ConeSoA> cone_streams<QUIVER_LANE_WIDTH>(ConeMethod method) {
-  using F = Lanes<QUIVER_LANE_WIDTH>;
+KernelStreams<ConeSoA> cone_streams<kThisUnit>(ConeMethod method) {
   switch (method) {
     case ConeMethod::quadric: break;
   }
-  return make_streams<F, ConeQuadric, ConeSoA>();
+  return make_streams<kThisUnit, ConeQuadric, ConeSoA>();
 }
 
 }  // namespace quiver

@@ -1,4 +1,4 @@
-// Cone streams per lane width (1, 4, 8), each compiled in its ISA's unit.
+// Cone streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
 #include "geometry/cone_soa.h"
@@ -8,13 +8,15 @@ namespace quiver {
 
 enum class ConeMethod { quadric };
 
-template <int W>
+template <KernelUnit U>
 KernelStreams<ConeSoA> cone_streams(ConeMethod method);
 template <>
-KernelStreams<ConeSoA> cone_streams<1>(ConeMethod method);
+KernelStreams<ConeSoA> cone_streams<KernelUnit::scalar>(ConeMethod method);
 template <>
-KernelStreams<ConeSoA> cone_streams<4>(ConeMethod method);
+KernelStreams<ConeSoA> cone_streams<KernelUnit::scalar_fma>(ConeMethod method);
 template <>
-KernelStreams<ConeSoA> cone_streams<8>(ConeMethod method);
+KernelStreams<ConeSoA> cone_streams<KernelUnit::sse4>(ConeMethod method);
+template <>
+KernelStreams<ConeSoA> cone_streams<KernelUnit::avx2>(ConeMethod method);
 
 }  // namespace quiver

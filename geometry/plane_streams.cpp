@@ -1,15 +1,14 @@
-// Compiled once per ISA; QUIVER_LANE_WIDTH names this unit's width.
+// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/plane_streams.h"
 
 namespace quiver {
 
 template <>
-KernelStreams<PlaneSoA> plane_streams<QUIVER_LANE_WIDTH>(PlaneMethod method) {
-  using F = Lanes<QUIVER_LANE_WIDTH>;
+KernelStreams<PlaneSoA> plane_streams<kThisUnit>(PlaneMethod method) {
   switch (method) {
     case PlaneMethod::seed: break;
   }
-  return make_streams<F, PlaneSeed, PlaneSoA>();
+  return make_streams<kThisUnit, PlaneSeed, PlaneSoA>();
 }
 
 }  // namespace quiver

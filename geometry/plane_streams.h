@@ -1,4 +1,4 @@
-// Plane streams per lane width (1, 4, 8), each compiled in its ISA's unit.
+// Plane streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
 #include "geometry/plane_soa.h"
@@ -8,13 +8,15 @@ namespace quiver {
 
 enum class PlaneMethod { seed };
 
-template <int W>
+template <KernelUnit U>
 KernelStreams<PlaneSoA> plane_streams(PlaneMethod method);
 template <>
-KernelStreams<PlaneSoA> plane_streams<1>(PlaneMethod method);
+KernelStreams<PlaneSoA> plane_streams<KernelUnit::scalar>(PlaneMethod method);
 template <>
-KernelStreams<PlaneSoA> plane_streams<4>(PlaneMethod method);
+KernelStreams<PlaneSoA> plane_streams<KernelUnit::scalar_fma>(PlaneMethod method);
 template <>
-KernelStreams<PlaneSoA> plane_streams<8>(PlaneMethod method);
+KernelStreams<PlaneSoA> plane_streams<KernelUnit::sse4>(PlaneMethod method);
+template <>
+KernelStreams<PlaneSoA> plane_streams<KernelUnit::avx2>(PlaneMethod method);
 
 }  // namespace quiver

@@ -1,15 +1,14 @@
-// Compiled once per ISA; QUIVER_LANE_WIDTH names this unit's width.
+// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/polygon_streams.h"
 
 namespace quiver {
 
 template <>
-KernelStreams<PolygonSoA> polygon_streams<QUIVER_LANE_WIDTH>(PolygonMethod method) {
-  using F = Lanes<QUIVER_LANE_WIDTH>;
+KernelStreams<PolygonSoA> polygon_streams<kThisUnit>(PolygonMethod method) {
   switch (method) {
     case PolygonMethod::crossing: break;
   }
-  return make_packet_streams<F, PolygonCrossing, PolygonSoA>();
+  return make_packet_streams<kThisUnit, PolygonCrossing, PolygonSoA>();
 }
 
 }  // namespace quiver

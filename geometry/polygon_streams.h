@@ -1,4 +1,4 @@
-// Polygon streams per lane width (1, 4, 8), each compiled in its ISA's unit.
+// Polygon streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 // Packets only: polygons differ in vertex count, so W polygons cannot share
 // one edge loop (no scan orientation).
 #pragma once
@@ -10,13 +10,15 @@ namespace quiver {
 
 enum class PolygonMethod { crossing };
 
-template <int W>
+template <KernelUnit U>
 KernelStreams<PolygonSoA> polygon_streams(PolygonMethod method);
 template <>
-KernelStreams<PolygonSoA> polygon_streams<1>(PolygonMethod method);
+KernelStreams<PolygonSoA> polygon_streams<KernelUnit::scalar>(PolygonMethod method);
 template <>
-KernelStreams<PolygonSoA> polygon_streams<4>(PolygonMethod method);
+KernelStreams<PolygonSoA> polygon_streams<KernelUnit::scalar_fma>(PolygonMethod method);
 template <>
-KernelStreams<PolygonSoA> polygon_streams<8>(PolygonMethod method);
+KernelStreams<PolygonSoA> polygon_streams<KernelUnit::sse4>(PolygonMethod method);
+template <>
+KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx2>(PolygonMethod method);
 
 }  // namespace quiver

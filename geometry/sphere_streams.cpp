@@ -1,17 +1,16 @@
-// Compiled once per ISA; QUIVER_LANE_WIDTH names this unit's width.
+// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/sphere_streams.h"
 
 namespace quiver {
 
 template <>
-KernelStreams<SphereSoA> sphere_streams<QUIVER_LANE_WIDTH>(SphereMethod method) {
-  using F = Lanes<QUIVER_LANE_WIDTH>;
+KernelStreams<SphereSoA> sphere_streams<kThisUnit>(SphereMethod method) {
   switch (method) {
-    case SphereMethod::algebraic: return make_streams<F, SphereAlgebraic, SphereSoA>();
-    case SphereMethod::geometric: return make_streams<F, SphereGeometric, SphereSoA>();
+    case SphereMethod::algebraic: return make_streams<kThisUnit, SphereAlgebraic, SphereSoA>();
+    case SphereMethod::geometric: return make_streams<kThisUnit, SphereGeometric, SphereSoA>();
     case SphereMethod::robust: break;
   }
-  return make_streams<F, SphereRobust, SphereSoA>();
+  return make_streams<kThisUnit, SphereRobust, SphereSoA>();
 }
 
 }  // namespace quiver

@@ -1,4 +1,4 @@
-// Sphere streams per lane width (1, 4, 8), each compiled in its ISA's unit.
+// Sphere streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
 #include "geometry/sphere_soa.h"
@@ -8,13 +8,15 @@ namespace quiver {
 
 enum class SphereMethod { algebraic, geometric, robust };
 
-template <int W>
+template <KernelUnit U>
 KernelStreams<SphereSoA> sphere_streams(SphereMethod method);
 template <>
-KernelStreams<SphereSoA> sphere_streams<1>(SphereMethod method);
+KernelStreams<SphereSoA> sphere_streams<KernelUnit::scalar>(SphereMethod method);
 template <>
-KernelStreams<SphereSoA> sphere_streams<4>(SphereMethod method);
+KernelStreams<SphereSoA> sphere_streams<KernelUnit::scalar_fma>(SphereMethod method);
 template <>
-KernelStreams<SphereSoA> sphere_streams<8>(SphereMethod method);
+KernelStreams<SphereSoA> sphere_streams<KernelUnit::sse4>(SphereMethod method);
+template <>
+KernelStreams<SphereSoA> sphere_streams<KernelUnit::avx2>(SphereMethod method);
 
 }  // namespace quiver

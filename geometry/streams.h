@@ -16,8 +16,10 @@
 // accepts or rejects (so the scan and packet orders agree bit for bit).
 // A primitive store S has size(), broadcast<F>(i) and load<F>(first).
 //
-// Each kind's <kind>_streams.cpp is compiled once per ISA and instantiates
-// these loops for its width.
+// Each kind's <kind>_streams.cpp is compiled once per kernel unit and
+// instantiates these loops for it. The unit is a template argument, so the
+// two float units (scalar, scalar_fma) get distinct symbols, and the loops are
+// flattened, so no kernel code leaves them as a shared out-of-line copy.
 #pragma once
 
 #include <cstddef>
@@ -37,18 +39,29 @@ struct KernelStreams {
   void (*occluded_scan)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
 };
 
-// Calls fn(std::integral_constant<int, W>{}) for a run-time width 1, 4 or 8.
+#ifdef QUIVER_KERNEL_UNIT
+// The unit this translation unit is compiled for (CMake defines the name).
+constexpr KernelUnit kThisUnit = KernelUnit::QUIVER_KERNEL_UNIT;
+#endif
+
+template <KernelUnit U>
+using Unit = std::integral_constant<KernelUnit, U>;
+
+// Calls fn(Unit<U>{}) for a run-time kernel unit.
 template <class Fn>
-decltype(auto) with_lane_width(int width, Fn&& fn) {
-  switch (width) {
-    case 8: return fn(std::integral_constant<int, 8>{});
-    case 4: return fn(std::integral_constant<int, 4>{});
-    default: return fn(std::integral_constant<int, 1>{});
+decltype(auto) with_kernel_unit(KernelUnit unit, Fn&& fn) {
+  switch (unit) {
+    case KernelUnit::avx2: return fn(Unit<KernelUnit::avx2>{});
+    case KernelUnit::sse4: return fn(Unit<KernelUnit::sse4>{});
+    case KernelUnit::scalar_fma: return fn(Unit<KernelUnit::scalar_fma>{});
+    case KernelUnit::scalar: break;
   }
+  return fn(Unit<KernelUnit::scalar>{});
 }
 
-template <class F, class Method, class S>
-void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
+template <KernelUnit U, class Method, class S>
+[[gnu::flatten]] void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
+  using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
@@ -58,14 +71,15 @@ void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
     for (std::size_t p = 0; p < prims.size(); ++p) {
       Candidate<F> c;
       const Mask<F> closer = Method::intersect(prepared, prims.template broadcast<F>(p), hit.t, active, c);
-      hit.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(p)));
+      if (any(closer)) hit.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(p)));
     }
     hits.store(first, hit);
   }
 }
 
-template <class F, class Method, class S>
-void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+template <KernelUnit U, class Method, class S>
+[[gnu::flatten]] void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+  using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Ray<F> ray = rays.load<F>(first);
@@ -107,8 +121,9 @@ Hit<float> closest_lane(const Hit<F>& hit, float tmax) {
   }
 }
 
-template <class F, class Method, class S>
-void closest_scan(const RaySoA& rays, const S& prims, HitSoA& hits) {
+template <KernelUnit U, class Method, class S>
+[[gnu::flatten]] void closest_scan(const RaySoA& rays, const S& prims, HitSoA& hits) {
+  using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t r = 0; r < rays.count; ++r) {
     const Ray<F> ray = broadcast_ray<F>(rays.get(r));
@@ -119,15 +134,16 @@ void closest_scan(const RaySoA& rays, const S& prims, HitSoA& hits) {
       Candidate<F> c;
       const Mask<F> active = first_lanes<F>(prims.size() - first);
       const Mask<F> closer = Method::intersect(prepared, prims.template load<F>(first), best.t, active, c);
-      best.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(first)) + lane_index<F>());
+      if (any(closer)) best.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(first)) + lane_index<F>());
     }
     const Hit<float> found = closest_lane(best, before.t);
     if (found.id != kNoHit) hits.set(r, found);
   }
 }
 
-template <class F, class Method, class S>
-void occluded_scan(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+template <KernelUnit U, class Method, class S>
+[[gnu::flatten]] void occluded_scan(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+  using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t r = 0; r < rays.count; ++r) {
     if (result.occluded[r] != 0) continue;
@@ -144,23 +160,23 @@ void occluded_scan(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
   }
 }
 
-// The four streams of one method at lane type F.
-template <class F, class Method, class S>
+// The four streams of one method in kernel unit U.
+template <KernelUnit U, class Method, class S>
 KernelStreams<S> make_streams() {
   KernelStreams<S> s;
-  s.closest_packets = &closest_packets<F, Method, S>;
-  s.occluded_packets = &occluded_packets<F, Method, S>;
-  s.closest_scan = &closest_scan<F, Method, S>;
-  s.occluded_scan = &occluded_scan<F, Method, S>;
+  s.closest_packets = &closest_packets<U, Method, S>;
+  s.occluded_packets = &occluded_packets<U, Method, S>;
+  s.closest_scan = &closest_scan<U, Method, S>;
+  s.occluded_scan = &occluded_scan<U, Method, S>;
   return s;
 }
 
 // Packets only, for kinds whose scan orientation does not pay.
-template <class F, class Method, class S>
+template <KernelUnit U, class Method, class S>
 KernelStreams<S> make_packet_streams() {
   KernelStreams<S> s;
-  s.closest_packets = &closest_packets<F, Method, S>;
-  s.occluded_packets = &occluded_packets<F, Method, S>;
+  s.closest_packets = &closest_packets<U, Method, S>;
+  s.occluded_packets = &occluded_packets<U, Method, S>;
   return s;
 }
 

@@ -1,16 +1,15 @@
-// Compiled once per ISA; QUIVER_LANE_WIDTH names this unit's width.
+// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/triangle_streams.h"
 
 namespace quiver {
 
 template <>
-KernelStreams<TriangleSoA> triangle_streams<QUIVER_LANE_WIDTH>(TriangleMethod method) {
-  using F = Lanes<QUIVER_LANE_WIDTH>;
+KernelStreams<TriangleSoA> triangle_streams<kThisUnit>(TriangleMethod method) {
   switch (method) {
-    case TriangleMethod::moller_trumbore: return make_streams<F, TriangleMollerTrumbore, TriangleSoA>();
-    case TriangleMethod::watertight: return make_streams<F, TriangleWatertight, TriangleSoA>();
+    case TriangleMethod::moller_trumbore: return make_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
+    case TriangleMethod::watertight: return make_streams<kThisUnit, TriangleWatertight, TriangleSoA>();
   }
-  return make_streams<F, TriangleMollerTrumbore, TriangleSoA>();
+  return make_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
 }
 
 }  // namespace quiver

@@ -1,4 +1,4 @@
-// Triangle streams per lane width (1, 4, 8), each compiled in its ISA's unit.
+// Triangle streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
 #include "geometry/streams.h"
@@ -8,13 +8,15 @@ namespace quiver {
 
 enum class TriangleMethod { moller_trumbore, watertight };
 
-template <int W>
+template <KernelUnit U>
 KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method);
 template <>
-KernelStreams<TriangleSoA> triangle_streams<1>(TriangleMethod method);
+KernelStreams<TriangleSoA> triangle_streams<KernelUnit::scalar>(TriangleMethod method);
 template <>
-KernelStreams<TriangleSoA> triangle_streams<4>(TriangleMethod method);
+KernelStreams<TriangleSoA> triangle_streams<KernelUnit::scalar_fma>(TriangleMethod method);
 template <>
-KernelStreams<TriangleSoA> triangle_streams<8>(TriangleMethod method);
+KernelStreams<TriangleSoA> triangle_streams<KernelUnit::sse4>(TriangleMethod method);
+template <>
+KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx2>(TriangleMethod method);
 
 }  // namespace quiver

@@ -15,10 +15,6 @@ int lane_width(Isa isa) {
   return 1;
 }
 
-Isa isa_for_width(int width) {
-  return width >= 8 ? Isa::avx2 : (width >= 4 ? Isa::sse4 : Isa::scalar);
-}
-
 std::string_view isa_name(Isa isa) {
   switch (isa) {
     case Isa::scalar: return "scalar";
@@ -46,6 +42,47 @@ bool isa_supported(Isa isa) {
     case Isa::avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   }
   return false;
+}
+
+int lane_width(KernelUnit unit) {
+  switch (unit) {
+    case KernelUnit::scalar:
+    case KernelUnit::scalar_fma: return 1;
+    case KernelUnit::sse4: return 4;
+    case KernelUnit::avx2: return 8;
+  }
+  return 1;
+}
+
+std::string_view kernel_unit_name(KernelUnit unit) {
+  switch (unit) {
+    case KernelUnit::scalar: return "scalar";
+    case KernelUnit::scalar_fma: return "scalar_fma";
+    case KernelUnit::sse4: return "sse4";
+    case KernelUnit::avx2: return "avx2";
+  }
+  return "scalar";
+}
+
+bool kernel_unit_supported(KernelUnit unit) {
+  switch (unit) {
+    case KernelUnit::scalar: return true;
+    // -mfma implies VEX (AVX) encoding.
+    case KernelUnit::scalar_fma: return __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
+    case KernelUnit::sse4: return isa_supported(Isa::sse4);
+    case KernelUnit::avx2: return isa_supported(Isa::avx2);
+  }
+  return false;
+}
+
+KernelUnit kernel_unit_for(Isa isa) {
+  switch (isa) {
+    case Isa::scalar:
+      return kernel_unit_supported(KernelUnit::scalar_fma) ? KernelUnit::scalar_fma : KernelUnit::scalar;
+    case Isa::sse4: return KernelUnit::sse4;
+    case Isa::avx2: return KernelUnit::avx2;
+  }
+  return KernelUnit::scalar;
 }
 
 Isa best_supported_isa() {

@@ -9,12 +9,24 @@ namespace quiver {
 
 enum class Isa { scalar, sse4, avx2 };
 
+// The compiled kernel units (CMake builds each kernel source once per unit).
+// Two scalar units: `scalar` runs on any x86-64 and is the reference;
+// `scalar_fma` is the same source built with -mfma, so the kernels' explicit
+// fma is an instruction rather than a libm call. They agree bit for bit
+// (std::fma is correctly rounded either way), which the tests check.
+enum class KernelUnit { scalar, scalar_fma, sse4, avx2 };
+
 int lane_width(Isa isa);
-Isa isa_for_width(int width);  // 1 -> scalar, 4 -> sse4, 8 -> avx2
 std::string_view isa_name(Isa isa);
 std::optional<Isa> parse_isa(std::string_view name);  // not "auto"
 bool isa_supported(Isa isa);
 Isa best_supported_isa();
+int lane_width(KernelUnit unit);
+std::string_view kernel_unit_name(KernelUnit unit);
+bool kernel_unit_supported(KernelUnit unit);
+// The unit that runs an ISA choice: scalar_fma for scalar when the CPU has FMA.
+KernelUnit kernel_unit_for(Isa isa);
+
 // "auto" or empty gives best_supported_isa(); throws std::runtime_error on an
 // unknown name or an ISA this CPU lacks.
 Isa resolve_isa(std::string_view requested);

@@ -8,20 +8,23 @@
 //   - a fused multiply-add at every width (std::fma, vfmadd),
 //   - IEEE sqrt and division only (no reciprocal approximations).
 //
-// Widths per ISA translation unit (CMake builds each with its own flags):
-//   1: float                              (baseline x86-64)
-//   4: xsimd::batch<float, sse4_2>        (-msse4.2 -mfma: FMA3 is required so
-//                                          that fma is fused as in scalar code)
-//   8: xsimd::batch<float, fma3<avx2>>    (-mavx2 -mfma)
-// Only templates over F and trivially inlined helpers belong in headers used
-// by those units: an out-of-line copy compiled with AVX2 flags must never be
-// picked by the linker for the baseline path.
+// Lane types per kernel unit (CMake builds each with its own flags):
+//   scalar:     float                            (baseline x86-64, the reference)
+//   scalar_fma: float                            (-mfma: fma is an instruction)
+//   sse4:       xsimd::batch<float, sse4_2>      (-msse4.2 -mfma: FMA3 is required
+//                                                 so that fma is fused as in scalar code)
+//   avx2:       xsimd::batch<float, fma3<avx2>>  (-mavx2 -mfma)
+// The streams (geometry/streams.h) carry the unit as a template argument and
+// are flattened, so no kernel code compiled with one unit's flags is shared
+// through the linker with another unit.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
 #include <xsimd/xsimd.hpp>
+
+#include "simd/isa.h"
 
 #if defined(__SSE4_2__) && defined(__FMA__)
 #include <immintrin.h>
@@ -56,27 +59,26 @@ using IntLanes = typename LaneTraits<F>::Int;
 template <class F>
 inline constexpr int lane_count = LaneTraits<F>::width;
 
-// Width -> lane type; a width exists only in units compiled for its ISA.
-template <int W>
-struct LanesOfWidth;
-template <>
-struct LanesOfWidth<1> {
-  using type = float;
+// Kernel unit -> lane type; a vector unit's type exists only in code
+// compiled with that unit's flags.
+template <KernelUnit U>
+struct UnitLanesOf {
+  using type = float;  // scalar and scalar_fma
 };
 #if XSIMD_WITH_SSE4_2 && defined(__FMA__)
 template <>
-struct LanesOfWidth<4> {
+struct UnitLanesOf<KernelUnit::sse4> {
   using type = xsimd::batch<float, xsimd::sse4_2>;
 };
 #endif
 #if XSIMD_WITH_FMA3_AVX2
 template <>
-struct LanesOfWidth<8> {
+struct UnitLanesOf<KernelUnit::avx2> {
   using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
 };
 #endif
-template <int W>
-using Lanes = typename LanesOfWidth<W>::type;
+template <KernelUnit U>
+using UnitLanes = typename UnitLanesOf<U>::type;
 
 // ---- scalar forms -------------------------------------------------------
 

@@ -29,7 +29,7 @@ ConeSoA cones_of(std::vector<ConeDesc> descs, BuildReport* out = nullptr) {
 Hit<float> closest(const Ray<float>& ray, const ConeSoA& cones) {
   const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
   HitSoA hits(rays);
-  cone_streams<1>(ConeMethod::quadric).closest_packets(rays, cones, hits);
+  cone_streams<KernelUnit::scalar>(ConeMethod::quadric).closest_packets(rays, cones, hits);
   return hits.get(0);
 }
 
@@ -450,8 +450,8 @@ TEST(ConeAccuracy, FarFromOriginConesAndCylindersMatchTheDoubleReference) {
 // ---- every width equals the scalar reference --------------------------------
 
 template <class W>
-class ConeWidths : public testing::WidthTest<W> {};
-TYPED_TEST_SUITE(ConeWidths, testing::LaneWidths);
+class ConeWidths : public testing::UnitTest<W> {};
+TYPED_TEST_SUITE(ConeWidths, testing::KernelUnits);
 
 TYPED_TEST(ConeWidths, MatchesScalarBitForBit) {
   RaySampler s(7);
@@ -484,8 +484,8 @@ TYPED_TEST(ConeWidths, MatchesScalarBitForBit) {
   ASSERT_NE(rays.size() % 8, 0u);
   ASSERT_GE(rays.size(), 100'000u);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(cone_streams<1>(ConeMethod::quadric),
-                                                        cone_streams<TestFixture::kWidth>(ConeMethod::quadric), soa, cones);
+  const auto ref = testing::expect_streams_match_scalar(cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
+                                                        cone_streams<TestFixture::kUnit>(ConeMethod::quadric), soa, cones);
   EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 4);  // the test exercises hits
 }
 

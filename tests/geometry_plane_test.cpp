@@ -24,7 +24,7 @@ PlaneSoA planes_of(std::initializer_list<PlaneDesc> descs, BuildReport* out = nu
 Hit<float> closest(const Ray<float>& ray, const PlaneSoA& planes) {
   const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
   HitSoA hits(rays);
-  plane_streams<1>(PlaneMethod::seed).closest_packets(rays, planes, hits);
+  plane_streams<KernelUnit::scalar>(PlaneMethod::seed).closest_packets(rays, planes, hits);
   return hits.get(0);
 }
 
@@ -83,8 +83,8 @@ TEST(PlaneBuild, DropsDegenerateAndNonFinite) {
 }
 
 template <class W>
-class PlaneWidths : public testing::WidthTest<W> {};
-TYPED_TEST_SUITE(PlaneWidths, testing::LaneWidths);
+class PlaneWidths : public testing::UnitTest<W> {};
+TYPED_TEST_SUITE(PlaneWidths, testing::KernelUnits);
 
 PlaneSoA random_planes(RaySampler& s, std::size_t n) {
   std::vector<PlaneDesc> descs;
@@ -105,8 +105,8 @@ TYPED_TEST(PlaneWidths, MatchesScalarBitForBit) {
   }
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(plane_streams<1>(PlaneMethod::seed),
-                                                        plane_streams<TestFixture::kWidth>(PlaneMethod::seed), soa, planes);
+  const auto ref = testing::expect_streams_match_scalar(plane_streams<KernelUnit::scalar>(PlaneMethod::seed),
+                                                        plane_streams<TestFixture::kUnit>(PlaneMethod::seed), soa, planes);
   EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 2);  // the test exercises hits
 }
 

@@ -32,7 +32,7 @@ PolygonSoA polygons_of(const std::vector<PolygonDesc>& descs, BuildReport* out =
 Hit<float> closest(const Ray<float>& ray, const PolygonSoA& polygons) {
   const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
   HitSoA hits(rays);
-  polygon_streams<1>(PolygonMethod::crossing).closest_packets(rays, polygons, hits);
+  polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing).closest_packets(rays, polygons, hits);
   return hits.get(0);
 }
 
@@ -473,8 +473,8 @@ TEST(PolygonStability, AgreesWithWatertightTriangulation) {
     }
     const RaySoA soa = testing::to_soa(rays);
     HitSoA by_polygon(soa), by_triangles(soa);
-    polygon_streams<1>(PolygonMethod::crossing).closest_packets(soa, polygon, by_polygon);
-    triangle_streams<1>(TriangleMethod::watertight).closest_packets(soa, triangles, by_triangles);
+    polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing).closest_packets(soa, polygon, by_polygon);
+    triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight).closest_packets(soa, triangles, by_triangles);
     // The outline projected like the kernel (drop the dominant axis).
     const PlaneD plane = plane_of(desc);
     const int au = (plane.drop + 1) % 3, av = (plane.drop + 2) % 3;
@@ -534,8 +534,8 @@ TEST(PolygonStability, AgreesWithWatertightTriangulation) {
 }
 
 template <class W>
-class PolygonWidths : public testing::WidthTest<W> {};
-TYPED_TEST_SUITE(PolygonWidths, testing::LaneWidths);
+class PolygonWidths : public testing::UnitTest<W> {};
+TYPED_TEST_SUITE(PolygonWidths, testing::KernelUnits);
 
 TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   RaySampler s(17);
@@ -560,8 +560,8 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   RaySoA soa = testing::to_soa(rays);
   ASSERT_NE(soa.count % 8, 0u);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(polygon_streams<1>(PolygonMethod::crossing),
-                                                        polygon_streams<TestFixture::kWidth>(PolygonMethod::crossing),
+  const auto ref = testing::expect_streams_match_scalar(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
+                                                        polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing),
                                                         soa, polygons);
   EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 3);  // the test exercises hits
 }

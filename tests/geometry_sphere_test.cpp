@@ -46,7 +46,7 @@ SphereSoA spheres_of(std::vector<SphereDesc> descs, BuildReport* out = nullptr) 
 HitSoA closest_all(SphereMethod m, const std::vector<Ray<float>>& rays, const SphereSoA& spheres) {
   const RaySoA soa = testing::to_soa(rays);
   HitSoA hits(soa);
-  sphere_streams<1>(m).closest_packets(soa, spheres, hits);
+  sphere_streams<KernelUnit::scalar>(m).closest_packets(soa, spheres, hits);
   return hits;
 }
 
@@ -283,8 +283,8 @@ const std::vector<Ray<float>>& equivalence_rays() {
 }
 
 template <class W>
-class SphereWidths : public testing::WidthTest<W> {};
-TYPED_TEST_SUITE(SphereWidths, testing::LaneWidths);
+class SphereWidths : public testing::UnitTest<W> {};
+TYPED_TEST_SUITE(SphereWidths, testing::KernelUnits);
 
 TYPED_TEST(SphereWidths, MatchesScalarBitForBit) {
   const SphereSoA& spheres = test_spheres();
@@ -296,7 +296,7 @@ TYPED_TEST(SphereWidths, MatchesScalarBitForBit) {
   testing::poison_padding(soa);
   for (SphereMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
-    const auto ref = testing::expect_streams_match_scalar(sphere_streams<1>(m), sphere_streams<TestFixture::kWidth>(m),
+    const auto ref = testing::expect_streams_match_scalar(sphere_streams<KernelUnit::scalar>(m), sphere_streams<TestFixture::kUnit>(m),
                                                           soa, spheres);
     EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 3);  // the test exercises hits
   }
@@ -311,11 +311,11 @@ TEST(SphereStability, NoNaNInReportedHits) {
   const std::vector<Ray<float>>& rays = equivalence_rays();
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
-  for (int width : {1, 4, 8}) {
-    if (!isa_supported(isa_for_width(width))) continue;
+  for (KernelUnit unit : {KernelUnit::scalar, KernelUnit::scalar_fma, KernelUnit::sse4, KernelUnit::avx2}) {
+    if (!kernel_unit_supported(unit)) continue;
     for (SphereMethod m : kMethods) {
       const KernelStreams<SphereSoA> streams =
-          with_lane_width(width, [&](auto w) { return sphere_streams<decltype(w)::value>(m); });
+          with_kernel_unit(unit, [&](auto u) { return sphere_streams<decltype(u)::value>(m); });
       for (auto stream : {streams.closest_packets, streams.closest_scan}) {
         HitSoA hits(soa);
         stream(soa, spheres, hits);
@@ -326,10 +326,10 @@ TEST(SphereStability, NoNaNInReportedHits) {
           ++hit_count;
           const bool ok = h.t > rays[i].tmin && h.t < rays[i].tmax && !std::isnan(h.ng.x) && !std::isnan(h.ng.y) &&
                           !std::isnan(h.ng.z);
-          if (!ok && bad++ < 5) ADD_FAILURE() << method_name(m) << " w" << width << " ray " << i << " t=" << h.t;
+          if (!ok && bad++ < 5) ADD_FAILURE() << method_name(m) << " " << kernel_unit_name(unit) << " ray " << i << " t=" << h.t;
         }
-        EXPECT_EQ(bad, 0u) << method_name(m) << " w" << width;
-        EXPECT_GT(hit_count, rays.size() / 3) << method_name(m) << " w" << width;
+        EXPECT_EQ(bad, 0u) << method_name(m) << " " << kernel_unit_name(unit);
+        EXPECT_GT(hit_count, rays.size() / 3) << method_name(m) << " " << kernel_unit_name(unit);
       }
     }
   }

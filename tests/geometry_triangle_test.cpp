@@ -41,14 +41,14 @@ TriangleDesc tri(const Vec3<float>& a, const Vec3<float>& b, const Vec3<float>& 
 Hit<float> closest(TriangleMethod m, const Ray<float>& ray, const TriangleSoA& tris) {
   const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
   HitSoA hits(rays);
-  triangle_streams<1>(m).closest_packets(rays, tris, hits);
+  triangle_streams<KernelUnit::scalar>(m).closest_packets(rays, tris, hits);
   return hits.get(0);
 }
 
 // The widest streams this CPU runs (equal to scalar bit for bit, tested below).
 KernelStreams<TriangleSoA> fastest_streams(TriangleMethod m) {
-  return with_lane_width(lane_width(best_supported_isa()),
-                         [&](auto w) { return triangle_streams<decltype(w)::value>(m); });
+  return with_kernel_unit(kernel_unit_for(best_supported_isa()),
+                          [&](auto u) { return triangle_streams<decltype(u)::value>(m); });
 }
 
 Vec3<float> on_triangle(const std::array<Vec3<float>, 3>& p, float u, float v) {
@@ -367,8 +367,8 @@ TEST(TriangleBuild, TrianglesFromIndexedMesh) {
 // ---- every width equals scalar ------------------------------------------------
 
 template <class W>
-class TriangleWidths : public testing::WidthTest<W> {};
-TYPED_TEST_SUITE(TriangleWidths, testing::LaneWidths);
+class TriangleWidths : public testing::UnitTest<W> {};
+TYPED_TEST_SUITE(TriangleWidths, testing::KernelUnits);
 
 // 9 random triangles and the 20 faces of an icosahedron (shared edges).
 std::vector<TriangleDesc> mixed_triangles(RaySampler& s) {
@@ -435,7 +435,7 @@ const WidthCase& width_case() {
     w.tris = build_triangles(mixed_triangles(s), report);
     w.rays = testing::to_soa(triangle_rays(s, w.tris));
     testing::poison_padding(w.rays);
-    for (TriangleMethod m : kMethods) w.scalar[m] = testing::run_streams(triangle_streams<1>(m), w.rays, w.tris);
+    for (TriangleMethod m : kMethods) w.scalar[m] = testing::run_streams(triangle_streams<KernelUnit::scalar>(m), w.rays, w.tris);
     return w;
   }();
   return c;
@@ -448,9 +448,9 @@ TYPED_TEST(TriangleWidths, MatchesScalarBitForBit) {
   for (TriangleMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
     const testing::StreamResults& ref = c.scalar.at(m);
-    // Width 1 is the reference itself: only its scan-vs-packets check is new.
+    // The scalar unit is the reference itself: only its scan-vs-packets check is new.
     const testing::StreamResults got =
-        TestFixture::kWidth == 1 ? ref : testing::run_streams(triangle_streams<TestFixture::kWidth>(m), c.rays, c.tris);
+        TestFixture::kUnit == KernelUnit::scalar ? ref : testing::run_streams(triangle_streams<TestFixture::kUnit>(m), c.rays, c.tris);
     EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, ref.closest_scan)) << "scalar scan vs scalar packets";
     EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, got.closest_packets)) << "packets vs scalar";
     EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
@@ -672,7 +672,7 @@ TEST(TriangleStability, DegenerateTrianglesNeverHitEvenPastTheBuilder) {
   testing::poison_padding(soa);
   for (TriangleMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
-    const testing::StreamResults r = testing::expect_streams_match_scalar(triangle_streams<1>(m), fastest_streams(m), soa, raw);
+    const testing::StreamResults r = testing::expect_streams_match_scalar(triangle_streams<KernelUnit::scalar>(m), fastest_streams(m), soa, raw);
     EXPECT_EQ(testing::count_hits(r.closest_packets), 0u);
     EXPECT_EQ(testing::count_hits(r.closest_scan), 0u);
     for (std::size_t i = 0; i < rays.size(); ++i) {

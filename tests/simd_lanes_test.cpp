@@ -60,7 +60,10 @@ TEST(Isa, ResolveNamesAndRejectsUnknown) {
   EXPECT_THROW(resolve_isa("avx512"), std::runtime_error);
   EXPECT_EQ(lane_width(Isa::sse4), 4);
   EXPECT_EQ(lane_width(Isa::avx2), 8);
-  EXPECT_EQ(isa_for_width(8), Isa::avx2);
+  EXPECT_EQ(kernel_unit_for(Isa::avx2), KernelUnit::avx2);
+  EXPECT_EQ(lane_width(KernelUnit::scalar_fma), 1);
+  EXPECT_EQ(kernel_unit_for(Isa::scalar),
+            kernel_unit_supported(KernelUnit::scalar_fma) ? KernelUnit::scalar_fma : KernelUnit::scalar);
   EXPECT_TRUE(isa_supported(Isa::scalar));
 }
 

@@ -1,5 +1,6 @@
 // Links the installed quiver::quiver and traces one ray: exit 0 on the expected hit.
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "geometry/plane_streams.h"
@@ -12,7 +13,11 @@ int main() {
   rays.set(0, {{0, 2, 0}, {0, -1, 0}, 0.f, 1e30f});
   rays.pad();
   quiver::HitSoA hits(rays);
-  quiver::plane_streams<1>(quiver::PlaneMethod::seed).closest_packets(rays, planes, hits);
-  std::printf("hit id %d at t %g\n", hits.id[0], double(hits.t[0]));
+  const quiver::KernelUnit unit = quiver::kernel_unit_for(quiver::isa_from_environment());
+  const auto streams = quiver::with_kernel_unit(
+      unit, [](auto u) { return quiver::plane_streams<decltype(u)::value>(quiver::PlaneMethod::seed); });
+  streams.closest_packets(rays, planes, hits);
+  std::printf("%s unit: hit id %d at t %g\n", std::string(quiver::kernel_unit_name(unit)).c_str(), hits.id[0],
+              double(hits.t[0]));
   return hits.id[0] == 0 && hits.t[0] == 2.f ? 0 : 1;
 }

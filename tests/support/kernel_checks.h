@@ -18,18 +18,18 @@ namespace quiver::testing {
 ::testing::AssertionResult occlusion_matches_hits(const OcclusionSoA& occlusion, const HitSoA& hits);
 std::size_t count_hits(const HitSoA& hits);
 
-template <int W>
-using Width = std::integral_constant<int, W>;
-using LaneWidths = ::testing::Types<Width<1>, Width<4>, Width<8>>;
+// Every kernel unit; each is compared with the portable scalar unit.
+using KernelUnits = ::testing::Types<Unit<KernelUnit::scalar>, Unit<KernelUnit::scalar_fma>,
+                                     Unit<KernelUnit::sse4>, Unit<KernelUnit::avx2>>;
 
-// Typed fixture: skips, saying why, only when this CPU lacks the width's ISA.
-template <class W>
-class WidthTest : public ::testing::Test {
+// Typed fixture: skips, saying why, only when this CPU cannot run the unit.
+template <class U>
+class UnitTest : public ::testing::Test {
  protected:
-  static constexpr int kWidth = W::value;
+  static constexpr KernelUnit kUnit = U::value;
   void SetUp() override {
-    if (!isa_supported(isa_for_width(kWidth))) {
-      GTEST_SKIP() << "this CPU lacks " << isa_name(isa_for_width(kWidth)) << " for width " << kWidth;
+    if (!kernel_unit_supported(kUnit)) {
+      GTEST_SKIP() << "this CPU cannot run the " << kernel_unit_name(kUnit) << " kernel unit";
     }
   }
 };
@@ -55,7 +55,7 @@ StreamResults run_streams(const KernelStreams<S>& streams, const RaySoA& rays, c
   return r;
 }
 
-// The width-W streams equal the scalar packet stream bit for bit, in both
+// The tested unit's streams equal the scalar packet stream bit for bit, in both
 // orientations, and any-hit agrees with closest-hit. Returns the scalar
 // results for further checks.
 template <class S>
