@@ -28,6 +28,7 @@ const bool registered = [] {
     // Rays among points of a far box whose lines pass nowhere near the cones.
     miss_rays.push_back(s.toward(s.in_box({50, 50, 50}, {60, 60, 60}), s.in_box({50, 50, 50}, {60, 60, 60})));
   }
+  rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
   auto streams_of = [](auto u, ConeMethod m) { return cone_streams<decltype(u)::value>(m); };

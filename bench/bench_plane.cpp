@@ -22,6 +22,7 @@ const bool registered = [] {
     r.tmax = 1e-3f;
     miss_rays.push_back(r);
   }
+  rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
   auto streams_of = [](auto u, PlaneMethod m) { return plane_streams<decltype(u)::value>(m); };

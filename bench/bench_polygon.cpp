@@ -70,6 +70,7 @@ const bool registered = [] {
       if (!blocked.occluded[i]) miss_rays.push_back(batch[i]);
     }
   }
+  rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
 

@@ -23,6 +23,7 @@ const bool registered = [] {
     const Vec3<float> o = s.in_box({50, 50, 50}, {60, 60, 60});
     miss_rays.push_back(s.toward(o, o * 2.f));
   }
+  rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
   auto streams_of = [](auto u, SphereMethod m) { return sphere_streams<decltype(u)::value>(m); };
