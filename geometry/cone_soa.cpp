@@ -58,10 +58,7 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
   }
   soa.count = soa.bx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : columns) {
-    c->resize(padded_size(soa.count));
-    pad_column(*c, soa.count);
-  }
+  for (AlignedFloats* c : columns) pad_column(*c, soa.count);
   return soa;
 }
 

@@ -18,14 +18,22 @@ struct PlaneLanes {
   F d;             // n.P + d = 0 on the plane
 };
 
+// t where the ray meets the plane n.P + d = 0; `crosses` marks the lanes
+// not parallel to it (the others divide by 1 and must be masked off).
+template <class F>
+inline F plane_crossing(const Ray<F>& ray, const Vec3<F>& normal, const F& d, Mask<F>& crosses) {
+  const F denom = dot(normal, ray.direction);
+  crosses = denom != F(0.f);
+  const F numer = -(d + dot(normal, ray.origin));
+  return numer / select(crosses, denom, F(1.f));
+}
+
 struct PlaneSeed : RayAsIs {
   template <class F>
   static Mask<F> intersect(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
-    const F denom = dot(plane.normal, ray.direction);
-    const Mask<F> crosses = denom != F(0.f);
-    const F numer = -(plane.d + dot(plane.normal, ray.origin));
-    out.t = numer / select(crosses, denom, F(1.f));
+    Mask<F> crosses;
+    out.t = plane_crossing(ray, plane.normal, plane.d, crosses);
     out.u = F(0.f);
     out.v = F(0.f);
     out.ng = plane.normal;

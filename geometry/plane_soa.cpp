@@ -36,10 +36,7 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) {
-    c->resize(padded_size(soa.count));
-    pad_column(*c, soa.count);
-  }
+  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) pad_column(*c, soa.count);
   return soa;
 }
 

@@ -26,6 +26,7 @@
 #pragma once
 
 #include "geometry/hit.h"
+#include "geometry/plane.h"
 #include "simd/ray.h"
 
 namespace quiver {
@@ -46,11 +47,8 @@ struct PolygonCrossing : RayAsIs {
   template <class F>
   static Mask<F> intersect(const Ray<F>& ray, const PolygonLanes<F>& poly, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
-    // Plane hit.
-    const F denom = dot(poly.normal, ray.direction);
-    const Mask<F> crosses = denom != F(0.f);
-    const F numer = -(poly.d + dot(poly.normal, ray.origin));
-    out.t = numer / select(crosses, denom, F(1.f));
+    Mask<F> crosses;
+    out.t = plane_crossing(ray, poly.normal, poly.d, crosses);
     out.ng = poly.normal;
     // Projected hit point relative to the first vertex: (o - V0) + t dir.
     const F u = fma(out.t, ray.direction[poly.axis_u], ray.origin[poly.axis_u] - poly.origin_u);

@@ -151,17 +151,12 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
-  const std::size_t padded = padded_size(soa.count);
   for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
                            &soa.vmin, &soa.vmax}) {
-    c->resize(padded);
     pad_column(*c, soa.count);
   }
-  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count}) {
-    c->resize(padded);
-    pad_column(*c, soa.count);
-  }
-  soa.first_vertex.resize(padded, soa.first_vertex.empty() ? 0 : soa.first_vertex.back());
+  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count}) pad_column(*c, soa.count);
+  soa.first_vertex.resize(padded_size(soa.count), soa.first_vertex.empty() ? 0 : soa.first_vertex.back());
   return soa;
 }
 

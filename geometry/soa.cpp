@@ -7,6 +7,7 @@ namespace quiver {
 namespace {
 template <class Column>
 void pad_any(Column& column, std::size_t count) {
+  column.resize(padded_size(count));
   if (count == 0) return;
   std::fill(column.begin() + static_cast<std::ptrdiff_t>(count), column.end(), column[count - 1]);
 }

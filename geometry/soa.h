@@ -22,7 +22,8 @@ constexpr std::size_t padded_size(std::size_t n) {
   return (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
 }
 
-// Fills column[count, padded) with column[count - 1] (nothing when count is 0).
+// Sizes the column to padded_size(count) and fills [count, padded) with
+// column[count - 1] (zeros when count is 0).
 void pad_column(AlignedFloats& column, std::size_t count);
 void pad_column(AlignedInts& column, std::size_t count);
 

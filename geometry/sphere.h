@@ -103,12 +103,15 @@ inline SphereRay<F> prepare_sphere_ray(const Ray<F>& ray) {
   return {ray, safe_dd, F(1.f) / safe_dd, usable};
 }
 
-struct SphereAlgebraic {
+// Base of the methods that work with A = d.d and 1/A per ray.
+struct PreparesSphereRay {
   template <class F>
   static SphereRay<F> prepare(const Ray<F>& ray) {
     return prepare_sphere_ray(ray);
   }
+};
 
+struct SphereAlgebraic : PreparesSphereRay {
   template <class F>
   static Mask<F> intersect(const SphereRay<F>& r, const SphereLanes<F>& s, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
@@ -163,12 +166,7 @@ struct SphereGeometric {
   }
 };
 
-struct SphereRobust {
-  template <class F>
-  static SphereRay<F> prepare(const Ray<F>& ray) {
-    return prepare_sphere_ray(ray);
-  }
-
+struct SphereRobust : PreparesSphereRay {
   template <class F>
   static Mask<F> intersect(const SphereRay<F>& r, const SphereLanes<F>& s, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {

@@ -31,10 +31,7 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
   }
   soa.count = soa.cx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) {
-    c->resize(padded_size(soa.count));
-    pad_column(*c, soa.count);
-  }
+  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) pad_column(*c, soa.count);
   return soa;
 }
 

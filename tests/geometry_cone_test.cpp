@@ -27,10 +27,7 @@ ConeSoA cones_of(std::vector<ConeDesc> descs, BuildReport* out = nullptr) {
 }
 
 Hit<float> closest(const Ray<float>& ray, const ConeSoA& cones) {
-  const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
-  HitSoA hits(rays);
-  cone_streams<KernelUnit::scalar>(ConeMethod::quadric).closest_packets(rays, cones, hits);
-  return hits.get(0);
+  return testing::closest_hit(cone_streams<KernelUnit::scalar>(ConeMethod::quadric), ray, cones);
 }
 
 // ---- double-precision reference (same surface, straight from the ConeDesc) --

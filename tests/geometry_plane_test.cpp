@@ -22,10 +22,7 @@ PlaneSoA planes_of(std::initializer_list<PlaneDesc> descs, BuildReport* out = nu
 }
 
 Hit<float> closest(const Ray<float>& ray, const PlaneSoA& planes) {
-  const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
-  HitSoA hits(rays);
-  plane_streams<KernelUnit::scalar>(PlaneMethod::seed).closest_packets(rays, planes, hits);
-  return hits.get(0);
+  return testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::seed), ray, planes);
 }
 
 TEST(PlaneKernel, HitsFloorStraightDown) {

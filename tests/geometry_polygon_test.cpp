@@ -30,10 +30,7 @@ PolygonSoA polygons_of(const std::vector<PolygonDesc>& descs, BuildReport* out =
 }
 
 Hit<float> closest(const Ray<float>& ray, const PolygonSoA& polygons) {
-  const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
-  HitSoA hits(rays);
-  polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing).closest_packets(rays, polygons, hits);
-  return hits.get(0);
+  return testing::closest_hit(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), ray, polygons);
 }
 
 // 2D outline (x, y) placed in the plane z = z0 + sx x + sy y.

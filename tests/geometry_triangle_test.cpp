@@ -39,10 +39,7 @@ TriangleSoA triangles_of(const std::vector<TriangleDesc>& descs, BuildReport* ou
 TriangleDesc tri(const Vec3<float>& a, const Vec3<float>& b, const Vec3<float>& c) { return {{a, b, c}, {}, {}}; }
 
 Hit<float> closest(TriangleMethod m, const Ray<float>& ray, const TriangleSoA& tris) {
-  const RaySoA rays = testing::to_soa(std::vector<Ray<float>>{ray});
-  HitSoA hits(rays);
-  triangle_streams<KernelUnit::scalar>(m).closest_packets(rays, tris, hits);
-  return hits.get(0);
+  return testing::closest_hit(triangle_streams<KernelUnit::scalar>(m), ray, tris);
 }
 
 // The widest streams this CPU runs (equal to scalar bit for bit, tested below).

@@ -8,6 +8,7 @@
 
 #include "geometry/streams.h"
 #include "simd/isa.h"
+#include "tests/support/ray_sampling.h"
 
 namespace quiver::testing {
 
@@ -33,6 +34,15 @@ class UnitTest : public ::testing::Test {
     }
   }
 };
+
+// The closest hit of one ray through a stream set's packet stream.
+template <class S>
+Hit<float> closest_hit(const KernelStreams<S>& streams, const Ray<float>& ray, const S& prims) {
+  const RaySoA rays = to_soa(std::vector<Ray<float>>{ray});
+  HitSoA hits(rays);
+  streams.closest_packets(rays, prims, hits);
+  return hits.get(0);
+}
 
 struct StreamResults {
   HitSoA closest_packets, closest_scan;
