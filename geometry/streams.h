@@ -15,6 +15,8 @@
 // lane. out.t depends on the ray, the primitive and tmin only; tmax only
 // accepts or rejects (so the scan and packet orders agree bit for bit).
 // A primitive store S has size(), broadcast<F>(i) and load<F>(first).
+// Branches only where no lane can be affected: a closest-hit commit is
+// skipped when no lane is closer, any-hit stops when every lane is blocked.
 //
 // Each kind's <kind>_streams.cpp is compiled once per kernel unit and
 // instantiates these loops for it. The unit is a template argument, so the
@@ -23,7 +25,7 @@
 #pragma once
 
 #include <cstddef>
-#include <utility>
+#include <type_traits>
 
 #include "geometry/soa.h"
 
@@ -31,7 +33,6 @@ namespace quiver {
 
 template <class S>
 struct KernelStreams {
-  using Store = S;
   void (*closest_packets)(const RaySoA&, const S&, HitSoA&) = nullptr;
   void (*occluded_packets)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
   // nullptr where a kind has no scan orientation (it does not pay).
