@@ -40,10 +40,4 @@ RaySoA camera_rays(const Vec3<float>& center, float half_extent) {
   return rays;
 }
 
-std::size_t count_hits(const HitSoA& hits) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < hits.count; ++i) n += hits.id[i] != kNoHit;
-  return n;
-}
-
 }  // namespace quiver::bench

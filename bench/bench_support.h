@@ -36,7 +36,6 @@ RaySoA camera_rays(const Vec3<float>& center, float half_extent);
 // names (auto or unset means all). Names carry the unit's lane width.
 std::vector<KernelUnit> bench_units();
 
-std::size_t count_hits(const HitSoA& hits);
 
 // Registers closest-hit packets on every mix, scan on the incoherent
 // mixes, and any-hit packets on the miss mix (where no early exit makes the test count inexact), for
@@ -65,7 +64,7 @@ void register_kernel_benchmarks(const std::string& kind_and_method,
           benchmark::ClobberMemory();
         }
         state.SetItemsProcessed(static_cast<std::int64_t>(tests * double(state.iterations())));
-        state.counters["hit_fraction"] = double(count_hits(hits)) / double(mix->count);
+        state.counters["hit_fraction"] = double(hits.hit_count()) / double(mix->count);
       };
       benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { closest(st, streams.closest_packets); });
       if (streams.closest_scan && mix_name != "camera") {

@@ -58,6 +58,12 @@ void HitSoA::set(std::size_t i, const Hit<float>& hit) {
   id[i] = hit.id;
 }
 
+std::size_t HitSoA::hit_count() const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count; ++i) n += id[i] != kNoHit;
+  return n;
+}
+
 OcclusionSoA::OcclusionSoA(const RaySoA& rays) : occluded(padded_size(rays.count), 0), count(rays.count) {}
 
 }  // namespace quiver

@@ -70,6 +70,7 @@ struct HitSoA {
   explicit HitSoA(const RaySoA& rays);
   Hit<float> get(std::size_t i) const;
   void set(std::size_t i, const Hit<float>& hit);
+  std::size_t hit_count() const;  // rays with id != kNoHit
 
   template <class F>
   Hit<F> load(std::size_t first) const {

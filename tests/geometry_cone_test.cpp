@@ -483,7 +483,7 @@ TYPED_TEST(ConeWidths, MatchesScalarBitForBit) {
   testing::poison_padding(soa);
   const auto ref = testing::expect_streams_match_scalar(cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
                                                         cone_streams<TestFixture::kUnit>(ConeMethod::quadric), soa, cones);
-  EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 4);  // the test exercises hits
+  EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 4);  // the test exercises hits
 }
 
 }  // namespace

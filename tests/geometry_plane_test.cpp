@@ -104,7 +104,7 @@ TYPED_TEST(PlaneWidths, MatchesScalarBitForBit) {
   testing::poison_padding(soa);
   const auto ref = testing::expect_streams_match_scalar(plane_streams<KernelUnit::scalar>(PlaneMethod::seed),
                                                         plane_streams<TestFixture::kUnit>(PlaneMethod::seed), soa, planes);
-  EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 2);  // the test exercises hits
+  EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 2);  // the test exercises hits
 }
 
 }  // namespace

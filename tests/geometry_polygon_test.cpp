@@ -560,7 +560,7 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   const auto ref = testing::expect_streams_match_scalar(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
                                                         polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing),
                                                         soa, polygons);
-  EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 3);  // the test exercises hits
+  EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
 }
 
 }  // namespace

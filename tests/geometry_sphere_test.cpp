@@ -298,7 +298,7 @@ TYPED_TEST(SphereWidths, MatchesScalarBitForBit) {
     SCOPED_TRACE(method_name(m));
     const auto ref = testing::expect_streams_match_scalar(sphere_streams<KernelUnit::scalar>(m), sphere_streams<TestFixture::kUnit>(m),
                                                           soa, spheres);
-    EXPECT_GT(testing::count_hits(ref.closest_packets), rays.size() / 3);  // the test exercises hits
+    EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
   }
 }
 
@@ -564,7 +564,7 @@ TEST(SphereStability, OriginOnSurface) {
     // With the spawn offset: no re-hit outward, the far side inward.
     const HitSoA out_offset = closest_all(m, with_offset(outward), sphere);
     const HitSoA in_offset = closest_all(m, with_offset(inward), sphere);
-    EXPECT_EQ(testing::count_hits(out_offset), 0u);
+    EXPECT_EQ(out_offset.hit_count(), 0u);
     std::size_t far_with_offset = 0;
     for (std::size_t i = 0; i < inward.size(); ++i) {
       const Hit<float> g = in_offset.get(i);

@@ -454,7 +454,7 @@ TYPED_TEST(TriangleWidths, MatchesScalarBitForBit) {
     EXPECT_TRUE(testing::occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
     EXPECT_TRUE(testing::occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
     EXPECT_TRUE(testing::occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
-    EXPECT_GT(testing::count_hits(ref.closest_packets), c.rays.count * 2 / 5);  // the test exercises hits
+    EXPECT_GT(ref.closest_packets.hit_count(), c.rays.count * 2 / 5);  // the test exercises hits
   }
 }
 
@@ -615,8 +615,8 @@ TEST(TriangleStability, ExactlyParallelRaysOffThePlaneMiss) {
     for (TriangleMethod m : kMethods) {
       SCOPED_TRACE(method_name(m));
       const testing::StreamResults r = testing::run_streams(fastest_streams(m), soa, one);
-      EXPECT_EQ(testing::count_hits(r.closest_packets), 0u) << "triangle " << i;
-      EXPECT_EQ(testing::count_hits(r.closest_scan), 0u) << "triangle " << i;
+      EXPECT_EQ(r.closest_packets.hit_count(), 0u) << "triangle " << i;
+      EXPECT_EQ(r.closest_scan.hit_count(), 0u) << "triangle " << i;
     }
   }
   EXPECT_GT(tested, 30u);
@@ -670,8 +670,8 @@ TEST(TriangleStability, DegenerateTrianglesNeverHitEvenPastTheBuilder) {
   for (TriangleMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
     const testing::StreamResults r = testing::expect_streams_match_scalar(triangle_streams<KernelUnit::scalar>(m), fastest_streams(m), soa, raw);
-    EXPECT_EQ(testing::count_hits(r.closest_packets), 0u);
-    EXPECT_EQ(testing::count_hits(r.closest_scan), 0u);
+    EXPECT_EQ(r.closest_packets.hit_count(), 0u);
+    EXPECT_EQ(r.closest_scan.hit_count(), 0u);
     for (std::size_t i = 0; i < rays.size(); ++i) {
       ASSERT_EQ(r.occluded_packets.occluded[i], 0) << "ray " << i;
       ASSERT_TRUE(std::isnan(r.closest_packets.t[i]) == std::isnan(rays[i].tmax)) << "ray " << i;

@@ -53,10 +53,4 @@ std::string describe(const Hit<float>& h) {
   return ::testing::AssertionSuccess();
 }
 
-std::size_t count_hits(const HitSoA& hits) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < hits.count; ++i) n += hits.id[i] != kNoHit;
-  return n;
-}
-
 }  // namespace quiver::testing

@@ -17,7 +17,6 @@ namespace quiver::testing {
 ::testing::AssertionResult occlusion_equal(const OcclusionSoA& expected, const OcclusionSoA& actual);
 // Any-hit agrees with closest-hit: occluded iff a closest hit exists.
 ::testing::AssertionResult occlusion_matches_hits(const OcclusionSoA& occlusion, const HitSoA& hits);
-std::size_t count_hits(const HitSoA& hits);
 
 // Every kernel unit; each is compared with the portable scalar unit.
 using KernelUnits = ::testing::Types<Unit<KernelUnit::scalar>, Unit<KernelUnit::scalar_fma>,
