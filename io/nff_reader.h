@@ -1,0 +1,28 @@
+// Reader for NFF, Eric Haines' Neutral File Format (the SPD scenes): one
+// entity per line, `#` comments, errors as ParseError (io/parse_error.h).
+// The bounds below are checked before anything is allocated; see io/README.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+
+#include "io/scene_desc.h"
+
+namespace quiver {
+
+// Largest NFF input read, in bytes.
+inline constexpr std::size_t kMaxNffBytes = std::size_t{1} << 30;
+// Largest `resolution` side and pixel count.
+inline constexpr std::int64_t kMaxNffImageSide = 65'536;
+inline constexpr std::int64_t kMaxNffImagePixels = std::int64_t{1} << 28;
+// Largest `p` / `pp` vertex count: kMaxPolygonVertices (geometry/polygon_soa.h).
+
+// Reads a whole file; throws ParseError for bad input or an unreadable file.
+SceneDesc read_nff(const std::filesystem::path& path);
+
+// Parses NFF text; file_name only labels error messages.
+SceneDesc parse_nff(std::string_view text, std::string_view file_name);
+
+}  // namespace quiver

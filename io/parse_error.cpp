@@ -1,0 +1,59 @@
+#include "io/parse_error.h"
+
+namespace quiver {
+
+namespace {
+
+std::string position_message(std::string_view file, std::size_t line, std::size_t column,
+                             std::string_view expected, std::string_view found) {
+  std::string message(file);
+  message += ':';
+  message += std::to_string(line);
+  message += ':';
+  message += std::to_string(column);
+  message += ": expected ";
+  message += expected;
+  message += ", found ";
+  message += found;
+  return message;
+}
+
+}  // namespace
+
+ParseError::ParseError(std::string_view file, std::size_t line, std::size_t column,
+                       std::string_view expected, std::string_view found)
+    : std::runtime_error(position_message(file, line, column, expected, found)),
+      file_(file),
+      line_(line),
+      column_(column) {}
+
+ParseError::ParseError(std::string_view file, std::string what)
+    : std::runtime_error(std::move(what)), file_(file) {}
+
+ParseError ParseError::whole_file(std::string_view file, std::string_view message) {
+  std::string what(file);
+  what += ": ";
+  what += message;
+  return ParseError(file, std::move(what));
+}
+
+std::string quoted_token(std::string_view token) {
+  constexpr std::size_t kShownBytes = 40;
+  constexpr char kHex[] = "0123456789ABCDEF";
+  std::string quoted = "'";
+  for (std::size_t i = 0; i < token.size() && i < kShownBytes; ++i) {
+    const auto byte = static_cast<unsigned char>(token[i]);
+    if (byte >= 0x20 && byte < 0x7f) {
+      quoted += static_cast<char>(byte);
+    } else {
+      quoted += "\\x";
+      quoted += kHex[byte >> 4];
+      quoted += kHex[byte & 0xf];
+    }
+  }
+  if (token.size() > kShownBytes) quoted += "...";
+  quoted += '\'';
+  return quoted;
+}
+
+}  // namespace quiver

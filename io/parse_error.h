@@ -1,0 +1,38 @@
+// The error every scene reader throws for bad user input. what() reads
+// "file:line:column: expected X, found Y": line and column are 1-based, the
+// column counts bytes and points at the offending token, and Y is the token
+// in single quotes (escaped and shortened) or "end of line" / "end of file".
+// Problems with the file as a whole (cannot open it, too large) read
+// "file: message" and have line() == column() == 0.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace quiver {
+
+class ParseError : public std::runtime_error {
+ public:
+  ParseError(std::string_view file, std::size_t line, std::size_t column, std::string_view expected,
+             std::string_view found);
+  static ParseError whole_file(std::string_view file, std::string_view message);
+
+  const std::string& file() const { return file_; }
+  std::size_t line() const { return line_; }
+  std::size_t column() const { return column_; }
+
+ private:
+  ParseError(std::string_view file, std::string what);
+
+  std::string file_;
+  std::size_t line_ = 0;
+  std::size_t column_ = 0;
+};
+
+// A token as error messages show it: in single quotes, bytes outside
+// printable ASCII written as \xNN, cut after 40 bytes with "...".
+std::string quoted_token(std::string_view token);
+
+}  // namespace quiver
