@@ -14,8 +14,6 @@ struct Ray {
   Vec3<F> direction;
   F tmin;
   F tmax;
-
-  Vec3<F> at(const F& t) const { return origin + direction * t; }
 };
 
 // One ray copied into every lane.

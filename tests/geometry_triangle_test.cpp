@@ -448,12 +448,7 @@ TYPED_TEST(TriangleWidths, MatchesScalarBitForBit) {
     // The scalar unit is the reference itself: only its scan-vs-packets check is new.
     const testing::StreamResults got =
         TestFixture::kUnit == KernelUnit::scalar ? ref : testing::run_streams(triangle_streams<TestFixture::kUnit>(m), c.rays, c.tris);
-    EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, ref.closest_scan)) << "scalar scan vs scalar packets";
-    EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, got.closest_packets)) << "packets vs scalar";
-    EXPECT_TRUE(testing::hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
-    EXPECT_TRUE(testing::occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
-    EXPECT_TRUE(testing::occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
-    EXPECT_TRUE(testing::occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
+    testing::expect_results_match_scalar(ref, got);
     EXPECT_GT(ref.closest_packets.hit_count(), c.rays.count * 2 / 5);  // the test exercises hits
   }
 }

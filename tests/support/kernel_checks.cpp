@@ -53,4 +53,13 @@ std::string describe(const Hit<float>& h) {
   return ::testing::AssertionSuccess();
 }
 
+void expect_results_match_scalar(const StreamResults& ref, const StreamResults& got) {
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, ref.closest_scan)) << "scalar scan vs scalar packets";
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_packets)) << "packets vs scalar";
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
+  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
+  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
+  EXPECT_TRUE(occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
+}
+
 }  // namespace quiver::testing

@@ -64,20 +64,17 @@ StreamResults run_streams(const KernelStreams<S>& streams, const RaySoA& rays, c
   return r;
 }
 
-// The tested unit's streams equal the scalar packet stream bit for bit, in both
-// orientations, and any-hit agrees with closest-hit. Returns the scalar
-// results for further checks.
+// A tested unit's results equal the scalar reference's bit for bit, in both
+// orientations, and any-hit agrees with closest-hit.
+void expect_results_match_scalar(const StreamResults& ref, const StreamResults& got);
+
+// Runs the scalar and the tested streams and checks them with
+// expect_results_match_scalar. Returns the scalar results for further checks.
 template <class S>
-StreamResults expect_streams_match_scalar(const KernelStreams<S>& scalar, const KernelStreams<S>& wide,
+StreamResults expect_streams_match_scalar(const KernelStreams<S>& scalar, const KernelStreams<S>& tested,
                                           const RaySoA& rays, const S& prims) {
   StreamResults ref = run_streams(scalar, rays, prims);
-  const StreamResults got = run_streams(wide, rays, prims);
-  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, ref.closest_scan)) << "scalar scan vs scalar packets";
-  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_packets)) << "packets vs scalar";
-  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
-  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
-  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
-  EXPECT_TRUE(occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
+  expect_results_match_scalar(ref, run_streams(tested, rays, prims));
   return ref;
 }
 
