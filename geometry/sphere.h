@@ -19,9 +19,8 @@
 //     projected out inside the discriminant, disc = a (r^2 - |l|^2) + (l.d)^2.
 //     That makes the rounding of h/a harmless, so it is h * (1/a) with 1/a
 //     from prepare(); the roots are q * (1/a) and the one true division c / q.
-// Per-test divisions are avoided on purpose: vector divide and sqrt units
-// have a fraction of the scalar ones' per-lane throughput, so a division in
-// the test would cap the 8-wide speed-up (bench/README.md).
+// Per-test divisions are replaced by per-ray reciprocals (prepare()) and a
+// stored 1/r, except robust's c / q.
 // t-range: the nearer root if it is > tmin, else the farther one; hit iff that
 // t is in (tmin, tmax). So an origin inside the sphere hits the far side, in
 // either orientation, and the seed's inside/outside test and "t_ca < 0" early
