@@ -45,6 +45,7 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
       ++report.dropped_degenerate;
       continue;
     }
+    soa.source.push_back(static_cast<std::uint32_t>(&c - cones.data()));
     soa.bx.push_back(c.base.x);
     soa.by.push_back(c.base.y);
     soa.bz.push_back(c.base.z);

@@ -2,7 +2,9 @@
 // radius, slope and facing (see geometry/cone.h).
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/cone.h"
@@ -24,6 +26,10 @@ struct ConeDesc {
 struct ConeSoA {
   AlignedFloats bx, by, bz, ax, ay, az, height, radius0, slope, facing;
   std::size_t count = 0;
+  // Input index of each kept primitive (builders drop some), and the id of
+  // primitive 0 in hits (a scene numbers its stores consecutively).
+  std::vector<std::uint32_t> source;
+  std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
   template <class F>

@@ -29,6 +29,7 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
       ++report.dropped_non_finite;
       continue;
     }
+    soa.source.push_back(static_cast<std::uint32_t>(&p - planes.data()));
     soa.nx.push_back(n.x);
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);

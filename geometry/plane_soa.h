@@ -1,7 +1,9 @@
 // Infinite planes in SoA: unit normal (nx, ny, nz) and offset d.
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/plane.h"
@@ -18,6 +20,10 @@ struct PlaneDesc {
 struct PlaneSoA {
   AlignedFloats nx, ny, nz, d;
   std::size_t count = 0;
+  // Input index of each kept primitive (builders drop some), and the id of
+  // primitive 0 in hits (a scene numbers its stores consecutively).
+  std::vector<std::uint32_t> source;
+  std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
   template <class F>

@@ -132,6 +132,7 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
       ++report.dropped_degenerate;
       continue;
     }
+    soa.source.push_back(static_cast<std::uint32_t>(&desc - polygons.data()));
     soa.nx.push_back(n.x);
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);

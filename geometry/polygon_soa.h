@@ -38,6 +38,10 @@ struct PolygonSoA {
   // Per vertex, all polygons back to back.
   AlignedFloats pu, pv;
   std::size_t count = 0;
+  // Input index of each kept primitive (builders drop some), and the id of
+  // primitive 0 in hits (a scene numbers its stores consecutively).
+  std::vector<std::uint32_t> source;
+  std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
   template <class F>

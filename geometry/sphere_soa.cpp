@@ -23,6 +23,7 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
       ++report.dropped_degenerate;
       continue;
     }
+    soa.source.push_back(static_cast<std::uint32_t>(&s - spheres.data()));
     soa.cx.push_back(c.x);
     soa.cy.push_back(c.y);
     soa.cz.push_back(c.z);

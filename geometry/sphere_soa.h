@@ -1,7 +1,9 @@
 // Spheres in SoA: center (cx, cy, cz), r^2 and 1/r.
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/soa.h"
@@ -17,6 +19,10 @@ struct SphereDesc {
 struct SphereSoA {
   AlignedFloats cx, cy, cz, r2, inv_r;
   std::size_t count = 0;
+  // Input index of each kept primitive (builders drop some), and the id of
+  // primitive 0 in hits (a scene numbers its stores consecutively).
+  std::vector<std::uint32_t> source;
+  std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
   template <class F>

@@ -14,7 +14,8 @@
 // returning the lanes that hit within (ray.tmin, tmax), never an inactive
 // lane. out.t depends on the ray, the primitive and tmin only; tmax only
 // accepts or rejects (so the scan and packet orders agree bit for bit).
-// A primitive store S has size(), broadcast<F>(i) and load<F>(first).
+// A primitive store S has size(), broadcast<F>(i), load<F>(first) and
+// id_base: a hit on primitive i reports id id_base + i.
 // Branches only where no lane can be affected: a closest-hit commit is
 // skipped when no lane is closer, any-hit stops when every lane is blocked.
 //
@@ -72,7 +73,7 @@ template <KernelUnit U, class Method, class S>
     for (std::size_t p = 0; p < prims.size(); ++p) {
       Candidate<F> c;
       const Mask<F> closer = Method::intersect(prepared, prims.template broadcast<F>(p), hit.t, active, c);
-      if (any(closer)) hit.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(p)));
+      if (any(closer)) hit.commit(closer, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(p)));
     }
     hits.store(first, hit);
   }
@@ -135,7 +136,7 @@ template <KernelUnit U, class Method, class S>
       Candidate<F> c;
       const Mask<F> active = first_lanes<F>(prims.size() - first);
       const Mask<F> closer = Method::intersect(prepared, prims.template load<F>(first), best.t, active, c);
-      if (any(closer)) best.commit(closer, c, IntLanes<F>(static_cast<std::int32_t>(first)) + lane_index<F>());
+      if (any(closer)) best.commit(closer, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(first)) + lane_index<F>());
     }
     const Hit<float> found = closest_lane(best, before.t);
     if (found.id != kNoHit) hits.set(r, found);

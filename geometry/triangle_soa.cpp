@@ -105,6 +105,8 @@ TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport
 
   TriangleSoA soa;
   soa.count = kept.size();
+  soa.source.reserve(kept.size());
+  for (const TriangleDesc* t : kept) soa.source.push_back(static_cast<std::uint32_t>(t - triangles.data()));
   const std::size_t padded = padded_size(soa.count);
   AlignedFloats* vertex_columns[3][3] = {{&soa.v0x, &soa.v0y, &soa.v0z},
                                          {&soa.v1x, &soa.v1y, &soa.v1z},

@@ -26,6 +26,10 @@ struct TriangleSoA {
   AlignedFloats n0x, n0y, n0z, n1x, n1y, n1z, n2x, n2y, n2z;  // unit, or empty
   AlignedFloats uv0u, uv0v, uv1u, uv1v, uv2u, uv2v;            // or empty
   std::size_t count = 0;
+  // Input index of each kept primitive (builders drop some), and the id of
+  // primitive 0 in hits (a scene numbers its stores consecutively).
+  std::vector<std::uint32_t> source;
+  std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
   bool has_normals() const { return !n0x.empty(); }

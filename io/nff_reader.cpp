@@ -68,10 +68,22 @@ class NffParser {
         fail_at(keyword, kEntityList);
       }
     }
+    apply_spd_intensities();
     return std::move(scene_);
   }
 
  private:
+  // SPD's suggestion for N lights without a colour: each light and the
+  // ambient term get sqrt(N) / (2N).
+  void apply_spd_intensities() {
+    const std::size_t n = scene_.lights.size();
+    const float intensity = n == 0 ? 0.5f : static_cast<float>(std::sqrt(double(n)) / (2.0 * double(n)));
+    scene_.ambient = {intensity, intensity, intensity};
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!light_has_color_[i]) scene_.lights[i].color = {intensity, intensity, intensity};
+    }
+  }
+
   // ---- lines and tokens ----
 
   // Moves to the next line holding a token; false at the end of the input.
@@ -288,13 +300,14 @@ class NffParser {
   }
 
   void read_light() {
-    PointLightDesc light{};
+    LightDesc light;
+    light.kind = LightDesc::Kind::point;
     light.position = vec3("light position");
-    light.color = {1.f, 1.f, 1.f};
-    light.has_color = !at_end_of_line();
-    if (light.has_color) light.color = color("light colour");
+    const bool has_color = !at_end_of_line();
+    if (has_color) light.color = color("light colour");
     expect_end_of_line("the light");
     scene_.lights.push_back(light);
+    light_has_color_.push_back(has_color);
   }
 
   void read_material() {
@@ -306,7 +319,7 @@ class NffParser {
     material.transmittance = non_negative("material T");
     material.ior = non_negative("material index of refraction");
     expect_end_of_line("the material (r g b Kd Ks Shine T ior)");
-    scene_.materials.push_back(material);
+    scene_.materials.push_back(material_from_nff(material));
   }
 
   std::size_t current_material(const Token& keyword) const {
@@ -370,6 +383,7 @@ class NffParser {
   std::size_t scan_ = 0;        // offset in line_text_ of the next token (blanks skipped)
   std::size_t taken_end_ = 0;   // offset just past the last token taken
   SceneDesc scene_;
+  std::vector<bool> light_has_color_;
 };
 
 std::string too_large_message() {
@@ -377,6 +391,20 @@ std::string too_large_message() {
 }
 
 }  // namespace
+
+MaterialDesc material_from_nff(const NffMaterial& nff) {
+  MaterialDesc m;
+  m.color = nff.color;
+  m.ka = nff.kd;
+  m.kd = nff.kd;
+  m.ks = nff.ks;
+  m.shininess = nff.shine;
+  m.kr = nff.ks;
+  m.kt = nff.transmittance;
+  m.ior = nff.transmittance > 0.f && nff.ior > 0.f ? nff.ior : 1.f;
+  m.two_sided = nff.transmittance > 0.f;
+  return m;
+}
 
 SceneDesc parse_nff(std::string_view text, std::string_view file_name) {
   if (text.size() > kMaxNffBytes) {

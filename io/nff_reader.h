@@ -19,6 +19,19 @@ inline constexpr std::int64_t kMaxNffImageSide = 65'536;
 inline constexpr std::int64_t kMaxNffImagePixels = std::int64_t{1} << 28;
 // Largest `p` / `pp` vertex count: kMaxPolygonVertices (geometry/polygon_soa.h).
 
+// An NFF `f` line as written: colour, diffuse weight, specular (and mirror)
+// weight, Phong exponent, transmitted fraction, index of refraction.
+struct NffMaterial {
+  Vec3<float> color;
+  float kd, ks, shine, transmittance, ior;
+};
+
+// NFF's shading in quiver's terms (io/README.md): ka = kd = Kd (ambient
+// reflectance follows the diffuse one), ks = kr = Ks (specular highlight
+// and mirror weight), shininess = Shine, kt = T, ior only where T > 0 (and
+// 1 when written as 0), two-sided exactly when T > 0.
+MaterialDesc material_from_nff(const NffMaterial& nff);
+
 // Reads a whole file; throws ParseError for bad input or an unreadable file.
 SceneDesc read_nff(const std::filesystem::path& path);
 

@@ -1,42 +1,82 @@
 // A scene as a reader found it: plain arrays of structs, already checked for
-// syntax, finite numbers and sane bounds, with no rendering policy (how NFF
-// material numbers become shading is the renderer's choice). Geometric
+// syntax, finite numbers and sane bounds. Every format maps onto these native
+// materials and lights (NFF's mapping is in io/README.md). Geometric
 // degeneracy (zero radius, collinear vertices, ...) is left to the geometry
 // builders, which drop and count it.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geometry/cone_soa.h"
+#include "geometry/plane_soa.h"
 #include "geometry/polygon_soa.h"
 #include "geometry/sphere_soa.h"
+#include "geometry/triangle_soa.h"
 #include "simd/vec3.h"
 
 namespace quiver {
 
 // Pinhole camera: eye, look-at point, up hint (any length, not parallel to
-// at - from), full field of view between the outermost pixel centres.
+// at - from), and the full field of view between the centres of the
+// outermost pixel columns (rows when the image is taller than wide).
 struct CameraDesc {
   Vec3<float> from, at, up;
   float angle_degrees;
-  float hither;  // near-plane distance as written; a ray tracer may ignore it
+  float hither;  // near-plane distance as written; the ray tracer ignores it
   int width, height;
 };
 
-// Point light; color is (1, 1, 1) when the file gave none (has_color false).
-struct PointLightDesc {
-  Vec3<float> position;
-  Vec3<float> color;
-  bool has_color;
+// Lights. Intensity is an RGB colour (linear). Area lights are sampled with
+// samples x samples stratified shadow rays.
+struct LightDesc {
+  enum class Kind { point, directional, rectangle, sphere };
+  Kind kind = Kind::point;
+  Vec3<float> position{0.f, 0.f, 0.f};    // point; rectangle corner; sphere centre
+  Vec3<float> direction{0.f, -1.f, 0.f};  // directional: the way the light travels
+  Vec3<float> edge_u{1.f, 0.f, 0.f};      // rectangle: corner + s*edge_u + t*edge_v
+  Vec3<float> edge_v{0.f, 0.f, 1.f};
+  float radius = 1.f;                      // sphere
+  Vec3<float> color{1.f, 1.f, 1.f};
+  int samples = 4;                         // area lights: per side
 };
 
-// NFF `f` line, as written: colour, diffuse weight, specular (and mirror)
-// weight, Phong exponent, transmitted fraction, index of refraction.
-struct NffMaterial {
-  Vec3<float> color;
-  float kd, ks, shine, transmittance, ior;
+enum class WrapMode { repeat, clamp, mirror };
+
+// A texture: a 2D checkerboard over (u, v), a 3D solid checkerboard over the
+// world position, or an image (a file, or pixels in memory for built-in scenes).
+struct TextureDesc {
+  enum class Kind { checker2d, checker3d, image };
+  Kind kind = Kind::checker2d;
+  Vec3<float> color_a{1.f, 1.f, 1.f}, color_b{0.f, 0.f, 0.f};  // checkers
+  float scale = 1.f;  // checks per unit of (u, v) or of world space
+  std::string path;   // image file; absolute or relative to the working directory
+  WrapMode wrap = WrapMode::repeat;
+  // In-memory image (used when path is empty): linear RGB, row 0 at v = 1.
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+};
+
+// Whitted material: I = ka*Ia + sum f_i*I_i*(kd*(N.L) + ks*(N.H)^shininess)
+// times the surface colour (texture when set) for ka and kd, plus kr times
+// the reflected and kt times the refracted light. two_sided: the normal
+// faces the ray on either side; a one-sided surface seen from behind gets
+// the ambient term only.
+struct MaterialDesc {
+  Vec3<float> color{1.f, 1.f, 1.f};
+  std::optional<std::size_t> texture;  // index into SceneDesc::textures
+  float ka = 0.1f, kd = 0.9f, ks = 0.f, shininess = 32.f, kr = 0.f, kt = 0.f, ior = 1.f;
+  bool two_sided = true;
+};
+
+// Render settings a scene file may carry; the command line overrides them.
+struct RenderDesc {
+  std::optional<std::string> aa;  // as --aa
+  std::optional<int> max_depth;
+  std::optional<float> min_weight;
 };
 
 // Primitives refer to materials by index into SceneDesc::materials.
@@ -45,8 +85,18 @@ struct SceneSphere {
   std::size_t material;
 };
 
+struct ScenePlane {
+  PlaneDesc plane;
+  std::size_t material;
+};
+
+struct SceneTriangle {
+  TriangleDesc triangle;
+  std::size_t material;
+};
+
 // A polygon; normals holds one shading normal per vertex for an NFF `pp`
-// patch and is empty for a plain `p` polygon.
+// patch and is empty for a plain polygon.
 struct ScenePolygon {
   PolygonDesc polygon;
   std::vector<Vec3<float>> normals;
@@ -61,11 +111,16 @@ struct SceneCone {
 struct SceneDesc {
   std::optional<CameraDesc> camera;
   Vec3<float> background{0.f, 0.f, 0.f};
-  std::vector<PointLightDesc> lights;
-  std::vector<NffMaterial> materials;
+  Vec3<float> ambient{0.1f, 0.1f, 0.1f};  // Ia
+  std::vector<LightDesc> lights;
+  std::vector<MaterialDesc> materials;
+  std::vector<TextureDesc> textures;
   std::vector<SceneSphere> spheres;
+  std::vector<ScenePlane> planes;
+  std::vector<SceneTriangle> triangles;
   std::vector<ScenePolygon> polygons;
   std::vector<SceneCone> cones;
+  RenderDesc render;
 };
 
 }  // namespace quiver

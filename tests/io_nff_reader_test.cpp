@@ -107,29 +107,37 @@ TEST(NffReader, ReadsEveryEntityWithExactValues) {
   EXPECT_EQ(camera.width, 640);
   EXPECT_EQ(camera.height, 480);
 
+  // Two lights: the uncoloured one gets SPD's sqrt(N) / (2N), as does the ambient term.
+  const float spd = static_cast<float>(std::sqrt(2.0) / 4.0);
   ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::point);
   expect_vec3(scene.lights[0].position, 4.f, 5.f, 6.f);
-  EXPECT_FALSE(scene.lights[0].has_color);
-  expect_vec3(scene.lights[0].color, 1.f, 1.f, 1.f);
+  expect_vec3(scene.lights[0].color, spd, spd, spd);
   expect_vec3(scene.lights[1].position, -1.f, -2.f, -3.f);
-  EXPECT_TRUE(scene.lights[1].has_color);
   expect_vec3(scene.lights[1].color, 0.5f, 0.25f, 1.f);
+  expect_vec3(scene.ambient, spd, spd, spd);
 
+  // NFF materials mapped as io/README.md documents.
   ASSERT_EQ(scene.materials.size(), 2u);
-  const NffMaterial& first = scene.materials[0];
+  const MaterialDesc& first = scene.materials[0];
   expect_vec3(first.color, 1.f, 0.5f, 0.f);
+  EXPECT_EQ(first.ka, 0.7f);
   EXPECT_EQ(first.kd, 0.7f);
   EXPECT_EQ(first.ks, 0.3f);
-  EXPECT_EQ(first.shine, 20.f);
-  EXPECT_EQ(first.transmittance, 0.f);
+  EXPECT_EQ(first.kr, 0.3f);
+  EXPECT_EQ(first.shininess, 20.f);
+  EXPECT_EQ(first.kt, 0.f);
   EXPECT_EQ(first.ior, 1.f);
-  const NffMaterial& second = scene.materials[1];
+  EXPECT_FALSE(first.two_sided);
+  const MaterialDesc& second = scene.materials[1];
   expect_vec3(second.color, 0.2f, 0.4f, 0.6f);
   EXPECT_EQ(second.kd, 0.8f);
   EXPECT_EQ(second.ks, 0.f);
-  EXPECT_EQ(second.shine, 100000.f);
-  EXPECT_EQ(second.transmittance, 0.8f);
+  EXPECT_EQ(second.kr, 0.f);
+  EXPECT_EQ(second.shininess, 100000.f);
+  EXPECT_EQ(second.kt, 0.8f);
   EXPECT_EQ(second.ior, 1.5f);
+  EXPECT_TRUE(second.two_sided);
 
   ASSERT_EQ(scene.spheres.size(), 2u);
   expect_vec3(scene.spheres[0].sphere.center, 0.f, 0.f, 0.f);
@@ -456,7 +464,7 @@ TEST(NffSpd, EveryFileLoadsWithTheReadmeCounts) {
     EXPECT_EQ(scene.lights.size(), expected.lights);
     EXPECT_EQ(scene.materials.size(), expected.f_lines);
     EXPECT_EQ(std::count_if(scene.materials.begin(), scene.materials.end(),
-                            [](const NffMaterial& m) { return m.transmittance > 0.f; }),
+                            [](const MaterialDesc& m) { return m.kt > 0.f; }),
               static_cast<std::ptrdiff_t>(expected.f_transmissive));
 
     std::map<std::size_t, std::size_t> polygons_by_vertex_count;

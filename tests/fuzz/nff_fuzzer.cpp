@@ -48,13 +48,16 @@ void check_scene(const quiver::SceneDesc& scene) {
     check(!(c.at.x == c.from.x && c.at.y == c.from.y && c.at.z == c.from.z));
   }
   check(finite(scene.background) && non_negative(scene.background));
-  for (const quiver::PointLightDesc& l : scene.lights) {
+  for (const quiver::LightDesc& l : scene.lights) {
+    check(l.kind == quiver::LightDesc::Kind::point);
     check(finite(l.position) && finite(l.color) && non_negative(l.color));
-    if (!l.has_color) check(l.color.x == 1.f && l.color.y == 1.f && l.color.z == 1.f);
   }
-  for (const quiver::NffMaterial& m : scene.materials) {
+  check(finite(scene.ambient) && non_negative(scene.ambient));
+  for (const quiver::MaterialDesc& m : scene.materials) {
     check(finite(m.color) && non_negative(m.color));
-    for (float x : {m.kd, m.ks, m.shine, m.transmittance, m.ior}) check(finite(x) && x >= 0.f);
+    for (float x : {m.ka, m.kd, m.ks, m.shininess, m.kr, m.kt}) check(finite(x) && x >= 0.f);
+    check(finite(m.ior) && m.ior > 0.f);
+    check(m.two_sided == (m.kt > 0.f));
   }
   for (const quiver::SceneSphere& s : scene.spheres) {
     check(finite(s.sphere.center) && finite(s.sphere.radius));
