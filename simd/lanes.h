@@ -151,11 +151,12 @@ inline xsimd::batch_bool<float, A> isfinite_lanes(const xsimd::batch<float, A>& 
   return xsimd::abs(a) <= xsimd::batch<float, A>(3.40282347e+38f);
 }
 
-// Int lanes != 0 as a float mask (all-ones int bits are a NaN, and NaN != 0).
+// Int lanes != 0 as a float mask: every non-zero int32 converts to a
+// non-zero float. (Not via all-ones bits as a NaN: xsimd 8.1's AVX != is an
+// ordered compare, false for NaN.)
 template <class A>
 inline xsimd::batch_bool<float, A> nonzero_lanes(const xsimd::batch<std::int32_t, A>& i) {
-  const auto ones = xsimd::bitwise_cast(i != std::int32_t(0));
-  return xsimd::bitwise_cast<xsimd::batch<float, A>>(ones) != xsimd::batch<float, A>(0.f);
+  return xsimd::to_float(i) != xsimd::batch<float, A>(0.f);
 }
 inline bool nonzero_lanes(std::int32_t i) { return i != 0; }
 

@@ -107,5 +107,20 @@ TYPED_TEST(PlaneWidths, MatchesScalarBitForBit) {
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 2);  // the test exercises hits
 }
 
+// Streams compose: a ray a previous store already occluded stays occluded,
+// in every unit, even when this store cannot block it.
+TYPED_TEST(PlaneWidths, OccludedStreamsKeepEarlierOcclusion) {
+  PlaneDesc floor{{0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}};
+  BuildReport report;
+  const PlaneSoA planes = build_planes(std::span(&floor, 1), report);
+  std::vector<Ray<float>> rays;
+  for (int i = 0; i < 19; ++i) rays.push_back({{float(i), 1.f, 0.f}, {0.f, 1.f, 0.f}, 0.f, kInf});  // away: miss
+  const RaySoA soa = testing::to_soa(rays);
+  OcclusionSoA result(soa);
+  for (std::size_t i = 0; i < rays.size(); i += 3) result.occluded[i] = 1;
+  plane_streams<TestFixture::kUnit>(PlaneMethod::seed).occluded_packets(soa, planes, result);
+  for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(result.occluded[i], i % 3 == 0 ? 1 : 0) << "ray " << i;
+}
+
 }  // namespace
 }  // namespace quiver
