@@ -31,6 +31,23 @@ void RaySoA::set(std::size_t i, const Ray<float>& ray) {
   tmax[i] = ray.tmax;
 }
 
+void RaySoA::clear() {
+  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->clear();
+  count = 0;
+}
+
+void RaySoA::push(const Ray<float>& ray) {
+  ox.push_back(ray.origin.x);
+  oy.push_back(ray.origin.y);
+  oz.push_back(ray.origin.z);
+  dx.push_back(ray.direction.x);
+  dy.push_back(ray.direction.y);
+  dz.push_back(ray.direction.z);
+  tmin.push_back(ray.tmin);
+  tmax.push_back(ray.tmax);
+  ++count;
+}
+
 Ray<float> RaySoA::get(std::size_t i) const {
   return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
 }
@@ -39,7 +56,11 @@ void RaySoA::pad() {
   for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) pad_column(*c, count);
 }
 
-HitSoA::HitSoA(const RaySoA& rays) : t(rays.tmax), count(rays.count) {
+HitSoA::HitSoA(const RaySoA& rays) { reset(rays); }
+
+void HitSoA::reset(const RaySoA& rays) {
+  t.assign(rays.tmax.begin(), rays.tmax.end());
+  count = rays.count;
   for (AlignedFloats* c : {&u, &v, &ngx, &ngy, &ngz}) c->assign(t.size(), 0.f);
   id.assign(t.size(), kNoHit);
 }
@@ -64,6 +85,11 @@ std::size_t HitSoA::hit_count() const {
   return n;
 }
 
-OcclusionSoA::OcclusionSoA(const RaySoA& rays) : occluded(padded_size(rays.count), 0), count(rays.count) {}
+OcclusionSoA::OcclusionSoA(const RaySoA& rays) { reset(rays); }
+
+void OcclusionSoA::reset(const RaySoA& rays) {
+  occluded.assign(padded_size(rays.count), 0);
+  count = rays.count;
+}
 
 }  // namespace quiver

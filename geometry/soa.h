@@ -48,6 +48,9 @@ struct RaySoA {
   explicit RaySoA(std::size_t n);
   void set(std::size_t i, const Ray<float>& ray);
   Ray<float> get(std::size_t i) const;
+  // Building a stream in place, keeping capacity: clear(), push()..., pad().
+  void clear();
+  void push(const Ray<float>& ray);
   // Call after the last set(): copies the last ray into the padding lanes.
   void pad();
 
@@ -68,6 +71,8 @@ struct HitSoA {
   HitSoA() = default;
   // t = ray tmax, id = kNoHit for every ray.
   explicit HitSoA(const RaySoA& rays);
+  // As the constructor, keeping capacity.
+  void reset(const RaySoA& rays);
   Hit<float> get(std::size_t i) const;
   void set(std::size_t i, const Hit<float>& hit);
   std::size_t hit_count() const;  // rays with id != kNoHit
@@ -97,6 +102,8 @@ struct OcclusionSoA {
 
   OcclusionSoA() = default;
   explicit OcclusionSoA(const RaySoA& rays);
+  // As the constructor, keeping capacity.
+  void reset(const RaySoA& rays);
 };
 
 }  // namespace quiver
