@@ -1,0 +1,229 @@
+// Framebuffer to image file: encode the pixels for the format, write them
+// with OpenImageIO to a temporary file beside the target, then rename.
+#include "io/image_output.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace quiver {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kSupportedExtensions = ".png .jpg .jpeg .exr .hdr .tif .tiff";
+// libjpeg's largest side; beyond it Debian's OpenImageIO 2.4 JPEG writer
+// ends the process instead of reporting an error, so it is checked here.
+constexpr int kMaxJpegSide = 65'500;
+
+struct FormatInfo {
+  std::string_view extension;
+  std::string_view oiio_format;
+  bool eight_bit_srgb;
+};
+
+constexpr std::array<FormatInfo, 7> kFormats{{
+    {".png", "png", true},
+    {".jpg", "jpeg", true},
+    {".jpeg", "jpeg", true},
+    {".exr", "openexr", false},
+    {".hdr", "hdr", false},
+    {".tif", "tiff", false},
+    {".tiff", "tiff", false},
+}};
+
+[[noreturn]] void fail(const fs::path& path, std::string_view message) {
+  std::string what = path.string();
+  what += ": ";
+  what += message;
+  throw std::runtime_error(what);
+}
+
+std::string lowercase_extension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+const FormatInfo* format_of(const fs::path& path) {
+  const std::string extension = lowercase_extension(path);
+  for (const FormatInfo& format : kFormats) {
+    if (format.extension == extension) return &format;
+  }
+  return nullptr;
+}
+
+bool has_aovs(const Framebuffer& framebuffer) {
+  return !framebuffer.depth.empty() || !framebuffer.normal.empty() || !framebuffer.kind.empty() ||
+         !framebuffer.id.empty();
+}
+
+// The sRGB OETF (IEC 61966-2-1) of a linear value clamped to [0, 1], as the
+// nearest 8-bit code; NaN encodes as 0.
+std::uint8_t srgb_byte(float linear) {
+  const double c = std::isnan(linear) ? 0.0 : std::clamp(double(linear), 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<std::uint8_t>(std::clamp(std::floor(encoded * 255.0 + 0.5), 0.0, 255.0));
+}
+
+// RGBE (Radiance HDR) holds no sign, NaN or infinity, and its exponent byte
+// overflows near FLT_MAX: values are clamped to [0, kMaxRgbeValue], NaN is 0.
+float rgbe_representable(float value) {
+  constexpr float kMaxRgbeValue = 1e38f;
+  return std::isnan(value) ? 0.f : std::clamp(value, 0.f, kMaxRgbeValue);
+}
+
+void check_sizes(const fs::path& path, const Framebuffer& framebuffer) {
+  const std::size_t n = framebuffer.pixel_count();
+  auto wrong = [&](std::string_view what) {
+    throw std::invalid_argument(path.string() + ": framebuffer " + std::string(what) + " does not match its size " +
+                                std::to_string(framebuffer.width) + " x " + std::to_string(framebuffer.height));
+  };
+  if (framebuffer.width < 1 || framebuffer.height < 1) wrong("extent");
+  if (framebuffer.rgb.size() != 3 * n) wrong("rgb");
+  if (!framebuffer.depth.empty() && framebuffer.depth.size() != n) wrong("depth");
+  if (!framebuffer.normal.empty() && framebuffer.normal.size() != 3 * n) wrong("normal");
+  if (!framebuffer.kind.empty() && framebuffer.kind.size() != n) wrong("kind");
+  if (!framebuffer.id.empty() && framebuffer.id.size() != n) wrong("id");
+}
+
+// Channel names and interleaved float values: RGB, then each non-empty AOV.
+std::vector<std::string> float_channel_names(const Framebuffer& framebuffer) {
+  std::vector<std::string> names{"R", "G", "B"};
+  if (!framebuffer.depth.empty()) names.push_back("Z");
+  if (!framebuffer.normal.empty()) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
+  if (!framebuffer.kind.empty()) names.push_back("kind");
+  if (!framebuffer.id.empty()) names.push_back("id");
+  return names;
+}
+
+std::vector<float> interleaved_floats(const Framebuffer& framebuffer, std::size_t channels) {
+  const std::size_t n = framebuffer.pixel_count();
+  std::vector<float> values(n * channels);
+  for (std::size_t p = 0; p < n; ++p) {
+    float* out = &values[p * channels];
+    for (std::size_t c = 0; c < 3; ++c) *out++ = framebuffer.rgb[p * 3 + c];
+    if (!framebuffer.depth.empty()) *out++ = framebuffer.depth[p];
+    if (!framebuffer.normal.empty()) {
+      for (std::size_t c = 0; c < 3; ++c) *out++ = framebuffer.normal[p * 3 + c];
+    }
+    if (!framebuffer.kind.empty()) *out++ = static_cast<float>(framebuffer.kind[p]);
+    if (!framebuffer.id.empty()) *out++ = static_cast<float>(framebuffer.id[p]);
+  }
+  return values;
+}
+
+// A name beside the target, unique within this process and among processes,
+// keeping the target's extension.
+fs::path temporary_path(const fs::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  name += target.extension().string();
+  return target.parent_path() / name;
+}
+
+// Removes the temporary file unless the write was committed.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile() {
+    if (!committed_) {
+      std::error_code ignored;
+      fs::remove(path_, ignored);
+    }
+  }
+  const fs::path& path() const { return path_; }
+  void commit() { committed_ = true; }
+
+ private:
+  fs::path path_;
+  bool committed_ = false;
+};
+
+}  // namespace
+
+void check_output_path(const fs::path& path, bool with_aovs) {
+  const FormatInfo* format = format_of(path);
+  if (format == nullptr) {
+    const std::string extension = path.extension().string();
+    fail(path,
+         (extension.empty() ? std::string("no image extension") : "unsupported image extension '" + extension + "'") +
+             "; supported: " + std::string(kSupportedExtensions));
+  }
+  if (with_aovs && format->extension != ".exr") {
+    fail(path, "AOVs need an OpenEXR file (.exr); supported: " + std::string(kSupportedExtensions));
+  }
+  const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code error;
+  const fs::file_status parent_status = fs::status(parent, error);
+  if (!fs::exists(parent_status)) fail(path, "the directory '" + parent.string() + "' does not exist");
+  if (!fs::is_directory(parent_status)) fail(path, "'" + parent.string() + "' is not a directory");
+  if (fs::is_directory(fs::status(path, error))) fail(path, "is a directory");
+}
+
+void write_image(const fs::path& path, const Framebuffer& framebuffer) {
+  const bool with_aovs = has_aovs(framebuffer);
+  check_output_path(path, with_aovs);
+  check_sizes(path, framebuffer);
+  const FormatInfo& format = *format_of(path);
+  if (format.oiio_format == "jpeg" && (framebuffer.width > kMaxJpegSide || framebuffer.height > kMaxJpegSide)) {
+    fail(path, "JPEG images hold at most " + std::to_string(kMaxJpegSide) + " pixels per side");
+  }
+  const std::size_t n = framebuffer.pixel_count();
+
+  std::vector<std::uint8_t> bytes;
+  std::vector<float> floats;
+  std::vector<std::string> names{"R", "G", "B"};
+  if (format.eight_bit_srgb) {
+    bytes.resize(n * 3);
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(framebuffer.rgb[i]);
+  } else {
+    names = float_channel_names(framebuffer);
+    floats = interleaved_floats(framebuffer, names.size());
+    if (format.oiio_format == "hdr") {
+      for (float& value : floats) value = rgbe_representable(value);
+    }
+  }
+
+  OIIO::ImageSpec spec(framebuffer.width, framebuffer.height, static_cast<int>(names.size()),
+                       format.eight_bit_srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.alpha_channel = -1;
+  spec.attribute("oiio:ColorSpace", format.eight_bit_srgb ? "sRGB" : "Linear");
+
+  // Declared before the writer, so the writer closes its file before removal.
+  TemporaryFile temporary(temporary_path(path));
+  auto output = OIIO::ImageOutput::create(std::string(format.oiio_format));
+  if (!output) fail(path, "cannot write: " + OIIO::geterror());
+  const OIIO::TypeDesc data_type = format.eight_bit_srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+  const void* data = format.eight_bit_srgb ? static_cast<const void*>(bytes.data()) : floats.data();
+  if (!output->open(temporary.path().string(), spec) || !output->write_image(data_type, data) || !output->close()) {
+    std::string message = output->geterror();
+    if (message.empty()) message = OIIO::geterror();
+    fail(path, "cannot write: " + message);
+  }
+  output.reset();
+
+  std::error_code error;
+  fs::rename(temporary.path(), path, error);
+  if (error) fail(path, "cannot replace the file: " + error.message());
+  temporary.commit();
+}
+
+}  // namespace quiver
