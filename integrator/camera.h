@@ -1,0 +1,32 @@
+// Pinhole camera with NFF's convention: `angle` is the full field of view
+// between the centres of the outermost pixel columns (rows when the image is
+// taller than wide); pixels are square; `up` need not be perpendicular to the
+// view direction (its perpendicular part is used).
+// Film coordinates are in pixels: (0, 0) is the top-left corner of the
+// image, pixel (i, j) covers [i, i+1) x [j, j+1) and its centre is
+// (i + 0.5, j + 0.5); x grows right, y grows down.
+#pragma once
+
+#include "io/scene_desc.h"
+#include "simd/ray.h"
+
+namespace quiver {
+
+class Camera {
+ public:
+  // Throws std::invalid_argument for a degenerate view (see CameraDesc).
+  Camera(const CameraDesc& desc, int width, int height);
+
+  // The unit-direction primary ray through film point (x, y), t in (0, inf).
+  Ray<float> ray(double x, double y) const;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_, height_;
+  double eye_[3], forward_[3], right_[3], up_[3];
+  double pixel_size_;  // tangent-plane size of one pixel at unit distance
+};
+
+}  // namespace quiver

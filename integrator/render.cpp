@@ -1,0 +1,328 @@
+#include "integrator/render.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "integrator/camera.h"
+
+namespace quiver {
+
+namespace {
+
+struct Tile {
+  int x0, y0, width, height;
+};
+
+float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
+  return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
+}
+
+// Per-thread state: a tracer and its buffers, reused tile after tile.
+struct Worker {
+  Tracer tracer;
+  TraceStats stats;
+  std::vector<CameraSample> samples;
+  std::vector<Vec3<float>> colors;
+  std::vector<Ray<float>> centre_rays;
+  std::vector<FirstHit> first;
+  std::vector<std::int32_t> lattice;  // adaptive: sample index per lattice point, -1 unset
+  Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
+      : tracer(scene, intersector, settings) {}
+};
+
+class TileRenderer {
+ public:
+  TileRenderer(const Camera& camera, const RenderSettings& settings, Framebuffer& image,
+               std::vector<Vec3<float>>* corners)
+      : camera_(camera), settings_(settings), image_(image), corners_(corners) {}
+
+  void render(const Tile& tile, Worker& w) const {
+    switch (settings_.aa.mode) {
+      case AntiAliasing::Mode::none:
+      case AntiAliasing::Mode::grid:
+      case AntiAliasing::Mode::jitter: render_supersampled(tile, w); break;
+      case AntiAliasing::Mode::corners: render_corners(tile, w); break;
+      case AntiAliasing::Mode::adaptive: render_adaptive(tile, w); break;
+    }
+    if (settings_.aov_depth || settings_.aov_normal || settings_.aov_id) render_aovs(tile, w);
+  }
+
+ private:
+  CameraSample sample_at(double x, double y) const {
+    return {camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
+  }
+
+  void trace(Worker& w) const {
+    w.colors.resize(w.samples.size());
+    w.tracer.trace(w.samples, w.colors, w.stats);
+  }
+
+  void set_pixel(int x, int y, const Vec3<float>& c) const {
+    float* p = &image_.rgb[(std::size_t(y) * std::size_t(image_.width) + std::size_t(x)) * 3];
+    p[0] = c.x;
+    p[1] = c.y;
+    p[2] = c.z;
+  }
+
+  // none, grid:N, jitter:N: N x N samples per pixel, averaged.
+  void render_supersampled(const Tile& tile, Worker& w) const {
+    const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
+    const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
+    w.samples.clear();
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
+        const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
+        for (int j = 0; j < n * n; ++j) {
+          double ox = (j % n + 0.5) / n, oy = (j / n + 0.5) / n;
+          if (jitter) {
+            ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
+            oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
+          }
+          w.samples.push_back(sample_at(x + ox, y + oy));
+        }
+      }
+    }
+    trace(w);
+    const float inv = 1.f / float(n * n);
+    std::size_t k = 0;
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
+        Vec3<float> sum{0.f, 0.f, 0.f};
+        for (int j = 0; j < n * n; ++j) sum = sum + w.colors[k++];
+        set_pixel(x, y, sum * inv);
+      }
+    }
+  }
+
+  // The SPD rule, part one: the rays at the corners this tile owns (its
+  // top-left corners, plus the image's right and bottom edges), each traced
+  // once; render() averages them into pixels when every tile is done.
+  void render_corners(const Tile& tile, Worker& w) const {
+    const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
+    const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
+    w.samples.clear();
+    for (int y = tile.y0; y < y1; ++y) {
+      for (int x = tile.x0; x < x1; ++x) w.samples.push_back(sample_at(x, y));
+    }
+    trace(w);
+    std::size_t k = 0;
+    for (int y = tile.y0; y < y1; ++y) {
+      for (int x = tile.x0; x < x1; ++x) (*corners_)[std::size_t(y) * (image_.width + 1) + x] = w.colors[k++];
+    }
+  }
+
+  // Adaptive: corners on a lattice of 2^depth points per pixel side; level by
+  // level, every square whose corners differ by more than the threshold asks
+  // for its centre and edge midpoints, all of a level traced as one batch.
+  void render_adaptive(const Tile& tile, Worker& w) const {
+    const int depth = settings_.aa.depth;
+    const int scale = 1 << depth;
+    const int lw = tile.width * scale + 1, lh = tile.height * scale + 1;
+    w.lattice.assign(std::size_t(lw) * std::size_t(lh), -1);
+    std::vector<Vec3<float>> values;
+    std::vector<std::int32_t> pending;  // lattice points of the current batch
+
+    auto request = [&](int X, int Y) {
+      std::int32_t& slot = w.lattice[std::size_t(Y) * lw + X];
+      if (slot != -1) return;
+      slot = -2;  // requested
+      pending.push_back(Y * lw + X);
+    };
+    auto run_batch = [&]() {
+      w.samples.clear();
+      for (std::int32_t p : pending) {
+        const int X = p % lw, Y = p / lw;
+        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale));
+      }
+      trace(w);
+      for (std::size_t k = 0; k < pending.size(); ++k) {
+        w.lattice[pending[k]] = static_cast<std::int32_t>(values.size());
+        values.push_back(w.colors[k]);
+      }
+      pending.clear();
+    };
+    auto at = [&](int X, int Y) { return values[w.lattice[std::size_t(Y) * lw + X]]; };
+    auto splits = [&](int X, int Y, int size) {
+      if (size <= 1) return false;
+      const Vec3<float> c[4] = {at(X, Y), at(X + size, Y), at(X, Y + size), at(X + size, Y + size)};
+      for (int a = 0; a < 4; ++a) {
+        for (int b = a + 1; b < 4; ++b) {
+          if (max_difference(c[a], c[b]) > settings_.aa.threshold) return true;
+        }
+      }
+      return false;
+    };
+
+    for (int Y = 0; Y < lh; Y += scale) {
+      for (int X = 0; X < lw; X += scale) request(X, Y);
+    }
+    run_batch();
+    struct Square {
+      int X, Y, size;
+    };
+    std::vector<Square> level, next;
+    for (int y = 0; y < tile.height; ++y) {
+      for (int x = 0; x < tile.width; ++x) level.push_back({x * scale, y * scale, scale});
+    }
+    while (!level.empty()) {
+      next.clear();
+      for (const Square& s : level) {
+        if (!splits(s.X, s.Y, s.size)) continue;
+        const int h = s.size / 2;
+        request(s.X + h, s.Y);
+        request(s.X, s.Y + h);
+        request(s.X + h, s.Y + h);
+        request(s.X + s.size, s.Y + h);
+        request(s.X + h, s.Y + s.size);
+        for (const Square& child : {Square{s.X, s.Y, h}, Square{s.X + h, s.Y, h}, Square{s.X, s.Y + h, h},
+                                    Square{s.X + h, s.Y + h, h}}) {
+          next.push_back(child);
+        }
+      }
+      run_batch();
+      std::swap(level, next);
+    }
+    // A square's colour: the mean of its four children if it split, else of its corners.
+    std::vector<Square> stack;
+    for (int y = 0; y < tile.height; ++y) {
+      for (int x = 0; x < tile.width; ++x) {
+        Vec3<float> sum{0.f, 0.f, 0.f};
+        stack.assign(1, {x * scale, y * scale, scale});
+        // Weighted by area: a square of size s counts (s / scale)^2.
+        while (!stack.empty()) {
+          const Square s = stack.back();
+          stack.pop_back();
+          if (splits(s.X, s.Y, s.size)) {
+            const int h = s.size / 2;
+            stack.push_back({s.X + h, s.Y + h, h});
+            stack.push_back({s.X, s.Y + h, h});
+            stack.push_back({s.X + h, s.Y, h});
+            stack.push_back({s.X, s.Y, h});
+            continue;
+          }
+          const float weight = float(s.size) * float(s.size) / (float(scale) * float(scale)) * 0.25f;
+          sum = sum + (at(s.X, s.Y) + at(s.X + s.size, s.Y) + at(s.X, s.Y + s.size) + at(s.X + s.size, s.Y + s.size)) *
+                          weight;
+        }
+        set_pixel(tile.x0 + x, tile.y0 + y, sum);
+      }
+    }
+  }
+
+  void render_aovs(const Tile& tile, Worker& w) const {
+    w.centre_rays.clear();
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) w.centre_rays.push_back(camera_.ray(x + 0.5, y + 0.5));
+    }
+    w.first.resize(w.centre_rays.size());
+    w.tracer.first_hits(w.centre_rays, w.first);
+    std::size_t k = 0;
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x, ++k) {
+        const std::size_t p = std::size_t(y) * std::size_t(image_.width) + std::size_t(x);
+        const FirstHit& f = w.first[k];
+        if (settings_.aov_depth) image_.depth[p] = f.depth;
+        if (settings_.aov_normal) {
+          image_.normal[3 * p] = f.normal.x;
+          image_.normal[3 * p + 1] = f.normal.y;
+          image_.normal[3 * p + 2] = f.normal.z;
+        }
+        if (settings_.aov_id) {
+          image_.kind[p] = f.kind;
+          image_.id[p] = f.id;
+        }
+      }
+    }
+  }
+
+  const Camera& camera_;
+  const RenderSettings& settings_;
+  Framebuffer& image_;
+  std::vector<Vec3<float>>* corners_;  // corners mode: (W + 1) x (H + 1) colours
+};
+
+// The SPD rule, part two: each pixel the mean of its four corners.
+void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image) {
+  const std::size_t cw = std::size_t(image.width) + 1;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t i = std::size_t(y) * cw + std::size_t(x);
+      const Vec3<float> c = (corners[i] + corners[i + 1] + corners[i + cw] + corners[i + cw + 1]) * 0.25f;
+      float* p = &image.rgb[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3];
+      p[0] = c.x;
+      p[1] = c.y;
+      p[2] = c.z;
+    }
+  }
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress) {
+  if (settings.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
+  const Camera camera(scene.camera, settings.width, settings.height);
+  RenderResult result;
+  Framebuffer& image = result.image;
+  image = Framebuffer(settings.width, settings.height);
+  const std::size_t pixels = image.pixel_count();
+  if (settings.aov_depth) image.depth.assign(pixels, 0.f);
+  if (settings.aov_normal) image.normal.assign(3 * pixels, 0.f);
+  if (settings.aov_id) {
+    image.kind.assign(pixels, kNoKind);
+    image.id.assign(pixels, -1);
+  }
+
+  std::vector<Tile> tiles;
+  for (int y = 0; y < settings.height; y += settings.tile_size) {
+    for (int x = 0; x < settings.width; x += settings.tile_size) {
+      tiles.push_back({x, y, std::min(settings.tile_size, settings.width - x),
+                       std::min(settings.tile_size, settings.height - y)});
+    }
+  }
+
+  const SceneIntersector intersector(kernel_unit_for(settings.isa));
+  std::vector<Vec3<float>> corners;
+  if (settings.aa.mode == AntiAliasing::Mode::corners) {
+    corners.resize((std::size_t(settings.width) + 1) * (std::size_t(settings.height) + 1));
+  }
+  const TileRenderer tile_renderer(camera, settings, image, &corners);
+  tbb::enumerable_thread_specific<Worker> workers(
+      [&] { return Worker(scene, intersector, settings.trace); });
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  result.threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+  tbb::task_arena arena(result.threads);
+
+  const auto start = std::chrono::steady_clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          Worker& w = workers.local();
+          for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            tile_renderer.render(tiles[t], w);
+            const std::size_t finished = ++done;
+            if (progress) {
+              std::lock_guard lock(progress_mutex);
+              progress(finished, tiles.size());
+            }
+          }
+        },
+        tbb::simple_partitioner());
+  });
+  if (settings.aa.mode == AntiAliasing::Mode::corners) average_corners(corners, image);
+  result.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (const Worker& w : workers) result.stats.add(w.stats);
+  return result;
+}
+
+}  // namespace quiver

@@ -1,0 +1,44 @@
+// A whole image: the film cut into tiles, each tile's camera samples traced
+// as one wavefront batch (integrator/tracer.h), tiles spread over the cores
+// with oneTBB. Each tile writes only its own pixels and every random number
+// comes from the sample's film position, so the image is the same for any
+// thread count, tile order and SIMD width.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+
+#include "integrator/anti_aliasing.h"
+#include "integrator/framebuffer.h"
+#include "integrator/scene.h"
+#include "integrator/trace_stats.h"
+#include "integrator/tracer.h"
+#include "simd/isa.h"
+
+namespace quiver {
+
+struct RenderSettings {
+  int width = 512, height = 512;
+  AntiAliasing aa;
+  TraceSettings trace;
+  int threads = 0;  // 0: every core
+  Isa isa = Isa::scalar;
+  bool aov_depth = false, aov_normal = false, aov_id = false;  // id also writes the kind
+  int tile_size = 16;
+};
+
+struct RenderResult {
+  Framebuffer image;
+  TraceStats stats;
+  double render_ms = 0.0;
+  int threads = 0;  // threads actually used
+};
+
+// Called after each tile with (tiles done, tiles total), from worker
+// threads one at a time.
+using RenderProgress = std::function<void(std::size_t done, std::size_t total)>;
+
+RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress = {});
+
+}  // namespace quiver

@@ -1,0 +1,273 @@
+#include "integrator/scene.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace quiver {
+
+namespace {
+
+// Input primitives of one kind for one layer, with their origins.
+template <class Desc>
+struct LayerInput {
+  std::vector<Desc> descs;
+  std::vector<PrimitiveOrigin> origins;
+};
+
+template <class Desc>
+struct KindInput {
+  LayerInput<Desc> opaque, transmissive;
+  LayerInput<Desc>& layer(bool t) { return t ? transmissive : opaque; }
+};
+
+// The origins of the primitives a builder kept, in store order.
+std::vector<PrimitiveOrigin> kept_origins(const std::vector<std::uint32_t>& source,
+                                          const std::vector<PrimitiveOrigin>& origins) {
+  std::vector<PrimitiveOrigin> kept;
+  kept.reserve(source.size());
+  for (std::uint32_t s : source) kept.push_back(origins[s]);
+  return kept;
+}
+
+// An NFF `pp` patch as triangles with per-vertex normals: a triangle as it
+// is, a larger polygon by ear clipping, each vertex taking the normal of
+// the first input vertex at the same position.
+std::vector<TriangleDesc> patch_triangles(const ScenePolygon& patch) {
+  const std::vector<Vec3<float>>& vs = patch.polygon.vertices;
+  auto normal_at = [&](const Vec3<float>& p) {
+    for (std::size_t i = 0; i < vs.size(); ++i) {
+      if (vs[i].x == p.x && vs[i].y == p.y && vs[i].z == p.z) return patch.normals[i];
+    }
+    return Vec3<float>(0.f, 0.f, 0.f);  // the builder replaces a zero normal by the geometric one
+  };
+  std::vector<TriangleDesc> out;
+  if (vs.size() == 3) {
+    out.push_back({{vs[0], vs[1], vs[2]}, std::array{patch.normals[0], patch.normals[1], patch.normals[2]}, {}});
+    return out;
+  }
+  for (const auto& tri : triangulate_polygon(patch.polygon)) {
+    out.push_back({tri, std::array{normal_at(tri[0]), normal_at(tri[1]), normal_at(tri[2])}, {}});
+  }
+  return out;
+}
+
+void grow_bounds(Vec3<float>& lo, Vec3<float>& hi, const Vec3<float>& p) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::min(lo[a], p[a]);
+    hi[a] = std::max(hi[a], p[a]);
+  }
+}
+
+void layer_bounds(const GeometryLayer& g, Vec3<float>& lo, Vec3<float>& hi) {
+  for (std::size_t i = 0; i < g.spheres.count; ++i) {
+    const float r = 1.f / g.spheres.inv_r[i];
+    const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
+    grow_bounds(lo, hi, c - Vec3<float>(r, r, r));
+    grow_bounds(lo, hi, c + Vec3<float>(r, r, r));
+  }
+  for (std::size_t i = 0; i < g.triangles.count; ++i) {
+    for (int k = 0; k < 3; ++k) grow_bounds(lo, hi, g.triangles.vertex(i, k));
+  }
+  for (std::size_t i = 0; i < g.polygons.count; ++i) {
+    // Unproject the 2D vertices: the dropped axis follows from the plane.
+    const int au = g.polygons.axis_u[i], av = g.polygons.axis_v[i], ak = 3 - au - av;
+    const Vec3<float> n{g.polygons.nx[i], g.polygons.ny[i], g.polygons.nz[i]};
+    for (std::int32_t k = 0; k < g.polygons.vertex_count[i]; ++k) {
+      Vec3<float> p;
+      p[au] = g.polygons.origin_u[i] + g.polygons.pu[g.polygons.first_vertex[i] + k];
+      p[av] = g.polygons.origin_v[i] + g.polygons.pv[g.polygons.first_vertex[i] + k];
+      p[ak] = -(g.polygons.d[i] + n[au] * p[au] + n[av] * p[av]) / n[ak];
+      grow_bounds(lo, hi, p);
+    }
+  }
+  for (std::size_t i = 0; i < g.cones.count; ++i) {
+    const Vec3<float> b{g.cones.bx[i], g.cones.by[i], g.cones.bz[i]};
+    const Vec3<float> a{g.cones.ax[i], g.cones.ay[i], g.cones.az[i]};
+    const Vec3<float> apex = b + a * g.cones.height[i];
+    const float r = std::max(g.cones.radius0[i], g.cones.radius0[i] + g.cones.slope[i] * g.cones.height[i]);
+    for (const Vec3<float>& c : {b, apex}) {
+      grow_bounds(lo, hi, c - Vec3<float>(r, r, r));
+      grow_bounds(lo, hi, c + Vec3<float>(r, r, r));
+    }
+  }
+}
+
+template <class Vec>
+std::size_t bytes_of(const Vec& v) {
+  return v.capacity() * sizeof(typename Vec::value_type);
+}
+
+}  // namespace
+
+std::size_t GeometryLayer::memory_bytes() const {
+  std::size_t bytes = 0;
+  for (const AlignedFloats* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r2, &spheres.inv_r, &planes.nx,
+                                 &planes.ny, &planes.nz, &planes.d, &polygons.nx, &polygons.ny, &polygons.nz,
+                                 &polygons.d, &polygons.origin_u, &polygons.origin_v, &polygons.umin,
+                                 &polygons.umax, &polygons.vmin, &polygons.vmax, &polygons.pu, &polygons.pv,
+                                 &cones.bx, &cones.by, &cones.bz, &cones.ax, &cones.ay, &cones.az, &cones.height,
+                                 &cones.radius0, &cones.slope, &cones.facing}) {
+    bytes += bytes_of(*c);
+  }
+  for (AlignedFloats* c : const_cast<TriangleSoA&>(triangles).columns()) bytes += bytes_of(*c);
+  for (const AlignedInts* c : {&polygons.axis_u, &polygons.axis_v, &polygons.vertex_count}) bytes += bytes_of(*c);
+  bytes += bytes_of(polygons.first_vertex);
+  for (const auto* s : {&spheres.source, &planes.source, &triangles.source, &polygons.source, &cones.source}) {
+    bytes += bytes_of(*s);
+  }
+  for (const auto* o : {&sphere_origin, &plane_origin, &triangle_origin, &polygon_origin, &cone_origin}) {
+    bytes += bytes_of(*o);
+  }
+  return bytes;
+}
+
+PrimitiveRef Scene::locate(std::int32_t id) const {
+  for (bool t : {false, true}) {
+    const GeometryLayer& g = layer(t);
+    const std::pair<std::int32_t, std::size_t> ranges[] = {
+        {g.spheres.id_base, g.spheres.count},     {g.planes.id_base, g.planes.count},
+        {g.triangles.id_base, g.triangles.count}, {g.polygons.id_base, g.polygons.count},
+        {g.cones.id_base, g.cones.count}};
+    for (int k = 0; k < 5; ++k) {
+      const auto [base, count] = ranges[k];
+      if (id >= base && std::size_t(id - base) < count) {
+        return {t, static_cast<PrimitiveKind>(k), static_cast<std::uint32_t>(id - base)};
+      }
+    }
+  }
+  throw std::out_of_range("no primitive with hit id " + std::to_string(id));
+}
+
+const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
+  const GeometryLayer& g = layer(ref.transmissive);
+  switch (ref.kind) {
+    case PrimitiveKind::sphere: return g.sphere_origin[ref.local];
+    case PrimitiveKind::plane: return g.plane_origin[ref.local];
+    case PrimitiveKind::triangle: return g.triangle_origin[ref.local];
+    case PrimitiveKind::polygon: return g.polygon_origin[ref.local];
+    case PrimitiveKind::cone: break;
+  }
+  return g.cone_origin[ref.local];
+}
+
+std::size_t Scene::memory_bytes() const {
+  std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes();
+  for (const Texture& t : textures) bytes += bytes_of(t.image.rgb);
+  return bytes;
+}
+
+Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
+  if (!desc.camera) throw std::invalid_argument("the scene has no camera");
+  Scene scene;
+  scene.camera = *desc.camera;
+  scene.background = desc.background;
+  scene.ambient = desc.ambient;
+  scene.lights = desc.lights;
+  scene.materials = desc.materials;
+  for (MaterialDesc& m : scene.materials) {
+    if (m.texture && *m.texture >= desc.textures.size()) {
+      throw std::invalid_argument("a material refers to texture " + std::to_string(*m.texture) + " of " +
+                                  std::to_string(desc.textures.size()));
+    }
+    if (options.all_two_sided) m.two_sided = true;
+  }
+  scene.textures.reserve(desc.textures.size());
+  for (const TextureDesc& t : desc.textures) scene.textures.push_back(build_texture(t));
+
+  // Splits one kind's primitives by layer; checks material indices.
+  auto origin_of = [&](std::size_t material, PrimitiveKind kind, std::size_t index) {
+    if (material >= desc.materials.size()) {
+      throw std::invalid_argument("a primitive refers to material " + std::to_string(material) + " of " +
+                                  std::to_string(desc.materials.size()));
+    }
+    return PrimitiveOrigin{static_cast<std::uint32_t>(material), kind, static_cast<std::uint32_t>(index)};
+  };
+  auto is_transmissive = [&](std::size_t material) { return desc.materials[material].kt > 0.f; };
+
+  KindInput<SphereDesc> spheres;
+  for (std::size_t i = 0; i < desc.spheres.size(); ++i) {
+    const SceneSphere& s = desc.spheres[i];
+    const PrimitiveOrigin o = origin_of(s.material, PrimitiveKind::sphere, i);
+    auto& in = spheres.layer(is_transmissive(s.material));
+    in.descs.push_back(s.sphere);
+    in.origins.push_back(o);
+  }
+  KindInput<PlaneDesc> planes;
+  for (std::size_t i = 0; i < desc.planes.size(); ++i) {
+    const ScenePlane& p = desc.planes[i];
+    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::plane, i);
+    auto& in = planes.layer(is_transmissive(p.material));
+    in.descs.push_back(p.plane);
+    in.origins.push_back(o);
+  }
+  KindInput<TriangleDesc> triangles;
+  for (std::size_t i = 0; i < desc.triangles.size(); ++i) {
+    const SceneTriangle& t = desc.triangles[i];
+    const PrimitiveOrigin o = origin_of(t.material, PrimitiveKind::triangle, i);
+    auto& in = triangles.layer(is_transmissive(t.material));
+    in.descs.push_back(t.triangle);
+    in.origins.push_back(o);
+  }
+  KindInput<PolygonDesc> polygons;
+  for (std::size_t i = 0; i < desc.polygons.size(); ++i) {
+    const ScenePolygon& p = desc.polygons[i];
+    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::polygon, i);
+    if (!p.normals.empty()) {
+      auto& in = triangles.layer(is_transmissive(p.material));
+      for (TriangleDesc& t : patch_triangles(p)) {
+        in.descs.push_back(std::move(t));
+        in.origins.push_back(o);
+      }
+      continue;
+    }
+    auto& in = polygons.layer(is_transmissive(p.material));
+    in.descs.push_back(p.polygon);
+    in.origins.push_back(o);
+  }
+  KindInput<ConeDesc> cones;
+  for (std::size_t i = 0; i < desc.cones.size(); ++i) {
+    const SceneCone& c = desc.cones[i];
+    const PrimitiveOrigin o = origin_of(c.material, PrimitiveKind::cone, i);
+    auto& in = cones.layer(is_transmissive(c.material));
+    in.descs.push_back(c.cone);
+    in.origins.push_back(o);
+  }
+
+  std::int32_t next_id = 0;
+  auto number = [&](auto& store) {
+    store.id_base = next_id;
+    next_id += static_cast<std::int32_t>(store.count);
+  };
+  for (bool t : {false, true}) {
+    GeometryLayer& g = t ? scene.transmissive : scene.opaque;
+    g.spheres = build_spheres(spheres.layer(t).descs, scene.counts.spheres);
+    g.sphere_origin = kept_origins(g.spheres.source, spheres.layer(t).origins);
+    g.planes = build_planes(planes.layer(t).descs, scene.counts.planes);
+    g.plane_origin = kept_origins(g.planes.source, planes.layer(t).origins);
+    g.triangles = build_triangles(triangles.layer(t).descs, scene.counts.triangles);
+    g.triangle_origin = kept_origins(g.triangles.source, triangles.layer(t).origins);
+    g.polygons = build_polygons(polygons.layer(t).descs, scene.counts.polygons);
+    g.polygon_origin = kept_origins(g.polygons.source, polygons.layer(t).origins);
+    g.cones = build_cones(cones.layer(t).descs, scene.counts.cones);
+    g.cone_origin = kept_origins(g.cones.source, cones.layer(t).origins);
+    number(g.spheres);
+    number(g.planes);
+    number(g.triangles);
+    number(g.polygons);
+    number(g.cones);
+  }
+
+  const float inf = std::numeric_limits<float>::infinity();
+  Vec3<float> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  layer_bounds(scene.opaque, lo, hi);
+  layer_bounds(scene.transmissive, lo, hi);
+  if (lo.x <= hi.x) {
+    scene.bounds_min = lo;
+    scene.bounds_max = hi;
+  }
+  return scene;
+}
+
+}  // namespace quiver

@@ -1,0 +1,86 @@
+// The renderable scene: SceneDesc's primitives built into SoA stores (only
+// the kinds the scene has), split into two layers, opaque and transmissive
+// (kt > 0), so shadow rays ask the opaque layer an any-hit question and only
+// walk the transmissive one hit by hit. Every store gets a consecutive range
+// of hit ids (id_base), and each primitive remembers its material and where
+// it came from in the SceneDesc.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/cone_soa.h"
+#include "geometry/plane_soa.h"
+#include "geometry/polygon_soa.h"
+#include "geometry/sphere_soa.h"
+#include "geometry/triangle_soa.h"
+#include "integrator/framebuffer.h"
+#include "integrator/texture.h"
+#include "io/scene_desc.h"
+
+namespace quiver {
+
+// Where a built primitive came from: its material and its kind and index in
+// the SceneDesc (an NFF `pp` patch becomes triangles that keep kind polygon).
+struct PrimitiveOrigin {
+  std::uint32_t material;
+  PrimitiveKind kind;
+  std::uint32_t index;
+};
+
+struct GeometryLayer {
+  SphereSoA spheres;
+  PlaneSoA planes;
+  TriangleSoA triangles;
+  PolygonSoA polygons;
+  ConeSoA cones;
+  // Per built primitive, in store order.
+  std::vector<PrimitiveOrigin> sphere_origin, plane_origin, triangle_origin, polygon_origin, cone_origin;
+
+  std::size_t primitive_count() const {
+    return spheres.count + planes.count + triangles.count + polygons.count + cones.count;
+  }
+  std::size_t memory_bytes() const;
+};
+
+// A hit id resolved: which layer, which store, which primitive in it.
+struct PrimitiveRef {
+  bool transmissive;
+  PrimitiveKind kind;
+  std::uint32_t local;
+};
+
+struct SceneBuildOptions {
+  bool all_two_sided = false;  // SPD rule: every surface two-sided
+};
+
+struct SceneCounts {
+  BuildReport spheres, planes, triangles, polygons, cones;
+};
+
+struct Scene {
+  CameraDesc camera;
+  Vec3<float> background{0.f, 0.f, 0.f};
+  Vec3<float> ambient{0.f, 0.f, 0.f};
+  std::vector<LightDesc> lights;
+  std::vector<MaterialDesc> materials;
+  std::vector<Texture> textures;
+  GeometryLayer opaque, transmissive;
+  SceneCounts counts;
+  Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
+
+  PrimitiveRef locate(std::int32_t id) const;
+  const GeometryLayer& layer(bool transmissive_layer) const { return transmissive_layer ? transmissive : opaque; }
+  const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
+  std::size_t primitive_count() const { return opaque.primitive_count() + transmissive.primitive_count(); }
+  std::size_t memory_bytes() const;  // geometry stores and textures
+};
+
+// Builds the scene; the SceneDesc must have a camera (io/auto_view.h adds
+// one). Throws std::invalid_argument for a material or texture index out of
+// range, and what build_texture throws for a bad texture.
+Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options);
+
+}  // namespace quiver

@@ -1,0 +1,37 @@
+// What shading needs at a hit: the point, its error bound, normals, texture
+// coordinates and the material, per primitive kind:
+//   sphere: spherical (u, v) = (longitude, latitude) / (2 pi, pi) around +y;
+//   plane: planar (u, v), the point in two axes of the plane;
+//   triangle: per-vertex UVs (or the barycentrics) and normals interpolated
+//     with the kernel's barycentrics;
+//   polygon: a quad's bilinear (u, v) (inverse bilinear mapping in the
+//     polygon's 2D projection); other polygons planar, like planes;
+//   cone: cylindrical (u = angle / 2 pi, v = s / h along the axis).
+#pragma once
+
+#include <cstdint>
+
+#include "geometry/hit.h"
+#include "integrator/scene.h"
+
+namespace quiver {
+
+struct SurfacePoint {
+  Vec3<float> position;
+  Vec3<float> error;            // bound on |position - exact hit| per component
+  Vec3<float> geometric;        // unit geometric normal facing the incoming ray
+  Vec3<float> shading;          // unit shading normal on the same side
+  bool entering;                // the ray arrives on the primitive's outward side
+  float u, v;                   // texture coordinates
+  const MaterialDesc* material;
+  std::uint32_t material_index;
+  PrimitiveRef ref;
+};
+
+// The surface at hit (id != kNoHit) of ray (unit or not; t in its units).
+SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
+
+// The material's colour at the point: texture(u, v, p) times colour.
+Vec3<float> surface_color(const Scene& scene, const SurfacePoint& s);
+
+}  // namespace quiver

@@ -1,0 +1,28 @@
+#include "integrator/trace_stats.h"
+
+namespace quiver {
+
+namespace {
+void add_lanes(WaveLanes& a, const WaveLanes& b) {
+  a.active += b.active;
+  a.issued_compacted += b.issued_compacted;
+  a.issued_uncompacted += b.issued_uncompacted;
+}
+}  // namespace
+
+WaveLanes& TraceStats::wave(std::size_t depth) {
+  if (waves.size() <= depth) waves.resize(depth + 1);
+  return waves[depth];
+}
+
+void TraceStats::add(const TraceStats& o) {
+  rays.primary += o.rays.primary;
+  rays.primary_hits += o.rays.primary_hits;
+  rays.shadow += o.rays.shadow;
+  rays.reflection += o.rays.reflection;
+  rays.refraction += o.rays.refraction;
+  for (std::size_t d = 0; d < o.waves.size(); ++d) add_lanes(wave(d), o.waves[d]);
+  add_lanes(shadow, o.shadow);
+}
+
+}  // namespace quiver

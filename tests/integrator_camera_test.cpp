@@ -1,0 +1,71 @@
+// The NFF pixel-ray convention: `angle` spans the centres of the outermost
+// pixel columns; up need not be perpendicular; film y grows downward.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "integrator/anti_aliasing.h"
+#include "integrator/camera.h"
+
+namespace quiver {
+namespace {
+
+double degrees_between(const Vec3<float>& a, const Vec3<float>& b) {
+  const double c = (double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z) /
+                   std::sqrt((double(a.x) * a.x + double(a.y) * a.y + double(a.z) * a.z) *
+                             (double(b.x) * b.x + double(b.y) * b.y + double(b.z) * b.z));
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+TEST(Camera, AngleSpansOutermostPixelCentres) {
+  // Up (0, 1, 1) is not perpendicular to the view direction -z.
+  const CameraDesc desc{{0.f, 0.f, 0.f}, {0.f, 0.f, -1.f}, {0.f, 1.f, 1.f}, 60.f, 0.f, 9, 9};
+  const Camera camera(desc, 9, 9);
+  const Ray<float> left = camera.ray(0.5, 4.5), right = camera.ray(8.5, 4.5);
+  const Ray<float> top = camera.ray(4.5, 0.5), bottom = camera.ray(4.5, 8.5);
+  EXPECT_NEAR(degrees_between(left.direction, right.direction), 60.0, 1e-4);
+  EXPECT_NEAR(degrees_between(top.direction, bottom.direction), 60.0, 1e-4);
+  const Ray<float> centre = camera.ray(4.5, 4.5);
+  EXPECT_NEAR(centre.direction.z, -1.f, 1e-7f);
+  EXPECT_GT(top.direction.y, 0.f);     // film y grows downward
+  EXPECT_GT(right.direction.x, 0.f);   // and x to the right
+  EXPECT_NEAR(top.direction.x, 0.f, 1e-7f);
+}
+
+TEST(Camera, WiderSideCarriesTheAngleAndPixelsAreSquare) {
+  const CameraDesc desc{{0.f, 0.f, 0.f}, {0.f, 0.f, -1.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 17, 9};
+  const Camera camera(desc, 17, 9);
+  EXPECT_NEAR(degrees_between(camera.ray(0.5, 4.5).direction, camera.ray(16.5, 4.5).direction), 40.0, 1e-4);
+  // Tangent-plane steps are equal across and down.
+  const Ray<float> c = camera.ray(8.5, 4.5), r = camera.ray(9.5, 4.5), d = camera.ray(8.5, 5.5);
+  EXPECT_NEAR(r.direction.x / -r.direction.z, -(d.direction.y / -d.direction.z), 1e-6);
+  EXPECT_NEAR(c.direction.x, 0.f, 1e-7f);
+}
+
+TEST(Camera, RejectsDegenerateViews) {
+  EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 45.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
+  EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}, 45.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
+  EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 180.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
+}
+
+TEST(AntiAliasing, ParsesEveryModeAndRejectsTheRest) {
+  EXPECT_EQ(parse_anti_aliasing("none").mode, AntiAliasing::Mode::none);
+  EXPECT_EQ(parse_anti_aliasing("corners").mode, AntiAliasing::Mode::corners);
+  EXPECT_EQ(parse_anti_aliasing("grid:3").n, 3);
+  EXPECT_EQ(parse_anti_aliasing("jitter:4").mode, AntiAliasing::Mode::jitter);
+  const AntiAliasing a = parse_anti_aliasing("adaptive:0.05:3");
+  EXPECT_EQ(a.mode, AntiAliasing::Mode::adaptive);
+  EXPECT_EQ(a.threshold, 0.05f);
+  EXPECT_EQ(a.depth, 3);
+  for (const char* bad : {"", "grid", "grid:0", "grid:65", "jitter:x", "adaptive:0.1", "adaptive:-1:2",
+                          "adaptive:nan:2", "adaptive:0.1:7", "corners:2", "none:1", "super"}) {
+    EXPECT_THROW(parse_anti_aliasing(bad), std::invalid_argument) << bad;
+  }
+  for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3"}) {
+    EXPECT_EQ(to_string(parse_anti_aliasing(text)), text);
+  }
+}
+
+}  // namespace
+}  // namespace quiver

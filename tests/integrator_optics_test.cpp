@@ -1,0 +1,70 @@
+// Reflection and Snell refraction against hand-computed directions, total
+// internal reflection, and the ray-origin offset.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "integrator/optics.h"
+
+namespace quiver {
+namespace {
+
+void expect_near(const Vec3<float>& a, double x, double y, double z, double tol = 1e-6) {
+  EXPECT_NEAR(a.x, x, tol);
+  EXPECT_NEAR(a.y, y, tol);
+  EXPECT_NEAR(a.z, z, tol);
+}
+
+TEST(Optics, ReflectionMirrorsTheNormalComponent) {
+  const float s = float(std::sqrt(0.5));
+  expect_near(reflect({s, -s, 0.f}, {0.f, 1.f, 0.f}), s, s, 0.0);
+  expect_near(reflect({0.f, 0.f, -1.f}, {0.f, 0.f, 1.f}), 0.0, 0.0, 1.0);
+}
+
+TEST(Optics, SnellIntoGlassAt45Degrees) {
+  // sin(theta2) = sin(45) / 1.5 = 0.4714045; cos(theta2) = 0.8819171.
+  const float s = float(std::sqrt(0.5));
+  const auto t = refract({s, -s, 0.f}, {0.f, 1.f, 0.f}, 1.f / 1.5f);
+  ASSERT_TRUE(t.has_value());
+  const double sin2 = std::sqrt(0.5) / 1.5;
+  expect_near(*t, sin2, -std::sqrt(1.0 - sin2 * sin2), 0.0);
+  EXPECT_NEAR(dot(*t, *t), 1.f, 1e-6f);  // unit in, unit out
+}
+
+TEST(Optics, NormalIncidencePassesStraight) {
+  const auto t = refract({0.f, 0.f, -1.f}, {0.f, 0.f, 1.f}, 1.f / 1.33f);
+  ASSERT_TRUE(t.has_value());
+  expect_near(*t, 0.0, 0.0, -1.0);
+}
+
+TEST(Optics, TotalInternalReflectionBeyondTheCriticalAngle) {
+  // Glass to air: critical angle asin(1 / 1.5) = 41.81 degrees.
+  const double critical = std::asin(1.0 / 1.5);
+  for (double degrees : {42.0, 60.0, 89.9}) {
+    const double a = degrees * M_PI / 180.0;
+    EXPECT_FALSE(refract({float(std::sin(a)), float(-std::cos(a)), 0.f}, {0.f, 1.f, 0.f}, 1.5f).has_value()) << degrees;
+  }
+  const double below = critical - 1e-3;
+  const auto t = refract({float(std::sin(below)), float(-std::cos(below)), 0.f}, {0.f, 1.f, 0.f}, 1.5f);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_GT(t->x, 0.99f);  // grazing out along the surface
+  EXPECT_FALSE(std::isnan(t->y));
+}
+
+TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
+  for (float scale : {1e-4f, 1.f, 1e6f}) {
+    const Vec3<float> o{0.f, 10.f * scale, 0.f}, d{0.3f, -1.f, 0.2f};
+    const float t = 10.f * scale;
+    const Vec3<float> p = o + d * t;  // on the plane y = 0 up to rounding
+    const Vec3<float> err = hit_point_error(o, d, t);
+    EXPECT_GT(offset_origin(p, err, {0.f, 1.f, 0.f}).y, 0.f) << scale;
+    EXPECT_LT(offset_origin(p, err, {0.f, -1.f, 0.f}).y, 0.f) << scale;
+    // Clear of the surface by at least the bound, not by a scene epsilon.
+    EXPECT_GE(offset_origin(p, err, {0.f, 1.f, 0.f}).y, err.y) << scale;
+    EXPECT_LT(offset_origin(p, err, {0.f, 1.f, 0.f}).y, 1e-3f * scale) << scale;
+  }
+}
+
+}  // namespace
+}  // namespace quiver
