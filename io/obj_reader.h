@@ -1,0 +1,73 @@
+// Reader for Wavefront OBJ meshes and their MTL material libraries, through
+// tinyobjloader. A strict scan of the text runs first and reports bad input
+// as ParseError with file:line:column (numbers, NaN/Inf, index ranges,
+// counts); tinyobjloader then reads the checked text. Faces become
+// triangles (quads and convex n-gons as fans, concave n-gons by ear
+// clipping), with per-vertex normals and uvs when the face gives them. The
+// format rules, the MTL mapping and the bounds are in io/README.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "io/scene_desc.h"
+
+namespace quiver {
+
+// Largest OBJ input, and largest total of the MTL libraries it names, in bytes.
+inline constexpr std::size_t kMaxObjBytes = std::size_t{1} << 30;
+inline constexpr std::size_t kMaxMtlBytes = std::size_t{64} << 20;
+// Most distinct MTL libraries one OBJ may name.
+inline constexpr std::size_t kMaxMtlLibraries = 64;
+// Most `v`, `vt` and `vn` statements (each kind), and most triangles after
+// triangulation; the triangle bound also caps a whole scene's triangles
+// when meshes are appended to it.
+inline constexpr std::size_t kMaxObjVertices = std::size_t{1} << 24;
+inline constexpr std::size_t kMaxObjTriangles = std::size_t{1} << 24;
+// Most corners of `f`, `l` and `p` statements together.
+inline constexpr std::size_t kMaxObjCorners = std::size_t{1} << 26;
+// Most vertices of one face (tinyobjloader stores the count in a byte).
+inline constexpr std::size_t kMaxObjFaceVertices = 255;
+
+// An MTL library as the OBJ names it: its text, the name used in error
+// messages, and the folder its texture paths are relative to.
+struct MtlLibrary {
+  std::string text;
+  std::string file_name;
+  std::filesystem::path directory;
+};
+
+// Finds the library an `mtllib` statement names; nullopt when there is none
+// (the reader then reports the name's position). May throw ParseError for a
+// library that exists but cannot be read.
+using MtlLookup = std::function<std::optional<MtlLibrary>(std::string_view name)>;
+
+// Reads an OBJ file and the MTL libraries it names (relative to its folder).
+// Every face gets its MTL material, or the default MaterialDesc when it has
+// none. Throws ParseError.
+SceneDesc read_obj_scene(const std::filesystem::path& path);
+
+// Parses OBJ text; file_name labels error messages; `mtllib` names go
+// through find_library.
+SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library);
+
+// Reads the OBJ file at `path` (as read_obj_scene) and appends its triangles
+// to `scene`, transformed by `transform` (a 4x4 matrix, column-major:
+// element (row r, column c) at [4 * c + r]) for positions and by its
+// inverse transpose for normals; a transform that mirrors (negative
+// determinant) reverses each triangle's winding. With material_override
+// (an index into scene.materials) every triangle uses it and the MTL
+// materials are not added; otherwise the mesh's materials and textures are
+// appended. Throws ParseError, also when scene.triangles would exceed
+// kMaxObjTriangles or a transformed vertex is not finite, and
+// std::invalid_argument for a singular or non-finite transform or an
+// override that is not a material index; `scene` is then unchanged.
+void append_obj_mesh(const std::filesystem::path& path, const std::array<float, 16>& transform,
+                     std::optional<std::size_t> material_override, SceneDesc& scene);
+
+}  // namespace quiver

@@ -1,0 +1,39 @@
+#include "io/text_file.h"
+
+#include <fstream>
+#include <system_error>
+
+#include "io/parse_error.h"
+
+namespace quiver {
+
+std::string read_text_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what) {
+  const std::string name = path.string();
+  auto fail = [&](std::string_view problem) {
+    std::string message = "cannot read ";
+    message += what;
+    message += ": ";
+    message += problem;
+    throw ParseError::whole_file(name, message);
+  };
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) fail("no such file");
+  if (std::filesystem::is_directory(status)) fail("it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot open it");
+  std::string text;
+  std::string chunk(std::size_t{1} << 16, '\0');
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got > max_bytes - text.size()) {
+      fail("larger than the limit of " + std::to_string(max_bytes) + " bytes");
+    }
+    text.append(chunk.data(), got);
+  }
+  if (in.bad()) fail("read error");
+  return text;
+}
+
+}  // namespace quiver

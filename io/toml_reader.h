@@ -1,0 +1,35 @@
+// Reader for quiver's TOML scene format (toml++): camera, render settings,
+// lights, textures, materials, primitives and OBJ mesh includes, every key
+// checked (unknown keys are errors, so typos are caught). Errors are
+// ParseError with the file:line:column of the offending key or value. The
+// format, with every key's type, default and unit, is in io/README.md.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string_view>
+
+#include "io/scene_desc.h"
+
+namespace quiver {
+
+// Largest TOML scene read, in bytes.
+inline constexpr std::size_t kMaxTomlBytes = std::size_t{256} << 20;
+// Most entries of [[lights]], [[textures]], [[materials]] and [[meshes]].
+inline constexpr std::size_t kMaxTomlLights = 1024;
+inline constexpr std::size_t kMaxTomlTextures = 1024;
+inline constexpr std::size_t kMaxTomlMaterials = 65'536;
+inline constexpr std::size_t kMaxTomlMeshes = 1024;
+// Largest area-light `samples` (per side) and [render] max_depth.
+inline constexpr int kMaxLightSamples = 64;
+inline constexpr int kMaxRenderDepth = 64;
+
+// Reads a scene file; relative paths in it (meshes, image textures) are
+// relative to the file's folder. Throws ParseError.
+SceneDesc read_toml_scene(const std::filesystem::path& path);
+
+// Parses TOML scene text; file_name labels error messages and relative
+// paths are resolved against base_dir.
+SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const std::filesystem::path& base_dir);
+
+}  // namespace quiver

@@ -1,0 +1,137 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+#include "io/auto_view.h"
+
+namespace quiver {
+namespace {
+
+// Film position (pixels, origin top-left) of world point p under the
+// CameraDesc convention: the angle spans the outermost pixel centres of the
+// longer side; false when p is not in front of the camera.
+bool project(const CameraDesc& c, int width, int height, const double p[3], double& x, double& y) {
+  double f[3], r[3], u[3], d[3];
+  for (int a = 0; a < 3; ++a) f[a] = double(c.at[a]) - double(c.from[a]);
+  const double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  for (double& v : f) v /= fl;
+  const double up[3] = {c.up.x, c.up.y, c.up.z};
+  r[0] = f[1] * up[2] - f[2] * up[1];
+  r[1] = f[2] * up[0] - f[0] * up[2];
+  r[2] = f[0] * up[1] - f[1] * up[0];
+  const double rl = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  for (double& v : r) v /= rl;
+  u[0] = r[1] * f[2] - r[2] * f[1];
+  u[1] = r[2] * f[0] - r[0] * f[2];
+  u[2] = r[0] * f[1] - r[1] * f[0];
+  for (int a = 0; a < 3; ++a) d[a] = p[a] - double(c.from[a]);
+  const double depth = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+  if (depth <= 0.0) return false;
+  const double sx = (d[0] * r[0] + d[1] * r[1] + d[2] * r[2]) / depth;
+  const double sy = (d[0] * u[0] + d[1] * u[1] + d[2] * u[2]) / depth;
+  const double pixel = 2.0 * std::tan(double(c.angle_degrees) * std::numbers::pi / 360.0) /
+                       double(std::max(std::max(width, height) - 1, 1));
+  x = 0.5 * width + sx / pixel;
+  y = 0.5 * height - sy / pixel;
+  return true;
+}
+
+// Points spread over the sphere (a Fibonacci lattice).
+void expect_sphere_inside_image(const CameraDesc& c, int width, int height, const double center[3], double radius) {
+  constexpr int kPoints = 2000;
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  for (int i = 0; i < kPoints; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / kPoints;
+    const double ring = std::sqrt(1.0 - z * z);
+    const double phi = i * std::numbers::pi * (3.0 - std::sqrt(5.0));
+    const double p[3] = {center[0] + radius * ring * std::cos(phi), center[1] + radius * z,
+                         center[2] + radius * ring * std::sin(phi)};
+    double x = 0.0, y = 0.0;
+    ASSERT_TRUE(project(c, width, height, p, x, y)) << "a point of the sphere is behind the camera";
+    min_x = std::min(min_x, x);
+    max_x = std::max(max_x, x);
+    min_y = std::min(min_y, y);
+    max_y = std::max(max_y, y);
+  }
+  EXPECT_GE(min_x, 0.0);
+  EXPECT_LE(max_x, double(width));
+  EXPECT_GE(min_y, 0.0);
+  EXPECT_LE(max_y, double(height));
+  // Framed, not lost in the middle: the sphere spans at least half the shorter side.
+  EXPECT_GT(std::max(max_x - min_x, max_y - min_y), 0.5 * std::min(width, height));
+}
+
+TEST(AutoView, FramesTheBoundingSphereOfThePrimitives) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{10.f, 2.f, -3.f}, 1.f}, 0});
+  SceneTriangle triangle{};
+  triangle.triangle.p = {Vec3<float>{14.f, 0.f, -5.f}, Vec3<float>{12.f, 6.f, -3.f}, Vec3<float>{10.f, 2.f, 1.f}};
+  scene.triangles.push_back(triangle);
+  scene.cones.push_back({{{8.f, 0.f, -3.f}, 0.5f, {8.f, 3.f, -3.f}, 0.25f}, 0});
+  for (const auto& [width, height] : {std::pair{640, 480}, std::pair{300, 900}, std::pair{1, 1}}) {
+    SceneDesc framed = scene;
+    add_default_view(framed, width, height);
+    ASSERT_TRUE(framed.camera.has_value());
+    const CameraDesc& c = *framed.camera;
+    EXPECT_EQ(c.width, width);
+    EXPECT_EQ(c.height, height);
+    EXPECT_EQ(c.angle_degrees, kDefaultViewAngleDegrees);
+    // Bounding box x [7.5, 14] (cone rim to triangle), y [-0.5, 6] (cone
+    // base rim to triangle), z [-5, 1] (triangle): its circumscribed sphere.
+    const double center[3] = {10.75, 2.75, -2.0};
+    const double radius = 0.5 * std::sqrt(6.5 * 6.5 + 6.5 * 6.5 + 6.0 * 6.0);
+    if (width > 1) expect_sphere_inside_image(c, width, height, center, radius);
+    // Front (+z), above (+y), to the right (+x) of the centre.
+    EXPECT_GT(c.from.z, center[2]);
+    EXPECT_GT(c.from.y, center[1]);
+    EXPECT_GT(c.from.x, center[0]);
+  }
+}
+
+TEST(AutoView, EmptySceneGetsASaneCameraAndALight) {
+  SceneDesc scene;
+  add_default_view(scene, 320, 240);
+  ASSERT_TRUE(scene.camera.has_value());
+  const double unit_center[3] = {0.0, 0.0, 0.0};
+  expect_sphere_inside_image(*scene.camera, 320, 240, unit_center, 1.0);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::point);
+  EXPECT_GT(scene.lights[0].color.x, 0.f);
+  EXPECT_GT(scene.lights[0].position.y, scene.camera->from.y);  // above the eye
+}
+
+TEST(AutoView, KeepsWhatTheSceneHas) {
+  SceneDesc scene;
+  CameraDesc camera{};
+  camera.from = {0.f, 0.f, 5.f};
+  camera.at = {0.f, 0.f, 0.f};
+  camera.up = {0.f, 1.f, 0.f};
+  camera.angle_degrees = 60.f;
+  camera.width = 10;
+  camera.height = 10;
+  scene.camera = camera;
+  scene.ambient = {0.f, 0.f, 0.f};
+  add_default_view(scene, 640, 480);
+  EXPECT_EQ(scene.camera->angle_degrees, 60.f);
+  EXPECT_EQ(scene.camera->width, 10);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  // Beside the scene's own camera, up and to its right (+x here).
+  EXPECT_GT(scene.lights[0].position.x, 0.f);
+  EXPECT_GT(scene.lights[0].position.y, 0.f);
+  EXPECT_EQ(scene.ambient.x, 0.1f);  // a zero ambient becomes 0.1
+
+  LightDesc light;
+  light.position = {1.f, 2.f, 3.f};
+  scene.lights = {light};
+  add_default_view(scene, 640, 480);
+  EXPECT_EQ(scene.lights.size(), 1u);
+  EXPECT_THROW(add_default_view(scene, 0, 480), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace quiver

@@ -1,0 +1,389 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/obj_reader.h"
+#include "io/parse_error.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kTestData = fs::path(QUIVER_TEST_DATA_DIR) / "obj";
+
+void expect_vec3(const Vec3<float>& v, float x, float y, float z) {
+  EXPECT_EQ(v.x, x);
+  EXPECT_EQ(v.y, y);
+  EXPECT_EQ(v.z, z);
+}
+
+// In-memory MTL libraries by name, for parse_obj_scene.
+MtlLookup libraries(std::map<std::string, std::string> texts) {
+  return [texts = std::move(texts)](std::string_view name) -> std::optional<MtlLibrary> {
+    const auto found = texts.find(std::string(name));
+    if (found == texts.end()) return std::nullopt;
+    return MtlLibrary{found->second, found->first, kTestData};
+  };
+}
+
+SceneDesc parse(std::string_view obj, std::map<std::string, std::string> mtl = {}) {
+  return parse_obj_scene(obj, "test.obj", libraries(std::move(mtl)));
+}
+
+// Parsing throws a ParseError at file:line:column whose what() contains fragment.
+::testing::AssertionResult error_at(std::string_view obj, std::map<std::string, std::string> mtl, std::string_view file,
+                                    std::size_t line, std::size_t column, std::string_view fragment) {
+  try {
+    parse(obj, std::move(mtl));
+  } catch (const ParseError& error) {
+    const std::string what = error.what();
+    const std::string prefix =
+        std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column) + ": expected ";
+    if (error.file() != file || error.line() != line || error.column() != column || what.rfind(prefix, 0) != 0) {
+      return ::testing::AssertionFailure() << "wrong position: " << what;
+    }
+    if (what.find(fragment) == std::string::npos) {
+      return ::testing::AssertionFailure() << "'" << fragment << "' not in: " << what;
+    }
+    return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure() << "no ParseError";
+}
+
+::testing::AssertionResult obj_error_at(std::string_view obj, std::size_t line, std::size_t column,
+                                        std::string_view fragment) {
+  return error_at(obj, {}, "test.obj", line, column, fragment);
+}
+
+double signed_area_z(const TriangleDesc& t) {
+  const auto& p = t.p;
+  return 0.5 * ((double(p[1].x) - p[0].x) * (double(p[2].y) - p[0].y) -
+                (double(p[2].x) - p[0].x) * (double(p[1].y) - p[0].y));
+}
+
+constexpr std::string_view kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+// ---- well-formed input ----
+
+TEST(ObjReader, QuadBecomesTwoTrianglesWithTheDefaultMaterial) {
+  const SceneDesc scene = read_obj_scene(kTestData / "quad.obj");
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const MaterialDesc defaults;
+  EXPECT_EQ(scene.materials[0].kd, defaults.kd);
+  expect_vec3(scene.materials[0].color, 1.f, 1.f, 1.f);
+  // A fan from the first corner: (1 2 3) and (1 3 4).
+  expect_vec3(scene.triangles[0].triangle.p[0], 0.f, 0.f, 0.f);
+  expect_vec3(scene.triangles[0].triangle.p[1], 1.f, 0.f, 0.f);
+  expect_vec3(scene.triangles[0].triangle.p[2], 1.f, 1.f, 0.f);
+  expect_vec3(scene.triangles[1].triangle.p[0], 0.f, 0.f, 0.f);
+  expect_vec3(scene.triangles[1].triangle.p[1], 1.f, 1.f, 0.f);
+  expect_vec3(scene.triangles[1].triangle.p[2], 0.f, 1.f, 0.f);
+  for (const SceneTriangle& t : scene.triangles) {
+    EXPECT_EQ(t.material, 0u);
+    EXPECT_FALSE(t.triangle.normals.has_value());
+    EXPECT_FALSE(t.triangle.uvs.has_value());
+  }
+  EXPECT_FALSE(scene.camera.has_value());
+  EXPECT_TRUE(scene.lights.empty());
+}
+
+TEST(ObjReader, ConvexAndConcavePolygonsAreCoveredWithoutFlippedTriangles) {
+  const SceneDesc scene = read_obj_scene(kTestData / "polygons.obj");
+  // Pentagon: 3 triangles; L-shaped hexagon: 4.
+  ASSERT_EQ(scene.triangles.size(), 7u);
+  double pentagon = 0.0, l_shape = 0.0;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    const double area = signed_area_z(scene.triangles[i].triangle);
+    EXPECT_GT(area, 0.0) << "triangle " << i << " is flipped or empty";
+    (i < 3 ? pentagon : l_shape) += area;
+  }
+  // Shoelace area of the pentagon (0,0) (2,0) (3,1.5) (1,3) (-1,1.5) is 7.5.
+  EXPECT_DOUBLE_EQ(pentagon, 7.5);
+  // The L is 2x2 minus a unit square: a fan from its first corner would
+  // cover part of the notch and give a different total or a flipped triangle.
+  EXPECT_DOUBLE_EQ(l_shape, 3.0);
+  for (std::size_t i = 3; i < 7; ++i) {
+    for (const Vec3<float>& p : scene.triangles[i].triangle.p) {
+      // Every corner is a polygon vertex, none inside the notch.
+      EXPECT_FALSE(p.x > 11.f && p.y > 1.f) << p.x << " " << p.y;
+    }
+  }
+}
+
+TEST(ObjReader, NormalsAndUvsPerCornerWithNegativeIndices) {
+  const SceneDesc scene = read_obj_scene(kTestData / "normals_uvs.obj");
+  ASSERT_EQ(scene.triangles.size(), 3u);
+  const TriangleDesc& both = scene.triangles[0].triangle;
+  ASSERT_TRUE(both.normals.has_value());
+  ASSERT_TRUE(both.uvs.has_value());
+  expect_vec3((*both.normals)[0], 0.f, 0.f, 1.f);
+  expect_vec3((*both.normals)[1], 0.f, 0.6f, 0.8f);
+  expect_vec3((*both.normals)[2], 0.6f, 0.f, 0.8f);
+  EXPECT_EQ((*both.uvs)[1][0], 1.f);
+  EXPECT_EQ((*both.uvs)[1][1], 0.f);
+  EXPECT_EQ((*both.uvs)[2][1], 1.f);
+
+  const TriangleDesc& uvs_only = scene.triangles[1].triangle;
+  EXPECT_FALSE(uvs_only.normals.has_value());
+  ASSERT_TRUE(uvs_only.uvs.has_value());
+  // -3 is the first of three: the same corners as the first face.
+  expect_vec3(uvs_only.p[0], 0.f, 0.f, 0.f);
+  expect_vec3(uvs_only.p[2], 0.f, 1.f, 0.f);
+  EXPECT_EQ((*uvs_only.uvs)[2][1], 1.f);
+
+  const TriangleDesc& normals_only = scene.triangles[2].triangle;
+  EXPECT_FALSE(normals_only.uvs.has_value());
+  ASSERT_TRUE(normals_only.normals.has_value());
+  expect_vec3((*normals_only.normals)[0], 0.6f, 0.f, 0.8f);
+  expect_vec3((*normals_only.normals)[2], 0.f, 0.f, 1.f);
+}
+
+TEST(ObjReader, MtlMaterialsMapAsDocumented) {
+  const SceneDesc scene = read_obj_scene(kTestData / "materials.obj");
+  ASSERT_EQ(scene.triangles.size(), 5u);
+  // Materials in order of first use: default, shiny, textured, glass.
+  ASSERT_EQ(scene.materials.size(), 4u);
+  const std::size_t expected_material[] = {0, 1, 2, 3, 2};
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(scene.triangles[i].material, expected_material[i]) << i;
+
+  const MaterialDesc& shiny = scene.materials[1];
+  expect_vec3(shiny.color, 0.5f, 0.25f, 0.125f);
+  EXPECT_EQ(shiny.kd, 1.f);
+  EXPECT_FLOAT_EQ(shiny.ka, 0.6f);  // mean of Ka
+  EXPECT_FLOAT_EQ(shiny.ks, 0.4f);  // mean of Ks
+  EXPECT_FLOAT_EQ(shiny.kr, 0.4f);  // illum 3: mirror weight from Ks
+  EXPECT_EQ(shiny.shininess, 50.f);
+  EXPECT_EQ(shiny.kt, 0.f);
+  EXPECT_EQ(shiny.ior, 1.f);
+  EXPECT_TRUE(shiny.two_sided);
+  EXPECT_FALSE(shiny.texture.has_value());
+
+  const MaterialDesc& textured = scene.materials[2];
+  ASSERT_TRUE(textured.texture.has_value());
+  ASSERT_EQ(scene.textures.size(), 1u);
+  const TextureDesc& texture = scene.textures[*textured.texture];
+  EXPECT_EQ(texture.kind, TextureDesc::Kind::image);
+  EXPECT_EQ(texture.wrap, WrapMode::clamp);
+  // map_Kd is relative to the MTL file's folder.
+  EXPECT_TRUE(fs::equivalent(texture.path, kTestData / "tex" / "checker.png")) << texture.path;
+  EXPECT_EQ(textured.ka, MaterialDesc{}.ka);  // no Ka: the default ambient weight
+  ASSERT_TRUE(scene.triangles[2].triangle.uvs.has_value());
+
+  const MaterialDesc& glass = scene.materials[3];
+  EXPECT_FLOAT_EQ(glass.kt, 0.75f);  // Tr 0.75: d = 0.25, kt = 1 - d
+  EXPECT_EQ(glass.ior, 1.5f);
+  EXPECT_EQ(glass.kr, 0.f);  // illum 2: highlights, no mirror
+  EXPECT_FLOAT_EQ(glass.ks, 0.9f);
+  EXPECT_EQ(glass.shininess, 200.f);
+}
+
+TEST(ObjReader, DissolveWinsOverTrAndZeroIorMeansOne) {
+  const SceneDesc scene = parse(std::string(kTriangle) + "mtllib m.mtl\nusemtl a\nf 1 2 3\n",
+                                {{"m.mtl", "newmtl a\nTr 0.5\nd 0.8\nNi 0\n"}});
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.materials[0].kt, 0.2f);
+  EXPECT_EQ(scene.materials[0].ior, 1.f);
+}
+
+TEST(ObjReader, LineEndsAsTinyobjloaderSplitsThem) {
+  // CRLF, a lone CR and a final line without a line end; comments and blanks.
+  const SceneDesc scene = parse("# c\r\nv 0 0 0\r\n\r\nv 1 0 0\rv 0 1 0\n  \t\nf 1 2 3");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  expect_vec3(scene.triangles[0].triangle.p[2], 0.f, 1.f, 0.f);
+  EXPECT_TRUE(obj_error_at("v 0 0 0\r\nv 1 0 0\rv 0 1 0\r\nf 1 2 x\r\n", 4, 7, "a vertex index from 1 to 3"));
+}
+
+TEST(ObjReader, AcceptsVertexWAndColoursAndIgnoredStatements) {
+  const SceneDesc scene = parse(
+      "v 0 0 0 1\nv 1 0 0 1 0 0\nv 0 1 0\nvt 0.5\nvt 0.5 0.5 0\no thing\ng a b\ns off\nmg 1\n"
+      "l 1 2\np 3\nf 1/1 2/2 3/1\n");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  ASSERT_TRUE(scene.triangles[0].triangle.uvs.has_value());
+  EXPECT_EQ((*scene.triangles[0].triangle.uvs)[0][1], 0.f);  // vt u alone: v = 0
+  EXPECT_EQ((*scene.triangles[0].triangle.uvs)[1][1], 0.5f);
+}
+
+// ---- errors, each at its position ----
+
+TEST(ObjReader, BadNumbersAreErrorsAtTheirToken) {
+  EXPECT_TRUE(obj_error_at("v 0 0 0\nv 1 x 0\n", 2, 5, "a number (vertex y)"));
+  EXPECT_TRUE(obj_error_at("v 0 0 nan\n", 1, 7, "a finite number (vertex z)"));
+  EXPECT_TRUE(obj_error_at("v 0 0 inf\n", 1, 7, "a finite number"));
+  EXPECT_TRUE(obj_error_at("v 0 0 1e39\n", 1, 7, "a number within float range"));
+  EXPECT_TRUE(obj_error_at("vn 0 0\n", 1, 7, "a number (normal z), found end of line"));
+  EXPECT_TRUE(obj_error_at("vt 0 0 0 0\n", 1, 10, "end of line after the texture coordinates"));
+  EXPECT_TRUE(obj_error_at("v 1 2 3 4 5\n", 1, 12, "a number (vertex colour blue)"));
+  EXPECT_TRUE(obj_error_at("v 0 0 0 # comment\n", 1, 9, "a number (vertex w"));
+  // tinyobjloader's exponent would overflow an int (fuzzer find); from_chars reads 0.
+  EXPECT_TRUE(obj_error_at("v 0 0e2147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
+  EXPECT_TRUE(obj_error_at("v 0 0.000e-0002147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
+  EXPECT_NO_THROW(parse("v 0 1e-000000000000030 0\n"));
+  // tinyobjloader's float conversion must never see a double past FLT_MAX.
+  EXPECT_TRUE(obj_error_at("v 0 0 -3.40282346e38\n", 1, 7, "a number from -3.4e38 to 3.4e38"));
+  EXPECT_NO_THROW(parse("v 0 0 -3.4e38\n"));
+}
+
+TEST(ObjReader, NumbersTinyobjloaderReadsAsNotFiniteAreFound) {
+  // from_chars reads 0e999 as 0; tinyobjloader computes 0 * 5^999 = NaN.
+  EXPECT_TRUE(obj_error_at("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0e999 0\nf 1 2 3\n", 4, 5,
+                           "a number tinyobjloader reads as finite"));
+  EXPECT_TRUE(error_at(std::string(kTriangle) + "mtllib m.mtl\nusemtl a\nf 1 2 3\n",
+                       {{"m.mtl", "newmtl a\nKd 1 0 0\nKd 0.5 0e999 1\n"}}, "m.mtl", 3, 8,
+                       "a number tinyobjloader reads as finite"));
+}
+
+TEST(ObjReader, IndicesOutOfRangeAreErrorsAtTheirPart) {
+  const std::string v = std::string(kTriangle);
+  EXPECT_TRUE(obj_error_at(v + "f 1 2 4\n", 4, 7, "a vertex index from 1 to 3 or from -3 to -1"));
+  EXPECT_TRUE(obj_error_at(v + "f 1 2 -4\n", 4, 7, "from -3 to -1"));
+  EXPECT_TRUE(obj_error_at(v + "f 1 0 2\n", 4, 5, "a vertex index"));
+  EXPECT_TRUE(obj_error_at(v + "f 1 2 99999999999999999999\n", 4, 7, "a vertex index"));
+  EXPECT_TRUE(obj_error_at(v + "vt 0 0\nf 1/1 1/1 3/2\n", 5, 13, "a texture coordinate index from 1 to 1"));
+  EXPECT_TRUE(obj_error_at(v + "f 1//1 2//1 3//1\n", 4, 6, "a normal index (none is defined before this line)"));
+  // Indices count only what is defined before the face.
+  EXPECT_TRUE(obj_error_at("v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n", 3, 7, "from 1 to 2"));
+  EXPECT_TRUE(obj_error_at(v + "f 1/ 2 3\n", 4, 5, "a texture coordinate index"));
+  EXPECT_TRUE(obj_error_at(v + "f +1 2 3\n", 4, 3, "a vertex index"));
+}
+
+TEST(ObjReader, FaceShapeErrors) {
+  const std::string v = std::string(kTriangle);
+  EXPECT_TRUE(obj_error_at(v + "f 1 2\n", 4, 6, "a corner (f needs at least 3)"));
+  EXPECT_TRUE(obj_error_at(v + "vt 0 0\nf 1/1 2 3\n", 5, 7, "a corner of the same form"));
+  EXPECT_TRUE(obj_error_at(v + "f 1/1/1/1 2 3\n", 4, 3, "at most two '/'"));
+  std::string big = v + "f";
+  for (int i = 0; i < 256; ++i) big += i % 3 == 0 ? " 1" : i % 3 == 1 ? " 2" : " 3";
+  // Corner 256 starts at column 2 + 255 * 2 + 1.
+  EXPECT_TRUE(obj_error_at(big + "\n", 4, 513, "at most 255 vertices per face"));
+  EXPECT_TRUE(obj_error_at(v + "l 1\n", 4, 4, "a corner (l needs at least 2)"));
+}
+
+TEST(ObjReader, StatementErrors) {
+  EXPECT_TRUE(obj_error_at("v 0 0 0\ncstype bspline\n", 2, 1, "an OBJ statement"));
+  EXPECT_TRUE(obj_error_at("vw 1 0 0.5\n", 1, 1, "an OBJ statement"));
+  EXPECT_TRUE(obj_error_at("t crease 2/0/0 1 2\n", 1, 1, "an OBJ statement"));
+  EXPECT_TRUE(obj_error_at("s\n", 1, 2, "a smoothing group"));
+  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "usemtl nothing\n", 4, 8, "a material defined in a library"));
+  EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists"));
+  EXPECT_TRUE(obj_error_at("mtllib\n", 1, 7, "an MTL library file name, found end of line"));
+  // tinyobjloader reads lines as C strings: a NUL byte is an error.
+  EXPECT_TRUE(obj_error_at(std::string("v 0 0 0\nv 1\0 0 0\n", 18), 2, 4, "text without NUL bytes"));
+}
+
+TEST(ObjReader, MtlErrorsAreReportedInTheMtlFile) {
+  const std::string obj = "mtllib m.mtl\n";
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nKd 1 -0.5 0\n"}}, "m.mtl", 2, 6, "a number >= 0 (Kd colour)"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nKd 1 0.5\n"}}, "m.mtl", 2, 9, "a number (Kd colour)"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nd 1.5\n"}}, "m.mtl", 2, 3, "a number from 0 to 1 (d)"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nNs nan\n"}}, "m.mtl", 2, 4, "a finite number (Ns)"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nillum 11\n"}}, "m.mtl", 2, 7, "an illumination model"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "Kd 1 1 1\nnewmtl a\n"}}, "m.mtl", 1, 1, "'newmtl' before"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl  a\n"}}, "m.mtl", 1, 9, "a material name as one word"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a b\n"}}, "m.mtl", 1, 10, "a material name as one word"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd nowhere.png\n"}}, "m.mtl", 2, 8, "an image file that exists"));
+  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd -s 2 2 2 tex/checker.png\n"}}, "m.mtl", 2, 8,
+                       "of the options only -clamp"));
+  EXPECT_TRUE(
+      error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd -clamp yes tex/checker.png\n"}}, "m.mtl", 2, 15, "'on' or 'off'"));
+  // Statements quiver does not use are skipped, whatever they hold.
+  EXPECT_NO_THROW(parse(obj, {{"m.mtl", "newmtl a\nsharpness x\nmap_Ks anything at all\n"}}));
+}
+
+TEST(ObjReader, WholeFileErrors) {
+  try {
+    read_obj_scene(kTestData / "no_such_file.obj");
+    FAIL() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(error.line(), 0u);
+    EXPECT_NE(std::string(error.what()).find("no such file"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(read_obj_scene(kTestData), ParseError);  // a directory
+}
+
+TEST(ObjReader, AppendedMeshIsTransformedAndMirroringKeepsTheFacing) {
+  SceneDesc scene;
+  scene.materials.push_back(MaterialDesc{});
+  // Column-major: scale x by -2 (a mirror), then translate by (5, 0, 0).
+  std::array<float, 16> m{};
+  m[0] = -2.f;
+  m[5] = 1.f;
+  m[10] = 1.f;
+  m[15] = 1.f;
+  m[12] = 5.f;
+  append_obj_mesh(kTestData / "normals_uvs.obj", m, std::size_t{0}, scene);
+  ASSERT_EQ(scene.triangles.size(), 3u);
+  EXPECT_EQ(scene.materials.size(), 1u);  // the override: no material added
+  const TriangleDesc& t = scene.triangles[0].triangle;
+  // Corners 1 3 2 after the swap: (5,0,0), (5,1,0), (3,0,0).
+  expect_vec3(t.p[0], 5.f, 0.f, 0.f);
+  expect_vec3(t.p[1], 5.f, 1.f, 0.f);
+  expect_vec3(t.p[2], 3.f, 0.f, 0.f);
+  // The mirror turned the winding; the swap turns it back, so the geometric
+  // normal (+z) agrees with the transformed shading normals again.
+  EXPECT_GT(signed_area_z(t), 0.0);
+  ASSERT_TRUE(t.normals.has_value());
+  // Normal (0.6, 0, 0.8) under the inverse transpose diag(-1/2, 1, 1), normalised.
+  const Vec3<float>& n = (*t.normals)[1];
+  const double len = std::sqrt(0.09 + 0.64);
+  EXPECT_NEAR(n.x, -0.3 / len, 1e-6);
+  EXPECT_NEAR(n.z, 0.8 / len, 1e-6);
+  ASSERT_TRUE(t.uvs.has_value());
+  EXPECT_EQ((*t.uvs)[1][1], 1.f);  // uv of corner 3 moved with it
+
+  const std::array<float, 16> singular{};
+  EXPECT_THROW(append_obj_mesh(kTestData / "quad.obj", singular, std::nullopt, scene), std::invalid_argument);
+  std::array<float, 16> huge = m;
+  huge[0] = 3e38f;
+  huge[12] = 3e38f;
+  EXPECT_THROW(append_obj_mesh(kTestData / "quad.obj", huge, std::nullopt, scene), ParseError);
+  EXPECT_EQ(scene.triangles.size(), 3u);  // unchanged by the failures
+}
+
+TEST(ObjReader, AppendedMeshBringsItsMaterialsAndTextures) {
+  SceneDesc scene;
+  scene.materials.resize(2);
+  scene.textures.resize(1);
+  std::array<float, 16> identity{};
+  identity[0] = identity[5] = identity[10] = identity[15] = 1.f;
+  append_obj_mesh(kTestData / "materials.obj", identity, std::nullopt, scene);
+  ASSERT_EQ(scene.materials.size(), 6u);
+  ASSERT_EQ(scene.textures.size(), 2u);
+  EXPECT_EQ(scene.triangles[2].material, 4u);  // "textured", after the two already there
+  ASSERT_TRUE(scene.materials[4].texture.has_value());
+  EXPECT_EQ(*scene.materials[4].texture, 1u);
+}
+
+// Every mesh of ../shared/meshes loads with the counts of its `f` lines.
+TEST(ObjReader, SharedMeshesLoad) {
+  const char* env = std::getenv("QUIVER_SHARED_DIR");
+  const fs::path shared = env != nullptr ? fs::path(env) : fs::path(QUIVER_SHARED_DIR);
+  const fs::path meshes = shared / "meshes";
+  if (!fs::is_directory(meshes)) {
+    GTEST_SKIP() << "no " << meshes << ": set QUIVER_SHARED_DIR to the folder holding meshes/";
+  }
+  const std::pair<const char*, std::size_t> expected[] = {{"stanford-bunny.obj", 69451},
+                                                          {"spot.obj", 5856},
+                                                          {"cow.obj", 5804},
+                                                          {"teapot.obj", 6320},
+                                                          {"fandisk.obj", 12946}};
+  for (const auto& [name, triangles] : expected) {
+    const SceneDesc scene = read_obj_scene(meshes / name);
+    EXPECT_EQ(scene.triangles.size(), triangles) << name;
+    EXPECT_EQ(scene.materials.size(), 1u) << name;
+  }
+  const SceneDesc spot = read_obj_scene(meshes / "spot.obj");
+  for (const SceneTriangle& t : spot.triangles) ASSERT_TRUE(t.triangle.uvs.has_value());
+}
+
+}  // namespace
+}  // namespace quiver

@@ -1,0 +1,69 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "io/parse_error.h"
+#include "io/scene_loader.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kTestData = fs::path(QUIVER_TEST_DATA_DIR);
+const fs::path kExamples = kTestData / ".." / ".." / "io" / "examples";
+
+std::size_t primitive_count(const SceneDesc& s) {
+  return s.spheres.size() + s.planes.size() + s.triangles.size() + s.polygons.size() + s.cones.size();
+}
+
+TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
+  const fs::path dir = fs::temp_directory_path() / ("quiver_loader_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // The same text is valid NFF only; the extension decides how it is read.
+  const std::string nff = "f 1 0 0 1 0 0 0 1\ns 0 0 0 1\n";
+  std::ofstream(dir / "a.NFF") << nff;
+  std::ofstream(dir / "b.toml") << nff;
+  std::ofstream(dir / "c.Obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "d.txt") << nff;
+  EXPECT_EQ(load_scene(dir / "a.NFF").spheres.size(), 1u);
+  EXPECT_THROW(load_scene(dir / "b.toml"), ParseError);
+  EXPECT_EQ(load_scene(dir / "c.Obj").triangles.size(), 1u);
+  try {
+    load_scene(dir / "d.txt");
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(error.line(), 0u);
+    EXPECT_NE(std::string(error.what()).find("unknown scene format (extension '.txt'): expected .nff, .toml or .obj"),
+              std::string::npos)
+        << error.what();
+  }
+  fs::remove_all(dir);
+}
+
+// Every example scene in io/examples loads and holds a camera, a light and geometry.
+TEST(SceneLoader, EveryExampleSceneLoads) {
+  std::vector<fs::path> examples;
+  for (const fs::directory_entry& entry : fs::directory_iterator(kExamples)) {
+    if (entry.path().extension() == ".toml") examples.push_back(entry.path());
+  }
+  std::sort(examples.begin(), examples.end());
+  ASSERT_GE(examples.size(), 8u) << kExamples;
+  for (const fs::path& example : examples) {
+    SCOPED_TRACE(example.filename().string());
+    SceneDesc scene;
+    ASSERT_NO_THROW(scene = load_scene(example));
+    EXPECT_TRUE(scene.camera.has_value());
+    EXPECT_FALSE(scene.lights.empty());
+    EXPECT_FALSE(scene.materials.empty());
+    EXPECT_GT(primitive_count(scene), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace quiver
