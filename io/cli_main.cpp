@@ -1,0 +1,328 @@
+// quiver, the command-line program: `quiver render [SCENE]` renders a scene
+// file (or the built-in scene) to an image, `quiver info SCENE` reports what
+// a scene holds. Exit codes: 0 success, 1 failure (unreadable or invalid
+// scene, render or write error), 2 usage error (bad flag or value). Errors
+// go to stderr as "quiver: <message>"; no output file is left on failure.
+// The only translation unit that includes CLI11 (it is slow to compile).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <new>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "integrator/default_scene.h"
+#include "integrator/render.h"
+#include "integrator/scene.h"
+#include "io/auto_view.h"
+#include "io/image_output.h"
+#include "io/parse_error.h"
+#include "io/progress_bar.h"
+#include "io/render_options.h"
+#include "io/scene_info.h"
+#include "io/scene_loader.h"
+#include "io/stats_json.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using quiver::RenderOptions;
+using quiver::UsageError;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+// What `quiver render` was given, as parsed.
+struct RenderArgs {
+  std::string scene;   // empty: the built-in scene
+  std::string output;  // empty: the default name
+  std::string stats;   // empty: no stats file
+  bool quiet = false;
+  RenderOptions options;
+};
+
+// The parsed values, before we know which optional flags were given.
+struct RawRenderFlags {
+  int width = 0, height = 0, max_depth = 0;
+  double min_weight = 0.0;
+  std::string aa, simd, aov, preset, seed;
+  CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option;
+  CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option;
+};
+
+int report(std::string_view message, int exit_code) {
+  std::cerr << "quiver: " << message << "\n";
+  return exit_code;
+}
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+fs::path default_output(const std::string& scene) {
+  if (scene.empty()) return "quiver.png";
+  return fs::path(scene).stem().string() + ".png";
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  const fs::path ca = fs::weakly_canonical(a, error);
+  if (error) return false;
+  const fs::path cb = fs::weakly_canonical(b, error);
+  return !error && ca == cb;
+}
+
+// The scene, as read, with the time it took.
+quiver::SceneDesc load(const std::string& scene, double& load_ms) {
+  const Clock::time_point start = Clock::now();
+  quiver::SceneDesc desc = scene.empty() ? quiver::default_scene() : quiver::load_scene(scene);
+  load_ms = ms_since(start);
+  return desc;
+}
+
+// build_scene, timed, with its errors (bad material or texture indices) naming the scene.
+quiver::Scene build(const quiver::SceneDesc& desc, const quiver::SceneBuildOptions& options, const std::string& scene,
+                    double& build_ms) {
+  const Clock::time_point start = Clock::now();
+  try {
+    quiver::Scene built = quiver::build_scene(desc, options);
+    build_ms = ms_since(start);
+    return built;
+  } catch (const std::invalid_argument& error) {
+    throw std::runtime_error((scene.empty() ? std::string("the built-in scene") : scene) + ": " + error.what());
+  }
+}
+
+void print_summary(const quiver::RenderResult& result, const quiver::RenderSettings& settings, double load_ms,
+                   double build_ms, const fs::path& output) {
+  const double seconds = result.render_ms / 1000.0;
+  const double mrays = seconds > 0.0 ? double(result.stats.rays.total()) / seconds / 1e6 : 0.0;
+  std::fprintf(stderr,
+               "rendered %dx%d (aa %s, %s x%d lanes, %d threads) in %.3f s: %llu rays, %.2f Mrays/s "
+               "(load %.1f ms, build %.1f ms) -> %s\n",
+               settings.width, settings.height, quiver::to_string(settings.aa).c_str(),
+               std::string(quiver::isa_name(settings.isa)).c_str(), quiver::lane_width(settings.isa), result.threads,
+               seconds, static_cast<unsigned long long>(result.stats.rays.total()), mrays, load_ms, build_ms,
+               output.string().c_str());
+}
+
+int run_render(const RenderArgs& args) {
+  // Everything the flags alone decide, before the scene is read.
+  quiver::Isa isa;
+  fs::path output = args.output.empty() ? default_output(args.scene) : fs::path(args.output);
+  try {
+    quiver::check_render_options(args.options);
+    isa = quiver::choose_isa(args.options.simd, std::getenv("QUIVER_SIMD"));
+    const bool has_aovs = args.options.aov && quiver::parse_aov_list(*args.options.aov).any();
+    quiver::check_output_path(output, has_aovs);
+    if (!args.stats.empty()) {
+      quiver::check_stats_path(args.stats);
+      if (same_file(args.stats, output)) throw UsageError("--stats and --output name the same file");
+    }
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitUsage);
+  }
+
+  try {
+    double load_ms = 0.0;
+    quiver::SceneDesc desc = load(args.scene, load_ms);
+    const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
+    if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
+
+    double build_ms = 0.0;
+    const quiver::Scene scene = build(desc, plan.build, args.scene, build_ms);
+
+    quiver::ProgressBar progress(stderr, !args.quiet && quiver::is_terminal(stderr));
+    const quiver::RenderResult result = quiver::render(
+        scene, plan.settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+    progress.finish();
+
+    std::optional<nlohmann::json> stats;
+    if (!args.stats.empty()) {
+      quiver::RenderStatsContext context;
+      context.version = QUIVER_VERSION;
+      context.scene = args.scene.empty() ? "built-in" : args.scene;
+      context.output = output.string();
+      context.load_ms = load_ms;
+      context.build_ms = build_ms;
+      context.scene_memory_bytes = scene.memory_bytes();
+      stats = quiver::render_stats_json(result, plan.settings, context);
+    }
+    quiver::write_image(output, result.image);
+    if (stats) {
+      try {
+        quiver::write_json_file(args.stats, *stats);
+      } catch (...) {
+        std::error_code ignored;
+        fs::remove(output, ignored);  // no output on failure
+        throw;
+      }
+    }
+    if (!args.quiet) print_summary(result, plan.settings, load_ms, build_ms, output);
+    return 0;
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  } catch (const std::bad_alloc&) {
+    return report("out of memory", kExitFailure);
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitFailure);
+  }
+}
+
+int run_info(const std::string& scene_path) {
+  try {
+    double load_ms = 0.0;
+    const quiver::SceneDesc as_read = load(scene_path, load_ms);
+    quiver::SceneDesc desc = as_read;
+    const bool default_view = !desc.camera;
+    if (default_view) quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
+    double build_ms = 0.0;
+    const quiver::Scene scene = build(desc, {}, scene_path, build_ms);
+    quiver::SceneInfoContext context;
+    context.scene = scene_path;
+    context.load_ms = load_ms;
+    context.build_ms = build_ms;
+    context.default_view_added = default_view;
+    quiver::write_scene_info(std::cout, as_read, scene, context);
+    std::cout.flush();
+    if (!std::cout) return report("cannot write to standard output", kExitFailure);
+    return 0;
+  } catch (const std::bad_alloc&) {
+    return report("out of memory", kExitFailure);
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitFailure);
+  }
+}
+
+void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
+  render.add_option("scene", args.scene,
+                    "Scene file: .nff, .toml or .obj (any case). Absent: the built-in scene. A scene without a "
+                    "camera (OBJ) gets a default view framing it (and a light if it has none)")
+      ->type_name("SCENE");
+  render.add_option("-o,--output", args.output,
+                    "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "
+                    "Default: <scene name>.png in the current directory, quiver.png for the built-in scene. "
+                    "Checked before the scene is read; written only when everything succeeds")
+      ->type_name("FILE");
+  raw.width_option = render.add_option("--width", raw.width,
+                                       "Image width in pixels, 1..65536 (at most 2^28 pixels in all). Default: the "
+                                       "scene camera's; with --height alone, the camera's aspect is kept; 512 "
+                                       "without a camera")
+                         ->type_name("PIXELS");
+  raw.height_option = render.add_option("--height", raw.height,
+                                        "Image height in pixels, 1..65536. Default as for --width")
+                          ->type_name("PIXELS");
+  raw.aa_option = render.add_option("--aa", raw.aa,
+                                    "Anti-aliasing: none (one ray per pixel centre) | grid:N (NxN rays at sub-pixel "
+                                    "centres, N 1..64) | jitter:N (NxN stratified random rays, N 1..64) | "
+                                    "adaptive:THRESHOLD:DEPTH (rays at square corners, a square split while its "
+                                    "corner colours differ by more than THRESHOLD, up to DEPTH levels, 0..6) | "
+                                    "corners (SPD rule: (W+1)x(H+1) corner rays, pixel = mean of its 4). "
+                                    "Default: the scene file's setting, else none")
+                      ->type_name("MODE");
+  raw.max_depth_option = render.add_option("--max-depth", raw.max_depth,
+                                           "Bounces after the primary ray, 0..64 (0: ray casting, no reflection or "
+                                           "refraction). Default: the scene file's setting, else 5")
+                             ->type_name("BOUNCES");
+  raw.min_weight_option = render.add_option("--min-weight", raw.min_weight,
+                                            "A reflection or refraction ray whose largest RGB weight is below this "
+                                            "is not cast; finite, >= 0; 0 disables the cut-off. Default: the scene "
+                                            "file's setting, else 0.001")
+                              ->type_name("WEIGHT");
+  render.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")
+      ->type_name("N");
+  raw.simd_option = render.add_option("--simd", raw.simd,
+                                      "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4) or "
+                                      "avx2 (8); every choice gives the same image. Default: $QUIVER_SIMD, else "
+                                      "auto. A choice this CPU lacks is an error")
+                        ->type_name("ISA");
+  raw.seed_option = render.add_option("--seed", raw.seed,
+                    "Seed (unsigned 64-bit) for jittered anti-aliasing and area-light samples. Default: 0")
+      ->type_name("UINT64");
+  render.add_option("--stats", args.stats,
+                    "Also write render statistics as JSON: timings (ms), settings, ray counts by kind, Mrays/s, "
+                    "lane utilisation per wave, memory (bytes). Written only when everything succeeds")
+      ->type_name("FILE.json");
+  raw.aov_option = render.add_option("--aov", raw.aov,
+                                     "Extra channels through each pixel centre, a comma list of depth (Z: distance, "
+                                     "inf on a miss), normal (N.X N.Y N.Z), id (kind and id: primitive kind and "
+                                     "index in the scene file, -1 on a miss); each at most once; needs an .exr "
+                                     "output")
+                       ->type_name("LIST");
+  render.add_flag("-q,--quiet", args.quiet, "No progress bar and no summary line (errors are still reported)");
+  raw.preset_option = render.add_option("--preset", raw.preset,
+                                        "spd: the Standard Procedural Databases procedure: --aa corners, "
+                                        "--max-depth 4 (5 levels counting the eye ray), --min-weight 0, every "
+                                        "surface two-sided; a flag contradicting it is an error")
+                          ->type_name("NAME");
+  render.add_flag("--two-sided", args.options.two_sided,
+                  "Make every surface two-sided (a one-sided surface seen from behind gets only ambient light)");
+}
+
+// Copies the flags that were given into the optional fields.
+void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
+  if (raw.width_option->count()) options.width = raw.width;
+  if (raw.height_option->count()) options.height = raw.height;
+  if (raw.max_depth_option->count()) options.max_depth = raw.max_depth;
+  if (raw.min_weight_option->count()) options.min_weight = raw.min_weight;
+  if (raw.aa_option->count()) options.aa = raw.aa;
+  if (raw.simd_option->count()) options.simd = raw.simd;
+  if (raw.aov_option->count()) options.aov = raw.aov;
+  if (raw.preset_option->count() && raw.preset != "spd") {
+    throw UsageError("--preset: expected spd, found '" + raw.preset + "'");
+  }
+  options.preset_spd = raw.preset_option->count() > 0;
+  if (raw.seed_option->count()) options.seed = quiver::parse_seed(raw.seed);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"quiver: a data-oriented SIMD packet ray tracer (Whitted: Phong shading, shadows, reflection, "
+               "refraction, textures, anti-aliasing).\nExit codes: 0 success, 1 failure (bad scene, render or "
+               "write error), 2 usage error.",
+               "quiver"};
+  app.footer("Run 'quiver render --help' or 'quiver info --help' for the options of each command.");
+  app.set_version_flag("--version", std::string("quiver ") + QUIVER_VERSION, "Print the version and exit");
+  app.require_subcommand(1, 1);
+
+  RenderArgs render_args;
+  RawRenderFlags raw;
+  CLI::App* render = app.add_subcommand("render", "Render a scene file (or the built-in scene) to an image");
+  add_render_flags(*render, render_args, raw);
+
+  std::string info_scene;
+  CLI::App* info = app.add_subcommand(
+      "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
+              "camera, lights, materials, textures, memory (bytes) per structure, load and build times (ms)");
+  info->add_option("scene", info_scene, "Scene file: .nff, .toml or .obj")->required()->type_name("SCENE");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    std::cerr << "quiver: " << error.what() << "\nRun 'quiver --help' (or 'quiver render --help') for usage.\n";
+    return kExitUsage;
+  }
+
+  if (render->parsed()) {
+    try {
+      collect_render_flags(raw, render_args.options);
+    } catch (const UsageError& error) {
+      return report(error.what(), kExitUsage);
+    }
+    return run_render(render_args);
+  }
+  return run_info(info_scene);
+}

@@ -1,0 +1,202 @@
+#include "io/render_options.h"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+#include <tuple>
+
+namespace quiver {
+
+namespace {
+
+std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
+
+void check_side(int side, const char* flag) {
+  if (side < 1 || side > kMaxImageSide) {
+    throw UsageError(std::string(flag) + ": expected an integer in [1, " + std::to_string(kMaxImageSide) +
+                     "], found " + std::to_string(side));
+  }
+}
+
+void check_size(int width, int height) {
+  check_side(width, "--width");
+  check_side(height, "--height");
+  if (std::int64_t(width) * std::int64_t(height) > kMaxImagePixels) {
+    throw UsageError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     ": expected at most 2^28 (268435456) pixels");
+  }
+}
+
+AntiAliasing parse_aa_flag(const std::string& text) {
+  try {
+    return parse_anti_aliasing(text);
+  } catch (const std::invalid_argument& error) {
+    throw UsageError(std::string("--aa: ") + error.what());
+  }
+}
+
+void check_max_depth(int depth, const char* what) {
+  if (depth < 0 || depth > kMaxMaxDepth) {
+    throw UsageError(std::string(what) + ": expected an integer in [0, " + std::to_string(kMaxMaxDepth) +
+                     "], found " + std::to_string(depth));
+  }
+}
+
+bool valid_min_weight(double weight) { return std::isfinite(weight) && weight >= 0.0 && std::isfinite(float(weight)); }
+
+// The other side for one given side, keeping aspect = other / given.
+int scaled_side(int given, double aspect) {
+  const double other = std::round(double(given) * aspect);
+  if (other < 1.0) return 1;
+  if (other > double(kMaxImageSide) + 1.0) return kMaxImageSide + 1;  // reported by check_size
+  return int(other);
+}
+
+}  // namespace
+
+std::uint64_t parse_seed(std::string_view text) {
+  std::uint64_t seed = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+    throw UsageError("--seed: expected an integer in [0, 18446744073709551615], found " + quoted(text));
+  }
+  return seed;
+}
+
+AovSelection parse_aov_list(std::string_view list) {
+  AovSelection aovs;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = list.find(',', start);
+    const std::string_view item = list.substr(start, comma == std::string_view::npos ? comma : comma - start);
+    bool* slot = item == "depth" ? &aovs.depth : item == "normal" ? &aovs.normal : item == "id" ? &aovs.id : nullptr;
+    if (!slot) {
+      throw UsageError("--aov: expected a comma-separated list of depth, normal and id, found " + quoted(item));
+    }
+    if (*slot) throw UsageError("--aov: " + quoted(item) + " is listed twice");
+    *slot = true;
+    if (comma == std::string_view::npos) return aovs;
+    start = comma + 1;
+  }
+}
+
+Isa choose_isa(const std::optional<std::string>& flag, const char* environment_value) {
+  const std::string_view requested = flag ? std::string_view(*flag)
+                                          : environment_value ? std::string_view(environment_value)
+                                                              : std::string_view("auto");
+  try {
+    return resolve_isa(requested);
+  } catch (const std::runtime_error& error) {
+    throw UsageError(std::string(flag ? "--simd: " : "QUIVER_SIMD: ") + error.what());
+  }
+}
+
+void check_render_options(const RenderOptions& options) {
+  if (options.width) check_side(*options.width, "--width");
+  if (options.height) check_side(*options.height, "--height");
+  if (options.width && options.height) check_size(*options.width, *options.height);
+  if (options.max_depth) check_max_depth(*options.max_depth, "--max-depth");
+  if (options.min_weight && !valid_min_weight(*options.min_weight)) {
+    throw UsageError("--min-weight: expected a finite number >= 0, found " + std::to_string(*options.min_weight));
+  }
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    throw UsageError("--threads: expected an integer in [0, " + std::to_string(kMaxThreads) + "], found " +
+                     std::to_string(options.threads));
+  }
+  if (options.aov) parse_aov_list(*options.aov);
+  std::optional<AntiAliasing> aa;
+  if (options.aa) aa = parse_aa_flag(*options.aa);
+  if (!options.preset_spd) return;
+  if (aa && aa->mode != AntiAliasing::Mode::corners) {
+    throw UsageError("--preset spd samples pixel corners (--aa corners); it contradicts --aa " + *options.aa);
+  }
+  if (options.max_depth && *options.max_depth != kSpdMaxDepth) {
+    throw UsageError("--preset spd sets --max-depth " + std::to_string(kSpdMaxDepth) + "; it contradicts --max-depth " +
+                     std::to_string(*options.max_depth));
+  }
+  if (options.min_weight && *options.min_weight != 0.0) {
+    throw UsageError("--preset spd sets --min-weight 0; it contradicts --min-weight " +
+                     std::to_string(*options.min_weight));
+  }
+}
+
+std::pair<int, int> image_size(const RenderOptions& options, const std::optional<CameraDesc>& camera) {
+  const int camera_width = camera ? camera->width : kDefaultImageSide;
+  const int camera_height = camera ? camera->height : kDefaultImageSide;
+  int width = camera_width, height = camera_height;
+  if (options.width && options.height) {
+    width = *options.width;
+    height = *options.height;
+  } else if (options.width) {
+    width = *options.width;
+    height = scaled_side(width, double(camera_height) / double(camera_width));
+  } else if (options.height) {
+    height = *options.height;
+    width = scaled_side(height, double(camera_width) / double(camera_height));
+  }
+  check_size(width, height);
+  return {width, height};
+}
+
+RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa isa) {
+  check_render_options(options);
+  RenderPlan plan;
+  RenderSettings& s = plan.settings;
+  std::tie(s.width, s.height) = image_size(options, scene.camera);
+
+  if (options.preset_spd) {
+    s.aa.mode = AntiAliasing::Mode::corners;
+  } else if (options.aa) {
+    s.aa = parse_aa_flag(*options.aa);
+  } else if (scene.render.aa) {
+    try {
+      s.aa = parse_anti_aliasing(*scene.render.aa);
+    } catch (const std::invalid_argument& error) {
+      throw std::runtime_error(std::string("the scene's render settings: ") + error.what());
+    }
+  }
+
+  if (options.preset_spd) {
+    s.trace.max_depth = kSpdMaxDepth;
+  } else if (options.max_depth) {
+    s.trace.max_depth = *options.max_depth;
+  } else if (scene.render.max_depth) {
+    const int depth = *scene.render.max_depth;
+    if (depth < 0 || depth > kMaxMaxDepth) {
+      throw std::runtime_error("the scene's render settings: max depth " + std::to_string(depth) +
+                               " is outside [0, " + std::to_string(kMaxMaxDepth) + "]");
+    }
+    s.trace.max_depth = depth;
+  } else {
+    s.trace.max_depth = kDefaultMaxDepth;
+  }
+
+  if (options.preset_spd) {
+    s.trace.min_weight = 0.f;
+  } else if (options.min_weight) {
+    s.trace.min_weight = float(*options.min_weight);
+  } else if (scene.render.min_weight) {
+    const float weight = *scene.render.min_weight;
+    if (!valid_min_weight(weight)) {
+      throw std::runtime_error("the scene's render settings: min weight " + std::to_string(weight) +
+                               " is not a finite number >= 0");
+    }
+    s.trace.min_weight = weight;
+  } else {
+    s.trace.min_weight = kDefaultMinWeight;
+  }
+
+  s.trace.seed = options.seed;
+  s.threads = options.threads;
+  s.isa = isa;
+  if (options.aov) {
+    const AovSelection aovs = parse_aov_list(*options.aov);
+    s.aov_depth = aovs.depth;
+    s.aov_normal = aovs.normal;
+    s.aov_id = aovs.id;
+  }
+  plan.build.all_two_sided = options.preset_spd || options.two_sided;
+  return plan;
+}
+
+}  // namespace quiver

@@ -1,0 +1,90 @@
+// The `quiver render` options as the command line gave them, and how they
+// become RenderSettings and SceneBuildOptions together with the scene's own
+// camera and RenderDesc. A flag that was not given is an empty optional, so
+// the scene's value (or the default below) applies. No CLI11 here: the
+// command-line parser fills RenderOptions, everything else is testable alone.
+// Problems with a flag throw UsageError (the CLI exits 2); problems with a
+// value the scene file carries throw std::runtime_error (the CLI exits 1).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "integrator/render.h"
+#include "integrator/scene.h"
+#include "io/scene_desc.h"
+#include "simd/isa.h"
+
+namespace quiver {
+
+// A bad flag or flag value (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Image size bounds (as the NFF reader's) and the defaults.
+inline constexpr int kMaxImageSide = 65'536;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
+inline constexpr int kDefaultImageSide = 512;  // scenes without a camera
+// Bounces after the primary ray.
+inline constexpr int kDefaultMaxDepth = 5;
+inline constexpr int kMaxMaxDepth = 64;
+inline constexpr float kDefaultMinWeight = 1e-3f;
+inline constexpr int kMaxThreads = 1024;
+// --preset spd: corner sampling, 4 bounces (5 levels with the eye ray), no
+// weight cut-off, every surface two-sided.
+inline constexpr int kSpdMaxDepth = 4;
+
+struct RenderOptions {
+  std::optional<int> width, height;
+  std::optional<std::string> aa;
+  std::optional<int> max_depth;
+  std::optional<double> min_weight;
+  int threads = 0;                  // 0: every core
+  std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
+  std::uint64_t seed = 0;
+  std::optional<std::string> aov;   // comma list of depth, normal, id
+  bool preset_spd = false;
+  bool two_sided = false;
+};
+
+struct AovSelection {
+  bool depth = false, normal = false, id = false;
+  bool any() const { return depth || normal || id; }
+};
+
+// A decimal unsigned 64-bit integer (no sign, no spaces); throws UsageError.
+std::uint64_t parse_seed(std::string_view text);
+
+// "depth,normal,id" in any order, each at most once, no empty items.
+AovSelection parse_aov_list(std::string_view list);
+
+// The ISA: the flag if given, else the environment value (QUIVER_SIMD; null
+// when unset), else auto. Unknown or unsupported choices throw UsageError.
+Isa choose_isa(const std::optional<std::string>& flag, const char* environment_value);
+
+// Checks every flag on its own and against --preset spd, before any scene
+// is read.
+void check_render_options(const RenderOptions& options);
+
+// The image size: both flags as given; one flag and the other side from the
+// camera's aspect (rounded, at least 1); neither: the camera's resolution,
+// or kDefaultImageSide square without a camera.
+std::pair<int, int> image_size(const RenderOptions& options, const std::optional<CameraDesc>& camera);
+
+struct RenderPlan {
+  RenderSettings settings;
+  SceneBuildOptions build;
+};
+
+// The settings for this scene: flags first, then the scene's RenderDesc,
+// then the defaults; --preset spd replaces the scene's values. The scene
+// may lack a camera (the caller adds a view of plan.settings' size).
+RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa isa);
+
+}  // namespace quiver

@@ -1,0 +1,257 @@
+#include "io/scene_info.h"
+
+#include <charconv>
+#include <initializer_list>
+#include <cstdio>
+#include <string_view>
+
+namespace quiver {
+
+namespace {
+
+constexpr std::array<std::string_view, 5> kKindNames{"spheres", "planes", "triangles", "polygons", "cones"};
+
+template <class Vec>
+std::size_t bytes_of(const Vec& v) {
+  return v.capacity() * sizeof(typename Vec::value_type);
+}
+
+template <class... Vecs>
+std::size_t sum_bytes(const Vecs&... vs) {
+  return (bytes_of(vs) + ...);
+}
+
+// Shortest decimal text that reads back as the same float.
+std::string number(float value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+std::string vec(const Vec3<float>& v) {
+  std::string text(1, '(');
+  text += number(v.x);
+  text += ' ';
+  text += number(v.y);
+  text += ' ';
+  text += number(v.z);
+  text += ')';
+  return text;
+}
+
+std::string padded(std::string_view text, std::size_t width, bool right = true) {
+  std::string out;
+  if (right && text.size() < width) out.append(width - text.size(), ' ');
+  out += text;
+  if (!right && text.size() < width) out.append(width - text.size(), ' ');
+  return out;
+}
+
+std::string milliseconds(double ms) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f ms", ms);
+  return text;
+}
+
+std::string_view light_kind(LightDesc::Kind kind) {
+  switch (kind) {
+    case LightDesc::Kind::point: return "point";
+    case LightDesc::Kind::directional: return "directional";
+    case LightDesc::Kind::rectangle: return "rectangle";
+    case LightDesc::Kind::sphere: return "sphere";
+  }
+  return "?";
+}
+
+std::string_view wrap_name(WrapMode wrap) {
+  switch (wrap) {
+    case WrapMode::repeat: return "repeat";
+    case WrapMode::clamp: return "clamp";
+    case WrapMode::mirror: return "mirror";
+  }
+  return "?";
+}
+
+std::array<std::size_t, 5> read_counts(const SceneDesc& desc) {
+  return {desc.spheres.size(), desc.planes.size(), desc.triangles.size(), desc.polygons.size(), desc.cones.size()};
+}
+
+std::array<const BuildReport*, 5> build_reports(const Scene& scene) {
+  const SceneCounts& c = scene.counts;
+  return {&c.spheres, &c.planes, &c.triangles, &c.polygons, &c.cones};
+}
+
+std::array<std::size_t, 5> layer_counts(const GeometryLayer& g) {
+  return {g.spheres.count, g.planes.count, g.triangles.count, g.polygons.count, g.cones.count};
+}
+
+// One table row: a left-aligned name, then right-aligned columns.
+void write_row(std::ostream& out, std::string_view name, std::initializer_list<std::string> cells,
+               std::initializer_list<std::size_t> widths) {
+  out << "  " << padded(name, 12, false);
+  auto width = widths.begin();
+  for (const std::string& cell : cells) out << padded(cell, *width++);
+  out << "\n";
+}
+
+void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
+  const auto read = read_counts(desc);
+  const auto reports = build_reports(scene);
+  const auto opaque = layer_counts(scene.opaque);
+  const auto transmissive = layer_counts(scene.transmissive);
+  const std::initializer_list<std::size_t> widths{8, 8, 12, 12, 8, 14};
+  out << "primitives: as read; kept by the builders or dropped (non-finite, degenerate); kept = opaque + "
+         "transmissive\n";
+  write_row(out, "", {"read", "kept", "non-finite", "degenerate", "opaque", "transmissive"}, widths);
+  std::array<std::size_t, 6> totals{};
+  for (std::size_t k = 0; k < 5; ++k) {
+    const std::array<std::size_t, 6> row{read[k],     reports[k]->kept, reports[k]->dropped_non_finite,
+                                         reports[k]->dropped_degenerate, opaque[k], transmissive[k]};
+    for (std::size_t c = 0; c < row.size(); ++c) totals[c] += row[c];
+    write_row(out, kKindNames[k],
+              {std::to_string(row[0]), std::to_string(row[1]), std::to_string(row[2]), std::to_string(row[3]),
+               std::to_string(row[4]), std::to_string(row[5])},
+              widths);
+  }
+  write_row(out, "total",
+            {std::to_string(totals[0]), std::to_string(totals[1]), std::to_string(totals[2]),
+             std::to_string(totals[3]), std::to_string(totals[4]), std::to_string(totals[5])},
+            widths);
+
+  std::size_t patches = 0, patch_triangles = 0;
+  for (const ScenePolygon& p : desc.polygons) patches += p.normals.empty() ? 0 : 1;
+  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    for (const PrimitiveOrigin& o : g->triangle_origin) patch_triangles += o.kind == PrimitiveKind::polygon ? 1 : 0;
+  }
+  if (patches > 0) {
+    out << "  polygons read with vertex normals: " << patches << ", built as " << patch_triangles
+        << " of the triangles kept\n";
+  }
+  out << "bounds          " << vec(scene.bounds_min) << " to " << vec(scene.bounds_max) << " (planes excluded)\n";
+}
+
+void write_camera(std::ostream& out, const Scene& scene, bool default_view_added) {
+  const CameraDesc& c = scene.camera;
+  out << "camera          from " << vec(c.from) << " at " << vec(c.at) << " up " << vec(c.up) << "\n"
+      << "                angle " << number(c.angle_degrees) << " degrees, hither " << number(c.hither)
+      << ", resolution " << c.width << "x" << c.height << "\n";
+  if (default_view_added) out << "                (none in the file: a default view of the whole scene)\n";
+  out << "background      " << vec(scene.background) << "\n"
+      << "ambient         " << vec(scene.ambient) << "\n";
+}
+
+void write_render_settings(std::ostream& out, const RenderDesc& render) {
+  if (!render.aa && !render.max_depth && !render.min_weight) return;
+  out << "render settings";
+  if (render.aa) out << " aa " << *render.aa;
+  if (render.max_depth) out << " max_depth " << *render.max_depth;
+  if (render.min_weight) out << " min_weight " << number(*render.min_weight);
+  out << "\n";
+}
+
+void write_lights(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
+  out << "lights          " << scene.lights.size();
+  if (desc.lights.empty() && !scene.lights.empty()) out << " (none in the file: the default view's light)";
+  out << "\n";
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const LightDesc& l = scene.lights[i];
+    out << "  " << i << ": " << light_kind(l.kind);
+    switch (l.kind) {
+      case LightDesc::Kind::point: out << " position " << vec(l.position); break;
+      case LightDesc::Kind::directional: out << " direction " << vec(l.direction); break;
+      case LightDesc::Kind::rectangle:
+        out << " corner " << vec(l.position) << " edges " << vec(l.edge_u) << " " << vec(l.edge_v);
+        break;
+      case LightDesc::Kind::sphere: out << " centre " << vec(l.position) << " radius " << number(l.radius); break;
+    }
+    out << " colour " << vec(l.color);
+    if (l.kind == LightDesc::Kind::rectangle || l.kind == LightDesc::Kind::sphere) {
+      out << " samples " << l.samples << "x" << l.samples;
+    }
+    out << "\n";
+  }
+}
+
+void write_materials(std::ostream& out, const Scene& scene) {
+  out << "materials       " << scene.materials.size() << "\n";
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const MaterialDesc& m = scene.materials[i];
+    out << "  " << i << ": colour " << vec(m.color) << " texture "
+        << (m.texture ? std::to_string(*m.texture) : std::string("none")) << " ka " << number(m.ka) << " kd "
+        << number(m.kd) << " ks " << number(m.ks) << " shininess " << number(m.shininess) << " kr " << number(m.kr)
+        << " kt " << number(m.kt) << " ior " << number(m.ior) << (m.two_sided ? " two-sided" : " one-sided") << "\n";
+  }
+}
+
+void write_textures(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
+  out << "textures        " << desc.textures.size() << "\n";
+  for (std::size_t i = 0; i < desc.textures.size(); ++i) {
+    const TextureDesc& t = desc.textures[i];
+    out << "  " << i << ": ";
+    switch (t.kind) {
+      case TextureDesc::Kind::checker2d:
+      case TextureDesc::Kind::checker3d:
+        out << (t.kind == TextureDesc::Kind::checker2d ? "checker2d" : "checker3d") << " colours " << vec(t.color_a)
+            << " " << vec(t.color_b) << " scale " << number(t.scale);
+        break;
+      case TextureDesc::Kind::image: {
+        out << "image " << (t.path.empty() ? std::string("(in memory)") : t.path);
+        if (i < scene.textures.size()) {
+          out << " " << scene.textures[i].image.width << "x" << scene.textures[i].image.height;
+        }
+        out << " wrap " << wrap_name(t.wrap);
+        break;
+      }
+    }
+    out << "\n";
+  }
+}
+
+void write_memory(std::ostream& out, const Scene& scene) {
+  const std::initializer_list<std::size_t> widths{10, 14};
+  out << "memory (bytes: SoA columns by capacity, with their source and origin arrays)\n";
+  write_row(out, "", {"opaque", "transmissive"}, widths);
+  const auto opaque = memory_by_kind(scene.opaque);
+  const auto transmissive = memory_by_kind(scene.transmissive);
+  for (std::size_t k = 0; k < 5; ++k) {
+    write_row(out, kKindNames[k], {std::to_string(opaque[k]), std::to_string(transmissive[k])}, widths);
+  }
+  std::size_t texture_bytes = 0;
+  for (const Texture& t : scene.textures) texture_bytes += bytes_of(t.image.rgb);
+  out << "  " << padded("textures", 12, false) << texture_bytes << "\n"
+      << "  " << padded("total", 12, false) << scene.memory_bytes() << " (no acceleration structure yet)\n";
+}
+
+}  // namespace
+
+std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& g) {
+  std::array<std::size_t, 5> bytes{};
+  const SphereSoA& s = g.spheres;
+  bytes[0] = sum_bytes(s.cx, s.cy, s.cz, s.r2, s.inv_r, s.source, g.sphere_origin);
+  const PlaneSoA& p = g.planes;
+  bytes[1] = sum_bytes(p.nx, p.ny, p.nz, p.d, p.source, g.plane_origin);
+  for (const AlignedFloats* c : const_cast<TriangleSoA&>(g.triangles).columns()) bytes[2] += bytes_of(*c);
+  bytes[2] += sum_bytes(g.triangles.source, g.triangle_origin);
+  const PolygonSoA& q = g.polygons;
+  bytes[3] = sum_bytes(q.nx, q.ny, q.nz, q.d, q.origin_u, q.origin_v, q.umin, q.umax, q.vmin, q.vmax, q.pu, q.pv,
+                       q.axis_u, q.axis_v, q.vertex_count, q.first_vertex, q.source, g.polygon_origin);
+  const ConeSoA& c = g.cones;
+  bytes[4] = sum_bytes(c.bx, c.by, c.bz, c.ax, c.ay, c.az, c.height, c.radius0, c.slope, c.facing, c.source,
+                       g.cone_origin);
+  return bytes;
+}
+
+void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context) {
+  out << "scene           " << context.scene << "\n"
+      << "load            " << milliseconds(context.load_ms) << "\n"
+      << "build           " << milliseconds(context.build_ms) << "\n";
+  write_primitives(out, desc, scene);
+  write_camera(out, scene, context.default_view_added);
+  write_render_settings(out, desc.render);
+  write_lights(out, desc, scene);
+  write_materials(out, scene);
+  write_textures(out, desc, scene);
+  write_memory(out, scene);
+}
+
+}  // namespace quiver

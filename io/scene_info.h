@@ -1,0 +1,31 @@
+// The `quiver info SCENE` report: what the reader found (SceneDesc) next to
+// what the builders kept (Scene), the opaque/transmissive split, bounds,
+// camera, lights, materials, textures, the memory of each structure, and
+// the load and build times.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <ostream>
+#include <string>
+
+#include "integrator/scene.h"
+#include "io/scene_desc.h"
+
+namespace quiver {
+
+// Bytes of one layer's stores per kind, indexed by PrimitiveKind: the SoA
+// columns' capacity plus the source and origin arrays. Sums to
+// GeometryLayer::memory_bytes().
+std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& layer);
+
+struct SceneInfoContext {
+  std::string scene;  // the file as named on the command line
+  double load_ms = 0.0, build_ms = 0.0;
+  bool default_view_added = false;  // the file had no camera
+};
+
+// desc is the scene as read (before any default view was added).
+void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context);
+
+}  // namespace quiver

@@ -1,0 +1,172 @@
+#include "io/stats_json.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <charconv>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+namespace quiver {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+[[noreturn]] void fail(const fs::path& path, const std::string& message) {
+  throw std::runtime_error(path.string() + ": " + message);
+}
+
+// active / issued; null when nothing was issued.
+json ratio(std::uint64_t active, std::uint64_t issued) {
+  if (issued == 0) return nullptr;
+  return double(active) / double(issued);
+}
+
+json lane_entry(const WaveLanes& lanes) {
+  return {{"active", lanes.active},
+          {"issued_compacted", lanes.issued_compacted},
+          {"issued_uncompacted", lanes.issued_uncompacted},
+          {"utilization_compacted", ratio(lanes.active, lanes.issued_compacted)},
+          {"utilization_uncompacted", ratio(lanes.active, lanes.issued_uncompacted)}};
+}
+
+// The shortest decimal that reads back as the same float, as a double
+// (0.02f prints as 0.02, not 0.019999999552965164).
+double shortest(float value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  double out = 0.0;
+  std::from_chars(text, end, out);
+  return out;
+}
+
+template <class Vec>
+std::size_t bytes_of(const Vec& v) {
+  return v.capacity() * sizeof(typename Vec::value_type);
+}
+
+std::size_t framebuffer_bytes(const Framebuffer& image) {
+  return bytes_of(image.rgb) + bytes_of(image.depth) + bytes_of(image.normal) + bytes_of(image.kind) +
+         bytes_of(image.id);
+}
+
+json aov_names(const RenderSettings& settings) {
+  json names = json::array();
+  if (settings.aov_depth) names.push_back("depth");
+  if (settings.aov_normal) names.push_back("normal");
+  if (settings.aov_id) names.push_back("id");
+  return names;
+}
+
+fs::path temporary_path(const fs::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  std::string name(1, '.');
+  name += target.filename().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  name += '-';
+  name += std::to_string(counter.fetch_add(1));
+  return target.parent_path() / name;
+}
+
+}  // namespace
+
+json render_stats_json(const RenderResult& result, const RenderSettings& settings, const RenderStatsContext& context) {
+  const TraceStats& stats = result.stats;
+  const RayCounts& rays = stats.rays;
+
+  json waves = json::array();
+  WaveLanes overall = stats.shadow;
+  for (std::size_t depth = 0; depth < stats.waves.size(); ++depth) {
+    const WaveLanes& wave = stats.waves[depth];
+    json entry = lane_entry(wave);
+    entry["depth"] = depth;
+    waves.push_back(std::move(entry));
+    overall.active += wave.active;
+    overall.issued_compacted += wave.issued_compacted;
+    overall.issued_uncompacted += wave.issued_uncompacted;
+  }
+
+  const double render_seconds = result.render_ms / 1000.0;
+  return {
+      {"version", context.version},
+      {"scene", context.scene},
+      {"output", context.output},
+      {"load_ms", context.load_ms},
+      {"build_ms", context.build_ms},
+      {"render_ms", result.render_ms},
+      {"threads", result.threads},
+      {"simd", std::string(isa_name(settings.isa))},
+      {"kernel_unit", std::string(kernel_unit_name(kernel_unit_for(settings.isa)))},
+      {"lanes", lane_width(settings.isa)},
+      {"width", settings.width},
+      {"height", settings.height},
+      {"aa", to_string(settings.aa)},
+      {"max_depth", settings.trace.max_depth},
+      {"min_weight", shortest(settings.trace.min_weight)},
+      {"seed", settings.trace.seed},
+      {"aovs", aov_names(settings)},
+      {"rays",
+       {{"primary", rays.primary},
+        {"eye_hit", rays.primary_hits},
+        {"shadow", rays.shadow},
+        {"reflection", rays.reflection},
+        {"refraction", rays.refraction},
+        {"total", rays.total()}}},
+      {"mrays_per_s", render_seconds > 0.0 ? json(double(rays.total()) / render_seconds / 1e6) : json(nullptr)},
+      {"lane_utilization",
+       {{"waves", std::move(waves)},
+        {"shadow", lane_entry(stats.shadow)},
+        {"overall",
+         {{"active", overall.active},
+          {"issued_compacted", overall.issued_compacted},
+          {"issued_uncompacted", overall.issued_uncompacted},
+          {"compacted", ratio(overall.active, overall.issued_compacted)},
+          {"uncompacted", ratio(overall.active, overall.issued_uncompacted)}}}}},
+      {"memory_bytes",
+       {{"scene", context.scene_memory_bytes},
+        {"acceleration", 0},
+        {"framebuffer", framebuffer_bytes(result.image)},
+        {"note", "acceleration is 0: there is no BVH yet, every ray tests every primitive"}}},
+  };
+}
+
+void check_stats_path(const fs::path& path) {
+  if (path.empty()) fail(path, "empty file name");
+  const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code error;
+  const fs::file_status parent_status = fs::status(parent, error);
+  if (!fs::exists(parent_status)) fail(path, "the directory '" + parent.string() + "' does not exist");
+  if (!fs::is_directory(parent_status)) fail(path, "'" + parent.string() + "' is not a directory");
+  if (fs::is_directory(fs::status(path, error))) fail(path, "is a directory");
+}
+
+void write_json_file(const fs::path& path, const json& value) {
+  check_stats_path(path);
+  const std::string text = value.dump(2) + "\n";
+  const fs::path temporary = temporary_path(path);
+  std::error_code error;
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) fail(path, "cannot create '" + temporary.string() + "'");
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    if (!out) {
+      fs::remove(temporary, error);
+      fail(path, "cannot write '" + temporary.string() + "'");
+    }
+  }
+  fs::rename(temporary, path, error);
+  if (error) {
+    const std::string message = error.message();
+    fs::remove(temporary, error);
+    fail(path, "cannot replace the file: " + message);
+  }
+}
+
+}  // namespace quiver

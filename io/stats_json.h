@@ -1,0 +1,50 @@
+// The statistics of one render as JSON (`quiver render --stats FILE`):
+// timings, settings, ray counts by kind, lane utilisation per wave and the
+// memory of each structure. Written atomically (a temporary file beside the
+// target, renamed over it after a successful close), so a failure leaves no
+// file behind and an existing file as it was.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "integrator/render.h"
+
+namespace quiver {
+
+// What the render result does not know about itself.
+struct RenderStatsContext {
+  std::string version;  // of quiver
+  std::string scene;   // the scene file, or "built-in"
+  std::string output;  // the image file
+  double load_ms = 0.0;
+  double build_ms = 0.0;
+  std::size_t scene_memory_bytes = 0;  // Scene::memory_bytes()
+};
+
+// Keys: version, scene, output, load_ms, build_ms, render_ms, threads, simd,
+// kernel_unit, lanes, width, height, aa, max_depth, min_weight, seed,
+// aovs; rays {primary, eye_hit, shadow, reflection, refraction, total};
+// mrays_per_s (total rays / render seconds / 1e6; null for a zero time);
+// lane_utilization {waves: [{depth, active, issued_compacted,
+// issued_uncompacted, utilization_compacted, utilization_uncompacted}],
+// shadow: {the same without depth}, overall: {active, issued_compacted,
+// issued_uncompacted, compacted, uncompacted}} where utilisation is
+// active / issued (null when nothing was issued) and overall sums every
+// wave and the shadow rays; memory_bytes {scene, acceleration,
+// framebuffer, note}.
+nlohmann::json render_stats_json(const RenderResult& result, const RenderSettings& settings,
+                                 const RenderStatsContext& context);
+
+// Checks, before rendering, that path can be written: an existing parent
+// directory and not a directory itself. Throws std::runtime_error("<path>: ...").
+void check_stats_path(const std::filesystem::path& path);
+
+// Writes json (indented) to path atomically. Throws std::runtime_error
+// ("<path>: <message>") on failure.
+void write_json_file(const std::filesystem::path& path, const nlohmann::json& json);
+
+}  // namespace quiver

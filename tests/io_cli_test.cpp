@@ -1,0 +1,367 @@
+// The quiver program end to end (io/cli_main.cpp), run as a child process
+// on tiny scenes: exit codes (0 success, 1 failure, 2 usage), images and
+// stats written only on success, error messages with file:line:column, the
+// SPD preset's ray count, `quiver info`, and byte-identical pixels from
+// every SIMD width.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "simd/isa.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kCli = QUIVER_CLI_PATH;
+const fs::path kTiny = fs::path(QUIVER_TEST_DATA_DIR) / "scenes" / "tiny.nff";
+const fs::path kQuadObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "quad.obj";
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string shell_quoted(const std::string& text) {
+  std::string quoted(1, '\'');
+  for (char c : text) {
+    if (c == '\'') {
+      quoted += "'\\''";
+    } else {
+      quoted += c;
+    }
+  }
+  quoted += '\'';
+  return quoted;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;
+  std::vector<float> pixels;
+};
+
+Image read_image(const fs::path& path) {
+  Image image;
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    ADD_FAILURE() << "cannot open " << path << ": " << OIIO::geterror();
+    return image;
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.channelnames;
+  image.pixels.resize(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+  EXPECT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeFloat, image.pixels.data())) << input->geterror();
+  return image;
+}
+
+// Each test gets an empty working directory (the program's current
+// directory) beside a folder for its captured output and input files.
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("quiver_cli_test_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(work());
+    fs::create_directories(root_ / "io");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  fs::path work() const { return root_ / "work"; }
+  fs::path io() const { return root_ / "io"; }
+
+  Outcome run(const std::vector<std::string>& args) const {
+    std::string command("cd ");
+    command += shell_quoted(work().string());
+    command += " && ";
+    command += shell_quoted(kCli.string());
+    for (const std::string& arg : args) {
+      command += ' ';
+      command += shell_quoted(arg);
+    }
+    command += " >";
+    command += shell_quoted((io() / "stdout").string());
+    command += " 2>";
+    command += shell_quoted((io() / "stderr").string());
+    const int status = std::system(command.c_str());
+    Outcome result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_text(io() / "stdout");
+    result.err = read_text(io() / "stderr");
+    return result;
+  }
+
+  std::vector<std::string> work_files() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(work())) names.push_back(entry.path().filename().string());
+    return names;
+  }
+
+  json read_json(const fs::path& path) const {
+    std::ifstream in(path);
+    return json::parse(in);
+  }
+
+  fs::path root_;
+};
+
+TEST_F(Cli, HelpDescribesEveryOption) {
+  const Outcome top = run({"--help"});
+  EXPECT_EQ(top.exit_code, 0);
+  EXPECT_NE(top.out.find("render"), std::string::npos);
+  EXPECT_NE(top.out.find("info"), std::string::npos);
+  const Outcome render = run({"render", "--help"});
+  EXPECT_EQ(render.exit_code, 0);
+  for (const char* option : {"--output", "--width", "--height", "--aa", "--max-depth", "--min-weight", "--threads",
+                             "--simd", "--seed", "--stats", "--aov", "--quiet", "--preset", "--two-sided"}) {
+    EXPECT_NE(render.out.find(option), std::string::npos) << option;
+  }
+  for (const char* fact : {"Default: 0", "else 5", "else 0.001", "quiver.png", "QUIVER_SIMD", "2^28"}) {
+    EXPECT_NE(render.out.find(fact), std::string::npos) << fact;
+  }
+  const Outcome info = run({"info", "--help"});
+  EXPECT_EQ(info.exit_code, 0);
+  EXPECT_NE(info.out.find("SCENE"), std::string::npos);
+}
+
+TEST_F(Cli, VersionIsTheProjectVersion) {
+  const Outcome version = run({"--version"});
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out, std::string("quiver ") + QUIVER_PROJECT_VERSION + "\n");
+}
+
+TEST_F(Cli, RendersATinySceneToPng) {
+  const Outcome r = run({"render", kTiny.string(), "-o", "out.png", "--width", "32", "--height", "24"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_image(work() / "out.png");
+  EXPECT_EQ(image.width, 32);
+  EXPECT_EQ(image.height, 24);
+  EXPECT_EQ(image.channels.size(), 3u);
+  EXPECT_EQ(r.err.rfind("rendered 32x24 ", 0), 0u) << r.err;  // the summary line
+  EXPECT_NE(r.err.find("Mrays/s"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("out.png"), std::string::npos) << r.err;
+  EXPECT_EQ(work_files(), std::vector<std::string>{"out.png"});
+}
+
+TEST_F(Cli, QuietPrintsNothingAndTheDefaultNameIsTheSceneStem) {
+  const Outcome r = run({"render", kTiny.string(), "--width", "8", "--height", "6", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(work_files(), std::vector<std::string>{"tiny.png"});
+}
+
+TEST_F(Cli, AnObjSceneWithoutCameraGetsADefaultSquareView) {
+  const Outcome r = run({"render", kQuadObj.string(), "-o", "quad.png", "--width", "16", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_image(work() / "quad.png");
+  EXPECT_EQ(image.width, 16);
+  EXPECT_EQ(image.height, 16);
+}
+
+TEST_F(Cli, StatsJsonHasTheKeysAndConsistentCounts) {
+  const Outcome r = run({"render", kTiny.string(), "-o", "out.png", "--width", "32", "--height", "24", "--aa", "grid:2",
+                     "--stats", "stats.json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json stats = read_json(work() / "stats.json");
+  for (const char* key : {"render_ms", "build_ms", "load_ms", "threads", "simd", "lanes", "width", "height", "aa",
+                          "max_depth", "min_weight", "seed", "rays", "mrays_per_s", "lane_utilization",
+                          "memory_bytes"}) {
+    EXPECT_TRUE(stats.contains(key)) << key;
+  }
+  EXPECT_EQ(stats.at("width"), 32);
+  EXPECT_EQ(stats.at("height"), 24);
+  EXPECT_EQ(stats.at("aa"), "grid:2");
+  EXPECT_EQ(stats.at("max_depth"), 5);
+  EXPECT_GE(stats.at("threads").get<int>(), 1);
+  const json& rays = stats.at("rays");
+  EXPECT_EQ(rays.at("primary"), 32u * 24u * 4u);
+  EXPECT_LE(rays.at("eye_hit").get<std::uint64_t>(), rays.at("primary").get<std::uint64_t>());
+  EXPECT_GT(rays.at("eye_hit").get<std::uint64_t>(), 0u);
+  EXPECT_GT(rays.at("shadow").get<std::uint64_t>(), 0u);
+  EXPECT_GT(rays.at("reflection").get<std::uint64_t>(), 0u);
+  EXPECT_GT(rays.at("refraction").get<std::uint64_t>(), 0u);
+  EXPECT_EQ(rays.at("total").get<std::uint64_t>(),
+            rays.at("primary").get<std::uint64_t>() + rays.at("shadow").get<std::uint64_t>() +
+                rays.at("reflection").get<std::uint64_t>() + rays.at("refraction").get<std::uint64_t>());
+  const json& lanes = stats.at("lane_utilization");
+  EXPECT_GE(lanes.at("waves").size(), 2u);
+  EXPECT_EQ(lanes.at("waves")[0].at("active"), rays.at("primary"));
+  EXPECT_GT(stats.at("memory_bytes").at("scene").get<std::uint64_t>(), 0u);
+}
+
+TEST_F(Cli, PresetSpdTracesEveryPixelCorner) {
+  const Outcome r = run({"render", kTiny.string(), "-o", "spd.png", "--width", "32", "--height", "24", "--preset", "spd",
+                     "--stats", "spd.json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json stats = read_json(work() / "spd.json");
+  EXPECT_EQ(stats.at("rays").at("primary"), 33u * 25u);
+  EXPECT_EQ(stats.at("aa"), "corners");
+  EXPECT_EQ(stats.at("max_depth"), 4);
+  EXPECT_EQ(stats.at("min_weight"), 0.0);
+}
+
+TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
+  const std::string scene = kTiny.string();
+  // One case per way a usage error is found: CLI11's parser, the option
+  // checks, the ISA choice, the preset, the output and stats paths (the
+  // individual values are covered by io_render_options_test.cpp).
+  const std::vector<std::vector<std::string>> cases = {
+      {},
+      {"render", scene, "-o", "out.png", "--bogus"},
+      {"render", scene, "-o", "out.png", "--width", "twelve"},
+      {"render", scene, "-o", "out.png", "--width", "0"},
+      {"render", scene, "-o", "out.png", "--seed", "-1"},
+      {"render", scene, "-o", "out.png", "--simd", "avx512"},
+      {"render", scene, "-o", "out.png", "--preset", "spd", "--aa", "grid:2"},
+      {"render", scene, "-o", "out.txt"},
+      {"render", scene, "-o", "out.png", "--stats", "out.png"},
+  };
+  for (const auto& args : cases) {
+    std::string joined;
+    for (const std::string& a : args) joined += a + " ";
+    SCOPED_TRACE(joined);
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err.rfind("quiver: ", 0), 0u) << r.err;
+    EXPECT_TRUE(work_files().empty());
+  }
+}
+
+TEST_F(Cli, AovsNeedAnExrFile) {
+  const Outcome r = run({"render", kTiny.string(), "-o", "out.png", "--aov", "depth", "--width", "8", "--height", "6"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".exr"), std::string::npos) << r.err;
+  EXPECT_TRUE(work_files().empty());
+}
+
+TEST_F(Cli, ABadSceneExits1WithItsPositionAndWritesNothing) {
+  const fs::path bad = io() / "bad.nff";
+  std::ofstream(bad) << "f 1 1 1 1 0 1 0 1\ns 0 0 0 1\ns 1 2 oops 1\n";
+  std::ofstream(work() / "out.png") << "previous";  // an existing output stays as it was
+  const Outcome r = run({"render", bad.string(), "-o", "out.png", "--stats", "stats.json"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("quiver: " + bad.string() + ":3:7: expected", 0), 0u) << r.err;
+  EXPECT_EQ(work_files(), std::vector<std::string>{"out.png"});
+  EXPECT_EQ(read_text(work() / "out.png"), "previous");
+
+  const Outcome info = run({"info", bad.string()});
+  EXPECT_EQ(info.exit_code, 1);
+  EXPECT_NE(info.err.find("bad.nff:3:7: expected"), std::string::npos) << info.err;
+
+  const Outcome missing = run({"render", (io() / "missing.nff").string(), "-o", "x.png"});
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("missing.nff"), std::string::npos) << missing.err;
+  EXPECT_EQ(work_files(), std::vector<std::string>{"out.png"});
+}
+
+TEST_F(Cli, TheOutputIsCheckedBeforeTheSceneIsRead) {
+  const fs::path bad = io() / "bad.nff";
+  std::ofstream(bad) << "s 0 0 0 1\n";  // a primitive before any material
+  const Outcome r = run({"render", bad.string(), "-o", "no_such_dir/out.png"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("no_such_dir"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, EverySimdWidthWritesIdenticalPixels) {
+  std::vector<std::string> widths{"scalar"};
+  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2}) {
+    const std::string name(quiver::isa_name(isa));
+    if (quiver::isa_supported(isa)) {
+      widths.push_back(name);
+    } else {
+      std::cout << "[   INFO   ] " << name << " is not supported by this CPU: not compared\n";
+    }
+  }
+  if (widths.size() == 1) GTEST_SKIP() << "this CPU has neither sse4 nor avx2: nothing to compare with scalar";
+  std::vector<Image> images;
+  for (const std::string& simd : widths) {
+    const Outcome r = run({"render", kTiny.string(), "-o", simd + ".exr", "--width", "32", "--height", "24", "--aa",
+                       "adaptive:0.05:2", "--aov", "depth,normal,id", "--simd", simd, "--threads", "2", "-q"});
+    ASSERT_EQ(r.exit_code, 0) << simd << ": " << r.err;
+    images.push_back(read_image(work() / (simd + ".exr")));
+  }
+  const Image& reference = images[0];
+  ASSERT_EQ(reference.width, 32);
+  ASSERT_EQ(reference.height, 24);
+  ASSERT_EQ(reference.channels.size(), 3u + 1u + 3u + 2u);  // RGB, Z, N.XYZ, kind, id
+  ASSERT_FALSE(reference.pixels.empty());
+  // The picture is not trivial: several primitives are seen (kind and id channels).
+  const auto channel = [&](const char* name) {
+    return std::size_t(std::find(reference.channels.begin(), reference.channels.end(), name) -
+                       reference.channels.begin());
+  };
+  const std::size_t kind = channel("kind"), id = channel("id"), stride = reference.channels.size();
+  ASSERT_LT(kind, stride);
+  ASSERT_LT(id, stride);
+  std::vector<std::pair<float, float>> seen;
+  for (std::size_t p = 0; p < reference.pixels.size(); p += stride) {
+    const std::pair<float, float> primitive{reference.pixels[p + kind], reference.pixels[p + id]};
+    if (std::find(seen.begin(), seen.end(), primitive) == seen.end()) seen.push_back(primitive);
+  }
+  EXPECT_GE(seen.size(), 5u);  // the background and at least four primitives
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    SCOPED_TRACE(widths[i]);
+    EXPECT_EQ(images[i].channels, reference.channels);
+    ASSERT_EQ(images[i].pixels.size(), reference.pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < reference.pixels.size(); ++k) {
+      differing += std::memcmp(&images[i].pixels[k], &reference.pixels[k], sizeof(float)) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(differing, 0u) << "of " << reference.pixels.size() << " channel values";
+  }
+}
+
+// The numbers on the `quiver info` line starting with "  <name> ".
+std::vector<std::size_t> info_row(const std::string& report, const std::string& name) {
+  std::istringstream lines(report);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  " + name + " ", 0) != 0) continue;
+    std::istringstream cells(line.substr(name.size() + 2));
+    std::vector<std::size_t> numbers;
+    for (std::size_t n; cells >> n;) numbers.push_back(n);
+    return numbers;
+  }
+  return {};
+}
+
+TEST_F(Cli, InfoPrintsTheCounts) {
+  const Outcome r = run({"info", kTiny.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // read, kept, non-finite, degenerate, opaque, transmissive (tiny.nff's header)
+  EXPECT_EQ(info_row(r.out, "spheres"), (std::vector<std::size_t>{2, 2, 0, 0, 1, 1})) << r.out;
+  EXPECT_EQ(info_row(r.out, "triangles"), (std::vector<std::size_t>{0, 1, 0, 0, 1, 0})) << r.out;
+  EXPECT_EQ(info_row(r.out, "polygons"), (std::vector<std::size_t>{2, 1, 0, 0, 1, 0})) << r.out;
+  EXPECT_EQ(info_row(r.out, "cones"), (std::vector<std::size_t>{1, 1, 0, 0, 1, 0})) << r.out;
+  EXPECT_NE(r.out.find("lights          2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("materials       4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("resolution 32x24"), std::string::npos) << r.out;
+  EXPECT_TRUE(work_files().empty());
+}
+
+}  // namespace

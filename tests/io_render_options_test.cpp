@@ -1,0 +1,265 @@
+// Command-line options -> RenderSettings (io/render_options.h): defaults,
+// the scene's RenderDesc, the aspect rule, bounds, --preset spd and its
+// conflicts, the AOV list, the seed and the ISA choice.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "io/render_options.h"
+
+namespace quiver {
+namespace {
+
+CameraDesc camera(int width, int height) {
+  CameraDesc c{};
+  c.from = {0.f, 0.f, 5.f};
+  c.at = {0.f, 0.f, 0.f};
+  c.up = {0.f, 1.f, 0.f};
+  c.angle_degrees = 45.f;
+  c.hither = 0.f;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+SceneDesc scene_with_camera(int width, int height) {
+  SceneDesc scene;
+  scene.camera = camera(width, height);
+  return scene;
+}
+
+// True when fn throws UsageError (exit 2), not some other error.
+template <class Fn>
+bool throws_usage_error(Fn fn) {
+  try {
+    fn();
+  } catch (const UsageError&) {
+    return true;
+  } catch (...) {
+    return false;
+  }
+  return false;
+}
+
+TEST(RenderOptions, DefaultsWithoutFlagsOrSceneSettings) {
+  const RenderPlan plan = plan_render({}, scene_with_camera(640, 480), Isa::scalar);
+  const RenderSettings& s = plan.settings;
+  EXPECT_EQ(s.width, 640);
+  EXPECT_EQ(s.height, 480);
+  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::none);
+  EXPECT_EQ(s.trace.max_depth, kDefaultMaxDepth);
+  EXPECT_EQ(s.trace.min_weight, kDefaultMinWeight);
+  EXPECT_EQ(s.trace.seed, 0u);
+  EXPECT_EQ(s.threads, 0);
+  EXPECT_EQ(s.isa, Isa::scalar);
+  EXPECT_FALSE(s.aov_depth || s.aov_normal || s.aov_id);
+  EXPECT_FALSE(plan.build.all_two_sided);
+}
+
+TEST(RenderOptions, SceneRenderDescAppliesWhenNoFlagIsGiven) {
+  SceneDesc scene = scene_with_camera(64, 48);
+  scene.render.aa = "grid:3";
+  scene.render.max_depth = 2;
+  scene.render.min_weight = 0.25f;
+  const RenderSettings s = plan_render({}, scene, Isa::scalar).settings;
+  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::grid);
+  EXPECT_EQ(s.aa.n, 3);
+  EXPECT_EQ(s.trace.max_depth, 2);
+  EXPECT_EQ(s.trace.min_weight, 0.25f);
+}
+
+TEST(RenderOptions, FlagsOverrideTheScene) {
+  SceneDesc scene = scene_with_camera(64, 48);
+  scene.render.aa = "grid:3";
+  scene.render.max_depth = 2;
+  scene.render.min_weight = 0.25f;
+  RenderOptions options;
+  options.aa = "jitter:2";
+  options.max_depth = 0;
+  options.min_weight = 0.0;
+  options.seed = 77;
+  options.threads = 3;
+  options.aov = "id,depth";
+  options.two_sided = true;
+  const RenderPlan plan = plan_render(options, scene, Isa::sse4);
+  const RenderSettings& s = plan.settings;
+  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::jitter);
+  EXPECT_EQ(s.aa.n, 2);
+  EXPECT_EQ(s.trace.max_depth, 0);
+  EXPECT_EQ(s.trace.min_weight, 0.f);
+  EXPECT_EQ(s.trace.seed, 77u);
+  EXPECT_EQ(s.threads, 3);
+  EXPECT_EQ(s.isa, Isa::sse4);
+  EXPECT_TRUE(s.aov_depth);
+  EXPECT_FALSE(s.aov_normal);
+  EXPECT_TRUE(s.aov_id);
+  EXPECT_TRUE(plan.build.all_two_sided);
+}
+
+TEST(RenderOptions, BadSceneSettingsAreSceneErrorsNotUsageErrors) {
+  for (int variant = 0; variant < 4; ++variant) {
+    SceneDesc scene = scene_with_camera(8, 8);
+    if (variant == 0) scene.render.aa = "grid:0";
+    if (variant == 1) scene.render.max_depth = kMaxMaxDepth + 1;
+    if (variant == 2) scene.render.min_weight = -1.f;
+    if (variant == 3) scene.render.min_weight = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(plan_render({}, scene, Isa::scalar), std::runtime_error) << variant;
+    EXPECT_FALSE(throws_usage_error([&] { plan_render({}, scene, Isa::scalar); })) << variant;
+  }
+}
+
+TEST(RenderOptions, OneSideKeepsTheCameraAspect) {
+  const std::optional<CameraDesc> cam = camera(640, 480);
+  RenderOptions options;
+  options.width = 320;
+  EXPECT_EQ(image_size(options, cam), std::make_pair(320, 240));
+  options = {};
+  options.height = 100;  // 133.33 -> 133
+  EXPECT_EQ(image_size(options, cam), std::make_pair(133, 100));
+  options = {};
+  options.width = 1;  // 0.75 -> 1 (at least one pixel)
+  EXPECT_EQ(image_size(options, cam), std::make_pair(1, 1));
+  options = {};
+  options.width = 10;
+  options.height = 90;  // both given: as given
+  EXPECT_EQ(image_size(options, cam), std::make_pair(10, 90));
+  EXPECT_EQ(image_size({}, cam), std::make_pair(640, 480));
+}
+
+TEST(RenderOptions, WithoutACameraTheDefaultIsSquare) {
+  EXPECT_EQ(image_size({}, std::nullopt), std::make_pair(kDefaultImageSide, kDefaultImageSide));
+  RenderOptions options;
+  options.height = 77;
+  EXPECT_EQ(image_size(options, std::nullopt), std::make_pair(77, 77));
+  const RenderPlan plan = plan_render(options, SceneDesc{}, Isa::scalar);
+  EXPECT_EQ(plan.settings.width, 77);
+  EXPECT_EQ(plan.settings.height, 77);
+}
+
+TEST(RenderOptions, ImageSizeBounds) {
+  for (int side : {0, -1, kMaxImageSide + 1}) {
+    RenderOptions options;
+    options.width = side;
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << side;
+    options = {};
+    options.height = side;
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << side;
+  }
+  RenderOptions options;
+  options.width = kMaxImageSide;
+  options.height = 4096;  // exactly 2^28 pixels
+  EXPECT_NO_THROW(check_render_options(options));
+  options.height = 4097;
+  EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); }));
+  // A side derived from the aspect is checked too: 65536 wide at 1:2 is 131072 tall.
+  options = {};
+  options.width = kMaxImageSide;
+  EXPECT_TRUE(throws_usage_error([&] { image_size(options, camera(100, 200)); }));
+}
+
+TEST(RenderOptions, DepthWeightAndThreadBounds) {
+  auto with = [](auto set) {
+    RenderOptions options;
+    set(options);
+    return options;
+  };
+  EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.max_depth = 0; })));
+  EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.max_depth = kMaxMaxDepth; })));
+  EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.min_weight = 0.0; })));
+  EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.threads = kMaxThreads; })));
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const RenderOptions& bad : {with([](RenderOptions& o) { o.max_depth = -1; }),
+                                   with([](RenderOptions& o) { o.max_depth = kMaxMaxDepth + 1; }),
+                                   with([&](RenderOptions& o) { o.min_weight = nan; }),
+                                   with([&](RenderOptions& o) { o.min_weight = inf; }),
+                                   with([](RenderOptions& o) { o.min_weight = -0.5; }),
+                                   with([](RenderOptions& o) { o.min_weight = 1e300; }),  // not a float
+                                   with([](RenderOptions& o) { o.threads = -1; }),
+                                   with([](RenderOptions& o) { o.threads = kMaxThreads + 1; }),
+                                   with([](RenderOptions& o) { o.aa = "grid"; }),
+                                   with([](RenderOptions& o) { o.aov = "depth,depth"; })}) {
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(bad); }));
+  }
+}
+
+TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
+  SceneDesc scene = scene_with_camera(20, 10);
+  scene.render.aa = "grid:4";
+  scene.render.max_depth = 9;
+  scene.render.min_weight = 0.5f;
+  RenderOptions options;
+  options.preset_spd = true;
+  const RenderPlan plan = plan_render(options, scene, Isa::scalar);
+  EXPECT_EQ(plan.settings.aa.mode, AntiAliasing::Mode::corners);
+  EXPECT_EQ(plan.settings.trace.max_depth, 4);
+  EXPECT_EQ(plan.settings.trace.min_weight, 0.f);
+  EXPECT_TRUE(plan.build.all_two_sided);
+}
+
+TEST(RenderOptions, PresetSpdAcceptsAgreeingFlagsAndRejectsContradictions) {
+  RenderOptions agreeing;
+  agreeing.preset_spd = true;
+  agreeing.aa = "corners";
+  agreeing.max_depth = 4;
+  agreeing.min_weight = 0.0;
+  EXPECT_NO_THROW(check_render_options(agreeing));
+
+  RenderOptions options;
+  options.preset_spd = true;
+  options.aa = "grid:2";
+  EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); }));
+  options.aa.reset();
+  options.max_depth = 5;
+  EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); }));
+  options.max_depth.reset();
+  options.min_weight = 0.001;
+  EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); }));
+  // Without the preset the same flags are fine.
+  options.preset_spd = false;
+  options.aa = "grid:2";
+  options.max_depth = 5;
+  EXPECT_NO_THROW(check_render_options(options));
+}
+
+TEST(RenderOptions, AovList) {
+  const AovSelection all = parse_aov_list("normal,id,depth");
+  EXPECT_TRUE(all.depth && all.normal && all.id);
+  const AovSelection one = parse_aov_list("normal");
+  EXPECT_TRUE(one.normal);
+  EXPECT_FALSE(one.depth || one.id);
+  for (const char* bad : {"", ",", "depth,", ",depth", "depth,,id", "id,id", "Depth", "depth normal", "uv"}) {
+    EXPECT_TRUE(throws_usage_error([&] { parse_aov_list(bad); })) << bad;
+  }
+}
+
+TEST(RenderOptions, Seed) {
+  EXPECT_EQ(parse_seed("0"), 0u);
+  EXPECT_EQ(parse_seed("18446744073709551615"), std::numeric_limits<std::uint64_t>::max());
+  for (const char* bad : {"", "-1", "+1", " 1", "1 ", "18446744073709551616", "0x10", "1.0"}) {
+    EXPECT_TRUE(throws_usage_error([&] { parse_seed(bad); })) << bad;
+  }
+}
+
+TEST(RenderOptions, IsaChoiceFlagThenEnvironmentThenAuto) {
+  EXPECT_EQ(choose_isa(std::string("scalar"), nullptr), Isa::scalar);
+  EXPECT_EQ(choose_isa(std::nullopt, "scalar"), Isa::scalar);
+  EXPECT_EQ(choose_isa(std::string("scalar"), "bogus"), Isa::scalar);  // the flag wins
+  EXPECT_EQ(choose_isa(std::nullopt, nullptr), best_supported_isa());
+  EXPECT_EQ(choose_isa(std::string("auto"), "scalar"), best_supported_isa());
+  EXPECT_TRUE(throws_usage_error([] { choose_isa(std::string("avx512"), nullptr); }));
+  EXPECT_TRUE(throws_usage_error([] { choose_isa(std::nullopt, "bogus"); }));
+  for (Isa isa : {Isa::sse4, Isa::avx2}) {
+    const std::string name(isa_name(isa));
+    if (isa_supported(isa)) {
+      EXPECT_EQ(choose_isa(name, nullptr), isa);
+    } else {
+      EXPECT_TRUE(throws_usage_error([&] { choose_isa(name, nullptr); })) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace quiver

@@ -1,0 +1,97 @@
+// The `quiver info` report (io/scene_info.h): per-kind memory adds up to the
+// layers' own totals, and the count rows show what was read, kept and
+// dropped, split into opaque and transmissive.
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/scene_info.h"
+
+namespace quiver {
+namespace {
+
+SceneDesc mixed_scene() {
+  SceneDesc desc;
+  CameraDesc camera{};
+  camera.from = {0.f, 0.f, 5.f};
+  camera.at = {0.f, 0.f, 0.f};
+  camera.up = {0.f, 1.f, 0.f};
+  camera.angle_degrees = 45.f;
+  camera.width = 8;
+  camera.height = 8;
+  desc.camera = camera;
+  desc.materials.resize(2);
+  desc.materials[1].kt = 0.5f;  // transmissive
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  desc.spheres = {{{{0.f, 0.f, 0.f}, 1.f}, 0},
+                  {{{2.f, 0.f, 0.f}, 0.5f}, 1},
+                  {{{3.f, 0.f, 0.f}, 0.f}, 0},     // degenerate
+                  {{{nan, 0.f, 0.f}, 1.f}, 0}};    // non-finite
+  SceneTriangle triangle;
+  triangle.triangle.p = {Vec3<float>{0.f, 0.f, 0.f}, Vec3<float>{1.f, 0.f, 0.f}, Vec3<float>{0.f, 1.f, 0.f}};
+  triangle.material = 1;
+  desc.triangles = {triangle};
+  ScenePolygon quad;
+  quad.polygon.vertices = {{-1.f, -1.f, -1.f}, {1.f, -1.f, -1.f}, {1.f, 1.f, -1.f}, {-1.f, 1.f, -1.f}};
+  quad.material = 0;
+  desc.polygons = {quad};
+  desc.planes = {{{{0.f, -2.f, 0.f}, {0.f, 1.f, 0.f}}, 0}};
+  desc.cones = {{{{0.f, 0.f, 0.f}, 1.f, {0.f, 2.f, 0.f}, 0.5f}, 1}};
+  return desc;
+}
+
+// The numbers on the report line starting with "  <name> ".
+std::vector<std::size_t> row(const std::string& report, const std::string& name) {
+  std::istringstream lines(report);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  " + name + " ", 0) != 0) continue;
+    std::istringstream cells(line.substr(name.size() + 2));
+    std::vector<std::size_t> numbers;
+    for (std::size_t n; cells >> n;) numbers.push_back(n);
+    return numbers;
+  }
+  return {};
+}
+
+TEST(SceneInfo, MemoryByKindAddsUpToEachLayer) {
+  const Scene scene = build_scene(mixed_scene(), {});
+  for (const GeometryLayer* layer : {&scene.opaque, &scene.transmissive}) {
+    const auto bytes = memory_by_kind(*layer);
+    std::size_t sum = 0;
+    for (std::size_t b : bytes) sum += b;
+    EXPECT_EQ(sum, layer->memory_bytes());
+  }
+  const auto opaque = memory_by_kind(scene.opaque);
+  EXPECT_GT(opaque[std::size_t(PrimitiveKind::sphere)], 0u);
+  EXPECT_GT(opaque[std::size_t(PrimitiveKind::plane)], 0u);
+  EXPECT_GT(opaque[std::size_t(PrimitiveKind::polygon)], 0u);
+  EXPECT_EQ(opaque[std::size_t(PrimitiveKind::cone)], 0u);
+  const auto transmissive = memory_by_kind(scene.transmissive);
+  EXPECT_GT(transmissive[std::size_t(PrimitiveKind::cone)], 0u);
+  EXPECT_GT(transmissive[std::size_t(PrimitiveKind::triangle)], 0u);
+  EXPECT_EQ(transmissive[std::size_t(PrimitiveKind::plane)], 0u);
+}
+
+TEST(SceneInfo, CountRows) {
+  const SceneDesc desc = mixed_scene();
+  const Scene scene = build_scene(desc, {});
+  std::ostringstream out;
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, false});
+  const std::string report = out.str();
+  // read, kept, non-finite, degenerate, opaque, transmissive
+  EXPECT_EQ(row(report, "spheres"), (std::vector<std::size_t>{4, 2, 1, 1, 1, 1}));
+  EXPECT_EQ(row(report, "planes"), (std::vector<std::size_t>{1, 1, 0, 0, 1, 0}));
+  EXPECT_EQ(row(report, "triangles"), (std::vector<std::size_t>{1, 1, 0, 0, 0, 1}));
+  EXPECT_EQ(row(report, "polygons"), (std::vector<std::size_t>{1, 1, 0, 0, 1, 0}));
+  EXPECT_EQ(row(report, "cones"), (std::vector<std::size_t>{1, 1, 0, 0, 0, 1}));
+  EXPECT_EQ(row(report, "total"), (std::vector<std::size_t>{8, 6, 1, 1, 3, 3}));
+  EXPECT_NE(report.find("materials       2"), std::string::npos);
+  EXPECT_NE(report.find("kt 0.5"), std::string::npos);
+  EXPECT_NE(report.find(std::to_string(scene.memory_bytes())), std::string::npos);
+}
+
+}  // namespace
+}  // namespace quiver
