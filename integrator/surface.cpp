@@ -61,8 +61,13 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
   Vec3<float> shading = outward;
   s.u = hit.u;
   s.v = hit.v;
+  s.material_index = scene.origin(s.ref).material;
+  s.material = &scene.materials[s.material_index];
+  // Texture coordinates only for textured materials (atan2 and asin are dear).
+  const bool textured = s.material->texture.has_value();
   switch (s.ref.kind) {
     case PrimitiveKind::sphere: {
+      if (!textured) break;
       const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
       const Vec3<float> d = normalized(s.position - c);
       s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
@@ -70,6 +75,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       break;
     }
     case PrimitiveKind::plane: {
+      if (!textured) break;
       Vec3<float> t1, t2;
       tangent_axes(outward, t1, t2);
       s.u = dot(s.position, t1);
@@ -92,7 +98,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
     }
     case PrimitiveKind::polygon: {
       const PolygonSoA& p = g.polygons;
-      if (p.vertex_count[i] == 4) {
+      if (textured && p.vertex_count[i] == 4) {
         double quad[4][2];
         for (int k = 0; k < 4; ++k) {
           quad[k][0] = p.pu[p.first_vertex[i] + k];
@@ -103,6 +109,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       break;
     }
     case PrimitiveKind::cone: {
+      if (!textured) break;
       const ConeSoA& c = g.cones;
       const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
       const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
@@ -117,8 +124,6 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
   s.entering = dot(ray.direction, outward) < 0.f;
   s.geometric = s.entering ? outward : -outward;
   s.shading = dot(shading, s.geometric) < 0.f ? -shading : shading;
-  s.material_index = scene.origin(s.ref).material;
-  s.material = &scene.materials[s.material_index];
   return s;
 }
 

@@ -22,7 +22,7 @@ struct SurfacePoint {
   Vec3<float> geometric;        // unit geometric normal facing the incoming ray
   Vec3<float> shading;          // unit shading normal on the same side
   bool entering;                // the ray arrives on the primitive's outward side
-  float u, v;                   // texture coordinates
+  float u, v;                   // texture coordinates (the kernel's u, v when untextured)
   const MaterialDesc* material;
   std::uint32_t material_index;
   PrimitiveRef ref;

@@ -126,9 +126,10 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
     const int n = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere ? light.samples : 1;
     const Vec3<float> intensity = light.color / float(n * n);
     for (int j = 0; j < n * n; ++j, ++slot) {
-      // Stratified jitter: cell (j % n, j / n) of an n x n grid.
-      const float a = (float(j % n) + hash_uniform(path.key ^ settings_.seed, l, 2 * j)) / float(n);
-      const float b = (float(j / n) + hash_uniform(path.key ^ settings_.seed, l, 2 * j + 1)) / float(n);
+      // Stratified jitter for area lights: a point in cell (j % n, j / n) of an n x n grid.
+      auto jittered = [&](int cell, std::uint64_t dimension) {
+        return (float(cell) + hash_uniform(path.key ^ settings_.seed, l, dimension)) / float(n);
+      };
       Vec3<float> direction;
       float tmax = kShadowEndFraction;
       switch (light.kind) {
@@ -137,15 +138,17 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
           direction = -light.direction;
           tmax = kInfinity;
           break;
-        case LightDesc::Kind::rectangle:
+        case LightDesc::Kind::rectangle: {
+          const float a = jittered(j % n, 2 * j), b = jittered(j / n, 2 * j + 1);
           direction = light.position + light.edge_u * a + light.edge_v * b - origin;
           break;
+        }
         case LightDesc::Kind::sphere: {
           // The silhouette disk facing the point, by the concentric map.
           const Vec3<float> axis = normalized(light.position - origin);
           const Vec3<float> helper = std::fabs(axis.x) < 0.9f ? Vec3<float>(1.f, 0.f, 0.f) : Vec3<float>(0.f, 1.f, 0.f);
           const Vec3<float> t1 = normalized(cross(axis, helper)), t2 = cross(axis, t1);
-          const float sx = 2.f * a - 1.f, sy = 2.f * b - 1.f;
+          const float sx = 2.f * jittered(j % n, 2 * j) - 1.f, sy = 2.f * jittered(j / n, 2 * j + 1) - 1.f;
           float r = 0.f, phi = 0.f;
           if (sx != 0.f || sy != 0.f) {
             const float quarter = float(std::numbers::pi / 4.0);
@@ -169,7 +172,7 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
       if (!(n_dot_l > 0.f) || !(dot(s.geometric, to_light) > 0.f)) continue;
       const Vec3<float> half = normalized(to_light + to_eye);
       const float n_dot_h = std::max(dot(s.shading, half), 0.f);
-      const float specular = m.ks > 0.f ? m.ks * std::pow(n_dot_h, m.shininess) : 0.f;
+      const float specular = m.ks > 0.f && n_dot_h > 0.f ? m.ks * std::pow(n_dot_h, m.shininess) : 0.f;
       // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
       const Vec3<float> reflected = color * (m.kd * n_dot_l) + Vec3<float>(specular, specular, specular);
       const Vec3<float> contribution = mul(path.weight, mul(intensity, reflected));
