@@ -50,7 +50,7 @@ SceneDesc default_scene() {
   area.edge_u = {2.f, 0.f, 0.f};
   area.edge_v = {0.f, 0.f, 2.f};
   area.color = {0.45f, 0.45f, 0.45f};
-  area.samples = 4;
+  area.samples = 3;
   s.lights = {key, fill, area};
 
   TextureDesc floor_checks;
