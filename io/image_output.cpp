@@ -2,12 +2,12 @@
 // with OpenImageIO to a temporary file beside the target, then rename.
 #include "io/image_output.h"
 
+#include "io/output_file.h"
+
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -125,37 +125,6 @@ std::vector<float> interleaved_floats(const Framebuffer& framebuffer, std::size_
   return values;
 }
 
-// A name beside the target, unique within this process and among processes,
-// keeping the target's extension.
-fs::path temporary_path(const fs::path& target) {
-  static std::atomic<unsigned long> counter{0};
-  std::string name = ".";
-  name += target.filename().string();
-  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-  name += target.extension().string();
-  return target.parent_path() / name;
-}
-
-// Removes the temporary file unless the write was committed.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(path_, ignored);
-    }
-  }
-  const fs::path& path() const { return path_; }
-  void commit() { committed_ = true; }
-
- private:
-  fs::path path_;
-  bool committed_ = false;
-};
-
 }  // namespace
 
 void check_output_path(const fs::path& path, bool with_aovs) {
@@ -169,12 +138,7 @@ void check_output_path(const fs::path& path, bool with_aovs) {
   if (with_aovs && format->extension != ".exr") {
     fail(path, "AOVs need an OpenEXR file (.exr); supported: " + std::string(kSupportedExtensions));
   }
-  const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  std::error_code error;
-  const fs::file_status parent_status = fs::status(parent, error);
-  if (!fs::exists(parent_status)) fail(path, "the directory '" + parent.string() + "' does not exist");
-  if (!fs::is_directory(parent_status)) fail(path, "'" + parent.string() + "' is not a directory");
-  if (fs::is_directory(fs::status(path, error))) fail(path, "is a directory");
+  check_output_directory(path);
 }
 
 void write_image(const fs::path& path, const Framebuffer& framebuffer) {
@@ -207,23 +171,17 @@ void write_image(const fs::path& path, const Framebuffer& framebuffer) {
   spec.alpha_channel = -1;
   spec.attribute("oiio:ColorSpace", format.eight_bit_srgb ? "sRGB" : "Linear");
 
-  // Declared before the writer, so the writer closes its file before removal.
-  TemporaryFile temporary(temporary_path(path));
-  auto output = OIIO::ImageOutput::create(std::string(format.oiio_format));
-  if (!output) fail(path, "cannot write: " + OIIO::geterror());
   const OIIO::TypeDesc data_type = format.eight_bit_srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
   const void* data = format.eight_bit_srgb ? static_cast<const void*>(bytes.data()) : floats.data();
-  if (!output->open(temporary.path().string(), spec) || !output->write_image(data_type, data) || !output->close()) {
-    std::string message = output->geterror();
-    if (message.empty()) message = OIIO::geterror();
-    fail(path, "cannot write: " + message);
-  }
-  output.reset();
-
-  std::error_code error;
-  fs::rename(temporary.path(), path, error);
-  if (error) fail(path, "cannot replace the file: " + error.message());
-  temporary.commit();
+  write_file_atomically(path, [&](const fs::path& temporary) {
+    auto output = OIIO::ImageOutput::create(std::string(format.oiio_format));
+    if (!output) fail(path, "cannot write: " + OIIO::geterror());
+    if (!output->open(temporary.string(), spec) || !output->write_image(data_type, data) || !output->close()) {
+      std::string message = output->geterror();
+      if (message.empty()) message = OIIO::geterror();
+      fail(path, "cannot write: " + message);
+    }
+  });
 }
 
 }  // namespace quiver

@@ -1,8 +1,7 @@
 #include "io/stats_json.h"
 
-#include <unistd.h>
+#include "io/output_file.h"
 
-#include <atomic>
 #include <charconv>
 #include <fstream>
 #include <stdexcept>
@@ -61,17 +60,6 @@ json aov_names(const RenderSettings& settings) {
   if (settings.aov_normal) names.push_back("normal");
   if (settings.aov_id) names.push_back("id");
   return names;
-}
-
-fs::path temporary_path(const fs::path& target) {
-  static std::atomic<unsigned long> counter{0};
-  std::string name(1, '.');
-  name += target.filename().string();
-  name += ".tmp-";
-  name += std::to_string(::getpid());
-  name += '-';
-  name += std::to_string(counter.fetch_add(1));
-  return target.parent_path() / name;
 }
 
 }  // namespace
@@ -138,35 +126,19 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
 
 void check_stats_path(const fs::path& path) {
   if (path.empty()) fail(path, "empty file name");
-  const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  std::error_code error;
-  const fs::file_status parent_status = fs::status(parent, error);
-  if (!fs::exists(parent_status)) fail(path, "the directory '" + parent.string() + "' does not exist");
-  if (!fs::is_directory(parent_status)) fail(path, "'" + parent.string() + "' is not a directory");
-  if (fs::is_directory(fs::status(path, error))) fail(path, "is a directory");
+  check_output_directory(path);
 }
 
 void write_json_file(const fs::path& path, const json& value) {
   check_stats_path(path);
   const std::string text = value.dump(2) + "\n";
-  const fs::path temporary = temporary_path(path);
-  std::error_code error;
-  {
+  write_file_atomically(path, [&](const fs::path& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) fail(path, "cannot create '" + temporary.string() + "'");
     out.write(text.data(), std::streamsize(text.size()));
     out.close();
-    if (!out) {
-      fs::remove(temporary, error);
-      fail(path, "cannot write '" + temporary.string() + "'");
-    }
-  }
-  fs::rename(temporary, path, error);
-  if (error) {
-    const std::string message = error.message();
-    fs::remove(temporary, error);
-    fail(path, "cannot replace the file: " + message);
-  }
+    if (!out) fail(path, "cannot write '" + temporary.string() + "'");
+  });
 }
 
 }  // namespace quiver

@@ -20,6 +20,7 @@
 
 #include "integrator/framebuffer.h"
 #include "io/image_output.h"
+#include "tests/support/temporary_directory.h"
 
 namespace quiver {
 namespace {
@@ -28,26 +29,7 @@ namespace fs = std::filesystem;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// A fresh directory under the system temporary directory, removed with its contents.
-class TemporaryDirectory {
- public:
-  TemporaryDirectory() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("quiver_image_output_test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TemporaryDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using testing::TemporaryDirectory;
 
 struct ReadBack {
   int width = 0, height = 0;

@@ -9,6 +9,7 @@
 
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
+#include "tests/support/temporary_directory.h"
 
 namespace quiver {
 namespace {
@@ -23,8 +24,8 @@ std::size_t primitive_count(const SceneDesc& s) {
 }
 
 TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
-  const fs::path dir = fs::temp_directory_path() / ("quiver_loader_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::TemporaryDirectory temporary("quiver_loader_test");
+  const fs::path& dir = temporary.path();
   // The same text is valid NFF only; the extension decides how it is read.
   const std::string nff = "f 1 0 0 1 0 0 0 1\ns 0 0 0 1\n";
   std::ofstream(dir / "a.NFF") << nff;
@@ -43,7 +44,6 @@ TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
               std::string::npos)
         << error.what();
   }
-  fs::remove_all(dir);
 }
 
 // Every example scene in io/examples loads and holds a camera, a light and geometry.

@@ -10,6 +10,7 @@
 
 #include "io/parse_error.h"
 #include "io/toml_reader.h"
+#include "tests/support/temporary_directory.h"
 
 namespace quiver {
 namespace {
@@ -338,8 +339,8 @@ TEST(TomlReader, FilesMustExist) {
 }
 
 TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
-  const fs::path dir = fs::temp_directory_path() / ("quiver_toml_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::TemporaryDirectory temporary("quiver_toml_test");
+  const fs::path& dir = temporary.path();
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
   std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"bad.obj\"\n";
   try {
@@ -350,7 +351,6 @@ TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
     EXPECT_EQ(error.line(), 3u);
     EXPECT_EQ(error.column(), 7u);
   }
-  fs::remove_all(dir);
 }
 
 // spot.obj has no MTL library: a [[meshes]] include gives it its texture.
