@@ -1,4 +1,4 @@
-// Checks shared by the TOML and OBJ fuzz targets: the invariants every
+// Checks shared by the NFF, TOML and OBJ fuzz targets: the invariants every
 // SceneDesc a reader returns must hold (io/scene_desc.h, io/README.md), and
 // the shape of a positioned ParseError. A broken invariant traps.
 #pragma once
