@@ -39,9 +39,9 @@ struct ConeSoA {
   }
   template <class F>
   ConeLanes<F> load(std::size_t first) const {
-    return {load_vec3<F>(bx, by, bz, first),          load_vec3<F>(ax, ay, az, first),
-            load_lanes<F>(height.data() + first),     load_lanes<F>(radius0.data() + first),
-            load_lanes<F>(slope.data() + first),      load_lanes<F>(facing.data() + first)};
+    return {load_vec3_unaligned<F>(bx, by, bz, first),          load_vec3_unaligned<F>(ax, ay, az, first),
+            load_lanes_unaligned<F>(height.data() + first),     load_lanes_unaligned<F>(radius0.data() + first),
+            load_lanes_unaligned<F>(slope.data() + first),      load_lanes_unaligned<F>(facing.data() + first)};
   }
 };
 

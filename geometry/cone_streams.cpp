@@ -11,4 +11,12 @@ KernelStreams<ConeSoA> cone_streams<kThisUnit>(ConeMethod method) {
   return make_streams<kThisUnit, ConeQuadric, ConeSoA>();
 }
 
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<kThisUnit>(ConeMethod method) {
+  switch (method) {
+    case ConeMethod::quadric: break;
+  }
+  return make_bvh_streams<kThisUnit, ConeQuadric, ConeSoA>();
+}
+
 }  // namespace quiver

@@ -1,6 +1,7 @@
 // Cone streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
+#include "geometry/bvh_traversal.h"
 #include "geometry/cone_soa.h"
 #include "geometry/streams.h"
 
@@ -18,5 +19,17 @@ template <>
 KernelStreams<ConeSoA> cone_streams<KernelUnit::sse4>(ConeMethod method);
 template <>
 KernelStreams<ConeSoA> cone_streams<KernelUnit::avx2>(ConeMethod method);
+
+// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+template <KernelUnit U>
+BvhStreams<ConeSoA> cone_bvh_streams(ConeMethod method);
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::scalar>(ConeMethod method);
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::scalar_fma>(ConeMethod method);
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::sse4>(ConeMethod method);
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::avx2>(ConeMethod method);
 
 }  // namespace quiver

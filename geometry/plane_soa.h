@@ -32,7 +32,7 @@ struct PlaneSoA {
   }
   template <class F>
   PlaneLanes<F> load(std::size_t first) const {
-    return {load_vec3<F>(nx, ny, nz, first), load_lanes<F>(d.data() + first)};
+    return {load_vec3_unaligned<F>(nx, ny, nz, first), load_lanes_unaligned<F>(d.data() + first)};
   }
 };
 

@@ -11,4 +11,12 @@ KernelStreams<PolygonSoA> polygon_streams<kThisUnit>(PolygonMethod method) {
   return make_packet_streams<kThisUnit, PolygonCrossing, PolygonSoA>();
 }
 
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<kThisUnit>(PolygonMethod method) {
+  switch (method) {
+    case PolygonMethod::crossing: break;
+  }
+  return make_bvh_streams<kThisUnit, PolygonCrossing, PolygonSoA>();
+}
+
 }  // namespace quiver

@@ -3,6 +3,7 @@
 // one edge loop (no scan orientation).
 #pragma once
 
+#include "geometry/bvh_traversal.h"
 #include "geometry/polygon_soa.h"
 #include "geometry/streams.h"
 
@@ -20,5 +21,17 @@ template <>
 KernelStreams<PolygonSoA> polygon_streams<KernelUnit::sse4>(PolygonMethod method);
 template <>
 KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx2>(PolygonMethod method);
+
+// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+template <KernelUnit U>
+BvhStreams<PolygonSoA> polygon_bvh_streams(PolygonMethod method);
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::scalar>(PolygonMethod method);
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::scalar_fma>(PolygonMethod method);
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::sse4>(PolygonMethod method);
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::avx2>(PolygonMethod method);
 
 }  // namespace quiver

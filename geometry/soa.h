@@ -18,8 +18,10 @@ namespace quiver {
 using AlignedFloats = std::vector<float, xsimd::aligned_allocator<float, 64>>;
 using AlignedInts = std::vector<std::int32_t, xsimd::aligned_allocator<std::int32_t, 64>>;
 
+// Room for a full load from any index below n (BVH leaves start anywhere),
+// rounded to whole kMaxLanes blocks.
 constexpr std::size_t padded_size(std::size_t n) {
-  return (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+  return n == 0 ? 0 : (n + 2 * kMaxLanes - 2) / kMaxLanes * kMaxLanes;
 }
 
 // Sizes the column to padded_size(count) and fills [count, padded) with
@@ -32,6 +34,13 @@ inline Vec3<F> load_vec3(const AlignedFloats& x, const AlignedFloats& y, const A
                          std::size_t first) {
   return {load_lanes<F>(x.data() + first), load_lanes<F>(y.data() + first),
           load_lanes<F>(z.data() + first)};
+}
+// A primitive store's lanes [first, first + W), first any index (BVH leaves).
+template <class F>
+inline Vec3<F> load_vec3_unaligned(const AlignedFloats& x, const AlignedFloats& y, const AlignedFloats& z,
+                                   std::size_t first) {
+  return {load_lanes_unaligned<F>(x.data() + first), load_lanes_unaligned<F>(y.data() + first),
+          load_lanes_unaligned<F>(z.data() + first)};
 }
 template <class F>
 inline Vec3<F> broadcast_vec3(const AlignedFloats& x, const AlignedFloats& y,

@@ -31,8 +31,8 @@ struct SphereSoA {
   }
   template <class F>
   SphereLanes<F> load(std::size_t first) const {
-    return {load_vec3<F>(cx, cy, cz, first), load_lanes<F>(r2.data() + first),
-            load_lanes<F>(inv_r.data() + first)};
+    return {load_vec3_unaligned<F>(cx, cy, cz, first), load_lanes_unaligned<F>(r2.data() + first),
+            load_lanes_unaligned<F>(inv_r.data() + first)};
   }
 };
 

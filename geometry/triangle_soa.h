@@ -42,8 +42,8 @@ struct TriangleSoA {
   }
   template <class F>
   TriangleLanes<F> load(std::size_t first) const {
-    return {load_vec3<F>(v0x, v0y, v0z, first), load_vec3<F>(v1x, v1y, v1z, first),
-            load_vec3<F>(v2x, v2y, v2z, first)};
+    return {load_vec3_unaligned<F>(v0x, v0y, v0z, first), load_vec3_unaligned<F>(v1x, v1y, v1z, first),
+            load_vec3_unaligned<F>(v2x, v2y, v2z, first)};
   }
   // Vertex k (0, 1, 2) of triangle i.
   Vec3<float> vertex(std::size_t i, int k) const;

@@ -12,4 +12,13 @@ KernelStreams<TriangleSoA> triangle_streams<kThisUnit>(TriangleMethod method) {
   return make_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
 }
 
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<kThisUnit>(TriangleMethod method) {
+  switch (method) {
+    case TriangleMethod::moller_trumbore: return make_bvh_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
+    case TriangleMethod::watertight: break;
+  }
+  return make_bvh_streams<kThisUnit, TriangleWatertight, TriangleSoA>();
+}
+
 }  // namespace quiver

@@ -1,6 +1,7 @@
 // Triangle streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
 #pragma once
 
+#include "geometry/bvh_traversal.h"
 #include "geometry/streams.h"
 #include "geometry/triangle_soa.h"
 
@@ -18,5 +19,17 @@ template <>
 KernelStreams<TriangleSoA> triangle_streams<KernelUnit::sse4>(TriangleMethod method);
 template <>
 KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx2>(TriangleMethod method);
+
+// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+template <KernelUnit U>
+BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method);
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::scalar>(TriangleMethod method);
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::scalar_fma>(TriangleMethod method);
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::sse4>(TriangleMethod method);
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::avx2>(TriangleMethod method);
 
 }  // namespace quiver

@@ -1,9 +1,11 @@
 #include "integrator/scene.h"
 
 #include <algorithm>
-#include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "geometry/bvh_store.h"
+#include "geometry/primitive_bounds.h"
 
 namespace quiver {
 
@@ -53,45 +55,29 @@ std::vector<TriangleDesc> patch_triangles(const ScenePolygon& patch) {
   return out;
 }
 
-void grow_bounds(Vec3<float>& lo, Vec3<float>& hi, const Vec3<float>& p) {
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = std::min(lo[a], p[a]);
-    hi[a] = std::max(hi[a], p[a]);
-  }
+void layer_bounds(const GeometryLayer& g, Box& bounds) {
+  for (std::size_t i = 0; i < g.spheres.count; ++i) grow(bounds, primitive_box(g.spheres, i));
+  for (std::size_t i = 0; i < g.triangles.count; ++i) grow(bounds, primitive_box(g.triangles, i));
+  for (std::size_t i = 0; i < g.polygons.count; ++i) grow(bounds, primitive_box(g.polygons, i));
+  for (std::size_t i = 0; i < g.cones.count; ++i) grow(bounds, primitive_box(g.cones, i));
 }
 
-void layer_bounds(const GeometryLayer& g, Vec3<float>& lo, Vec3<float>& hi) {
-  for (std::size_t i = 0; i < g.spheres.count; ++i) {
-    const float r = 1.f / g.spheres.inv_r[i];
-    const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
-    grow_bounds(lo, hi, c - Vec3<float>(r, r, r));
-    grow_bounds(lo, hi, c + Vec3<float>(r, r, r));
-  }
-  for (std::size_t i = 0; i < g.triangles.count; ++i) {
-    for (int k = 0; k < 3; ++k) grow_bounds(lo, hi, g.triangles.vertex(i, k));
-  }
-  for (std::size_t i = 0; i < g.polygons.count; ++i) {
-    // Unproject the 2D vertices: the dropped axis follows from the plane.
-    const int au = g.polygons.axis_u[i], av = g.polygons.axis_v[i], ak = 3 - au - av;
-    const Vec3<float> n{g.polygons.nx[i], g.polygons.ny[i], g.polygons.nz[i]};
-    for (std::int32_t k = 0; k < g.polygons.vertex_count[i]; ++k) {
-      Vec3<float> p;
-      p[au] = g.polygons.origin_u[i] + g.polygons.pu[g.polygons.first_vertex[i] + k];
-      p[av] = g.polygons.origin_v[i] + g.polygons.pv[g.polygons.first_vertex[i] + k];
-      p[ak] = -(g.polygons.d[i] + n[au] * p[au] + n[av] * p[av]) / n[ak];
-      grow_bounds(lo, hi, p);
-    }
-  }
-  for (std::size_t i = 0; i < g.cones.count; ++i) {
-    const Vec3<float> b{g.cones.bx[i], g.cones.by[i], g.cones.bz[i]};
-    const Vec3<float> a{g.cones.ax[i], g.cones.ay[i], g.cones.az[i]};
-    const Vec3<float> apex = b + a * g.cones.height[i];
-    const float r = std::max(g.cones.radius0[i], g.cones.radius0[i] + g.cones.slope[i] * g.cones.height[i]);
-    for (const Vec3<float>& c : {b, apex}) {
-      grow_bounds(lo, hi, c - Vec3<float>(r, r, r));
-      grow_bounds(lo, hi, c + Vec3<float>(r, r, r));
-    }
-  }
+// Builds one kind's store for one layer and the origins of what it kept.
+template <class Store, class Desc, class Builder>
+void build_store(const LayerInput<Desc>& input, Builder builder, BuildReport& report, Store& store,
+                 std::vector<PrimitiveOrigin>& origins) {
+  store = builder(std::span<const Desc>(input.descs), report);
+  origins = kept_origins(store.source, input.origins);
+}
+
+// With options.acceleration == bvh and enough primitives, builds the store's
+// BVH and puts the store and its origins in leaf order.
+template <class Store, class Desc, class Builder>
+void index_store(const LayerInput<Desc>& input, Builder builder, const SceneBuildOptions& options, Store& store,
+                 std::vector<PrimitiveOrigin>& origins, Bvh& bvh) {
+  if (options.acceleration != Acceleration::bvh || store.count < options.bvh_min_primitives) return;
+  bvh = reorder_for_bvh(std::span<const Desc>(input.descs), builder, options.bvh, store);
+  origins = kept_origins(store.source, input.origins);
 }
 
 template <class Vec>
@@ -121,6 +107,15 @@ std::size_t GeometryLayer::memory_bytes() const {
     bytes += bytes_of(*o);
   }
   return bytes;
+}
+
+std::size_t GeometryLayer::acceleration_bytes() const {
+  return sphere_bvh.memory_bytes() + triangle_bvh.memory_bytes() + polygon_bvh.memory_bytes() +
+         cone_bvh.memory_bytes();
+}
+
+std::size_t Scene::acceleration_bytes() const {
+  return opaque.acceleration_bytes() + transmissive.acceleration_bytes();
 }
 
 PrimitiveRef Scene::locate(std::int32_t id) const {
@@ -242,16 +237,15 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   };
   for (bool t : {false, true}) {
     GeometryLayer& g = t ? scene.transmissive : scene.opaque;
-    g.spheres = build_spheres(spheres.layer(t).descs, scene.counts.spheres);
-    g.sphere_origin = kept_origins(g.spheres.source, spheres.layer(t).origins);
-    g.planes = build_planes(planes.layer(t).descs, scene.counts.planes);
-    g.plane_origin = kept_origins(g.planes.source, planes.layer(t).origins);
-    g.triangles = build_triangles(triangles.layer(t).descs, scene.counts.triangles);
-    g.triangle_origin = kept_origins(g.triangles.source, triangles.layer(t).origins);
-    g.polygons = build_polygons(polygons.layer(t).descs, scene.counts.polygons);
-    g.polygon_origin = kept_origins(g.polygons.source, polygons.layer(t).origins);
-    g.cones = build_cones(cones.layer(t).descs, scene.counts.cones);
-    g.cone_origin = kept_origins(g.cones.source, cones.layer(t).origins);
+    build_store(spheres.layer(t), build_spheres, scene.counts.spheres, g.spheres, g.sphere_origin);
+    index_store(spheres.layer(t), build_spheres, options, g.spheres, g.sphere_origin, g.sphere_bvh);
+    build_store(planes.layer(t), build_planes, scene.counts.planes, g.planes, g.plane_origin);
+    build_store(triangles.layer(t), build_triangles, scene.counts.triangles, g.triangles, g.triangle_origin);
+    index_store(triangles.layer(t), build_triangles, options, g.triangles, g.triangle_origin, g.triangle_bvh);
+    build_store(polygons.layer(t), build_polygons, scene.counts.polygons, g.polygons, g.polygon_origin);
+    index_store(polygons.layer(t), build_polygons, options, g.polygons, g.polygon_origin, g.polygon_bvh);
+    build_store(cones.layer(t), build_cones, scene.counts.cones, g.cones, g.cone_origin);
+    index_store(cones.layer(t), build_cones, options, g.cones, g.cone_origin, g.cone_bvh);
     number(g.spheres);
     number(g.planes);
     number(g.triangles);
@@ -259,13 +253,12 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
     number(g.cones);
   }
 
-  const float inf = std::numeric_limits<float>::infinity();
-  Vec3<float> lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  layer_bounds(scene.opaque, lo, hi);
-  layer_bounds(scene.transmissive, lo, hi);
-  if (lo.x <= hi.x) {
-    scene.bounds_min = lo;
-    scene.bounds_max = hi;
+  Box bounds = empty_box();
+  layer_bounds(scene.opaque, bounds);
+  layer_bounds(scene.transmissive, bounds);
+  if (!is_empty(bounds)) {
+    scene.bounds_min = bounds.lo;
+    scene.bounds_max = bounds.hi;
   }
   return scene;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/bvh.h"
 #include "geometry/cone_soa.h"
 #include "geometry/plane_soa.h"
 #include "geometry/polygon_soa.h"
@@ -38,11 +39,14 @@ struct GeometryLayer {
   ConeSoA cones;
   // Per built primitive, in store order.
   std::vector<PrimitiveOrigin> sphere_origin, plane_origin, triangle_origin, polygon_origin, cone_origin;
+  // Per bounded kind; empty when the store is scanned (see SceneBuildOptions).
+  Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
 
   std::size_t primitive_count() const {
     return spheres.count + planes.count + triangles.count + polygons.count + cones.count;
   }
-  std::size_t memory_bytes() const;
+  std::size_t memory_bytes() const;               // stores and origins
+  std::size_t acceleration_bytes() const;         // BVH nodes
 };
 
 // A hit id resolved: which layer, which store, which primitive in it.
@@ -52,8 +56,15 @@ struct PrimitiveRef {
   std::uint32_t local;
 };
 
+enum class Acceleration { none, bvh };
+
 struct SceneBuildOptions {
   bool all_two_sided = false;  // SPD rule: every surface two-sided
+  // bvh: a BVH per bounded store of at least bvh_min_primitives (the order of
+  // its primitives follows the BVH leaves); none: every ray scans every store.
+  Acceleration acceleration = Acceleration::bvh;
+  std::size_t bvh_min_primitives = 16;
+  BvhBuildOptions bvh;
 };
 
 struct SceneCounts {
@@ -76,6 +87,7 @@ struct Scene {
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
   std::size_t primitive_count() const { return opaque.primitive_count() + transmissive.primitive_count(); }
   std::size_t memory_bytes() const;  // geometry stores and textures
+  std::size_t acceleration_bytes() const;
 };
 
 // Builds the scene; the SceneDesc must have a camera (io/auto_view.h adds

@@ -157,6 +157,7 @@ int run_render(const RenderArgs& args) {
       context.load_ms = load_ms;
       context.build_ms = build_ms;
       context.scene_memory_bytes = scene.memory_bytes();
+      context.acceleration_memory_bytes = scene.acceleration_bytes();
       stats = quiver::render_stats_json(result, plan.settings, context);
     }
     quiver::write_image(output, result.image);

@@ -219,7 +219,28 @@ void write_memory(std::ostream& out, const Scene& scene) {
   std::size_t texture_bytes = 0;
   for (const Texture& t : scene.textures) texture_bytes += bytes_of(t.image.rgb);
   out << "  " << padded("textures", 12, false) << texture_bytes << "\n"
-      << "  " << padded("total", 12, false) << scene.memory_bytes() << " (no acceleration structure yet)\n";
+      << "  " << padded("total", 12, false) << scene.memory_bytes() << "\n";
+}
+
+// Per layer and bounded kind: the BVH's width, nodes, depth and bytes.
+void write_acceleration(std::ostream& out, const Scene& scene) {
+  out << "acceleration (a BVH per bounded store of " << SceneBuildOptions{}.bvh_min_primitives
+      << " or more primitives; planes and smaller stores are scanned)\n";
+  bool any = false;
+  for (bool t : {false, true}) {
+    const GeometryLayer& g = scene.layer(t);
+    const std::pair<const char*, const Bvh*> trees[] = {
+        {"sphere", &g.sphere_bvh}, {"triangle", &g.triangle_bvh}, {"polygon", &g.polygon_bvh}, {"cone", &g.cone_bvh}};
+    for (const auto& [name, bvh] : trees) {
+      if (bvh->empty()) continue;
+      any = true;
+      out << "  " << padded(std::string(t ? "transmissive " : "opaque ") + name, 22, false) << bvh->width
+          << "-wide, " << bvh->node_count << " nodes, depth " << bvh->depth << ", " << bvh->memory_bytes()
+          << " bytes\n";
+    }
+  }
+  if (!any) out << "  none\n";
+  out << "  " << padded("total", 12, false) << scene.acceleration_bytes() << "\n";
 }
 
 }  // namespace
@@ -252,6 +273,7 @@ void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& sce
   write_materials(out, scene);
   write_textures(out, desc, scene);
   write_memory(out, scene);
+  write_acceleration(out, scene);
 }
 
 }  // namespace quiver

@@ -118,9 +118,8 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
           {"uncompacted", ratio(overall.active, overall.issued_uncompacted)}}}}},
       {"memory_bytes",
        {{"scene", context.scene_memory_bytes},
-        {"acceleration", 0},
-        {"framebuffer", framebuffer_bytes(result.image)},
-        {"note", "acceleration is 0: there is no BVH yet, every ray tests every primitive"}}},
+        {"acceleration", context.acceleration_memory_bytes},
+        {"framebuffer", framebuffer_bytes(result.image)}}},
   };
 }
 

@@ -22,7 +22,8 @@ struct RenderStatsContext {
   std::string output;  // the image file
   double load_ms = 0.0;
   double build_ms = 0.0;
-  std::size_t scene_memory_bytes = 0;  // Scene::memory_bytes()
+  std::size_t scene_memory_bytes = 0;         // Scene::memory_bytes()
+  std::size_t acceleration_memory_bytes = 0;  // Scene::acceleration_bytes()
 };
 
 // Keys: version, scene, output, load_ms, build_ms, render_ms, threads, simd,
@@ -34,8 +35,8 @@ struct RenderStatsContext {
 // shadow: {the same without depth}, overall: {active, issued_compacted,
 // issued_uncompacted, compacted, uncompacted}} where utilisation is
 // active / issued (null when nothing was issued) and overall sums every
-// wave and the shadow rays; memory_bytes {scene, acceleration,
-// framebuffer, note}.
+// wave and the shadow rays; memory_bytes {scene, acceleration (the BVHs),
+// framebuffer}.
 nlohmann::json render_stats_json(const RenderResult& result, const RenderSettings& settings,
                                  const RenderStatsContext& context);
 

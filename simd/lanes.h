@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <xsimd/xsimd.hpp>
 
@@ -160,6 +161,15 @@ inline xsimd::batch_bool<float, A> nonzero_lanes(const xsimd::batch<std::int32_t
 }
 inline bool nonzero_lanes(std::int32_t i) { return i != 0; }
 
+// a < b for int lanes (hit ids), as a float mask. The difference cannot
+// overflow for ids in [-1, 2^31 - 1); its sign survives the conversion.
+inline bool int_less(std::int32_t a, std::int32_t b) { return a < b; }
+template <class A>
+inline xsimd::batch_bool<float, A> int_less(const xsimd::batch<std::int32_t, A>& a,
+                                            const xsimd::batch<std::int32_t, A>& b) {
+  return xsimd::to_float(b - a) > xsimd::batch<float, A>(0.f);
+}
+
 // a != b for masks. Never write != or == between masks: xsimd 8.1's SSE
 // batch_bool comparison treats the all-ones lanes as floats (NaNs), so
 // true != true there; xor is right at every width.
@@ -224,6 +234,57 @@ inline void store_int_lanes(const IntLanes<F>& v, std::int32_t* p) {
   } else {
     v.store_aligned(p);
   }
+}
+
+// Loads from any float address (a leaf of a primitive store starts anywhere).
+template <class F>
+inline F load_lanes_unaligned(const float* p) {
+  if constexpr (lane_count<F> == 1) {
+    return *p;
+  } else {
+    return F::load_unaligned(p);
+  }
+}
+
+// Bit k set iff lane k of the mask is set.
+inline unsigned lane_bits(bool m) { return m ? 1u : 0u; }
+#if defined(__SSE4_2__) && defined(__FMA__)
+inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::sse4_2>& m) {
+  return static_cast<unsigned>(_mm_movemask_ps(xsimd::bitwise_cast(m)));
+}
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& m) {
+  return static_cast<unsigned>(_mm256_movemask_ps(xsimd::bitwise_cast(m)));
+}
+#endif
+
+// The smallest float greater than t (t itself for +inf and NaN): with it as
+// a kernel's exclusive tmax, a hit at exactly t is still reported.
+inline float next_float_up(float t) {
+  return t < std::numeric_limits<float>::infinity() ? std::nextafter(t, std::numeric_limits<float>::infinity()) : t;
+}
+template <class A>
+inline xsimd::batch<float, A> next_float_up(const xsimd::batch<float, A>& t) {
+  using Int = xsimd::batch<std::int32_t, A>;
+  using Float = xsimd::batch<float, A>;
+  const Int bits = xsimd::bitwise_cast<Int>(t);
+  // Positive (and +0): one more in the bit pattern; negative: one less; -0: the smallest positive.
+  const Int up = select(t > Float(0.f), bits + Int(1), bits - Int(1));
+  const Float stepped = select(t == Float(0.f), Float(std::numeric_limits<float>::denorm_min()),
+                               xsimd::bitwise_cast<Float>(up));
+  return select(t < Float(std::numeric_limits<float>::infinity()), stepped, t);
+}
+
+// The smallest lane.
+inline float horizontal_min(float v) { return v; }
+template <class A>
+inline float horizontal_min(const xsimd::batch<float, A>& v) {
+  alignas(64) float lanes[kMaxLanes];
+  v.store_aligned(lanes);
+  float m = lanes[0];
+  for (std::size_t k = 1; k < xsimd::batch<float, A>::size; ++k) m = lanes[k] < m ? lanes[k] : m;
+  return m;
 }
 
 // Lane numbers 0..W-1 as int and float lanes.

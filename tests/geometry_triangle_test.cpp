@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/bvh_store.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
 #include "tests/support/ray_sampling.h"
@@ -462,7 +464,10 @@ struct LeakCount {
 // Rays from inside `mesh` (origins within `inner` of `center`) aimed exactly
 // at points of its edges (per_edge each, at a float parameter along the edge)
 // and at its vertices (per_vertex each); a ray that hits nothing leaked.
-LeakCount count_leaks(TriangleMethod method, const Mesh& mesh, const Vec3<float>& center, float inner,
+// Any-hit over a triangle store: the scan, or a BVH walk (see below).
+using OcclusionQuery = std::function<void(const RaySoA&, const TriangleSoA&, OcclusionSoA&)>;
+
+LeakCount count_leaks(const OcclusionQuery& query, const Mesh& mesh, const Vec3<float>& center, float inner,
                       int per_edge, int per_vertex, std::uint32_t seed) {
   RaySampler s(seed);
   const TriangleSoA soa = triangles_of(mesh.triangles());
@@ -485,7 +490,7 @@ LeakCount count_leaks(TriangleMethod method, const Mesh& mesh, const Vec3<float>
   }
   const RaySoA soa_rays = testing::to_soa(rays);
   OcclusionSoA occlusion(soa_rays);
-  fastest_streams(method).occluded_packets(soa_rays, soa, occlusion);
+  query(soa_rays, soa, occlusion);
   LeakCount count;
   count.rays = rays.size();
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -513,7 +518,8 @@ TEST(TriangleStability, WatertightNeverLeaksThroughSharedEdgesAndVertices) {
   for (const Case& c : cases) {
     ASSERT_TRUE(c.mesh.closed()) << c.name;
     for (TriangleMethod m : kMethods) {
-      const LeakCount n = count_leaks(m, c.mesh, c.center, c.inner, c.per_edge, c.per_vertex, 99);
+      const LeakCount n = count_leaks(fastest_streams(m).occluded_packets, c.mesh, c.center, c.inner, c.per_edge,
+                                      c.per_vertex, 99);
       std::printf("[ measured ] %-12s %-15s %zu triangles, %zu rays: %zu leaked at edges, %zu at vertices\n",
                   c.name, method_name(m), c.mesh.faces.size(), n.rays, n.edge_leaks, n.vertex_leaks);
       const std::size_t leaks = n.edge_leaks + n.vertex_leaks;
@@ -530,6 +536,33 @@ TEST(TriangleStability, WatertightNeverLeaksThroughSharedEdgesAndVertices) {
   EXPECT_EQ(watertight_leaks, 0u);
   // The seed method's failure point: epsilon-free Moller-Trumbore leaks.
   EXPECT_GT(mt_leaks, 0u);
+}
+
+TEST(TriangleStability, WatertightNeverLeaksThroughTheBvh) {
+  // The same rays through a BVH over the mesh (conservative slab tests),
+  // every node width, packets and single rays, on the widest unit here.
+  const BvhStreams<TriangleSoA> tree = with_kernel_unit(kernel_unit_for(best_supported_isa()), [](auto u) {
+    return triangle_bvh_streams<decltype(u)::value>(TriangleMethod::watertight);
+  });
+  const Mesh mesh = icosphere(3);
+  const std::vector<TriangleDesc> descs = mesh.triangles();
+  std::size_t rays = 0;
+  for (int width : {2, 4, 8}) {
+    for (BvhTraversal traversal : {BvhTraversal::packets, BvhTraversal::single}) {
+      const OcclusionQuery through_bvh = [&](const RaySoA& r, const TriangleSoA& soa, OcclusionSoA& occlusion) {
+        TriangleSoA store = soa;
+        BvhBuildOptions options;
+        options.width = width;
+        options.max_leaf_size = 2;  // a deep tree: many boxes share each edge
+        const Bvh bvh = reorder_for_bvh(std::span<const TriangleDesc>(descs), build_triangles, options, store);
+        tree.any_hits(r, store, bvh, occlusion, traversal);
+      };
+      const LeakCount n = count_leaks(through_bvh, mesh, {0, 0, 0}, 0.5f, 150, 150, 7);
+      rays += n.rays;
+      EXPECT_EQ(n.edge_leaks + n.vertex_leaks, 0u) << "width " << width << ", traversal " << int(traversal);
+    }
+  }
+  EXPECT_GE(rays, 1'000'000u);
 }
 
 TEST(TriangleStability, GrazingAndParallelRaysNeverGiveNaN) {

@@ -86,8 +86,11 @@ TEST(Render, EveryUnitGivesTheSameBits) {
   } cases[] = {{"default+mesh", every_kind_scene(), "jitter:2"},
                {"every_entity.nff", nff_scene(), "adaptive:0.05:2"},
                {"default corners", default_scene(), "corners"}};
+  SceneBuildOptions every_store_indexed;
+  every_store_indexed.bvh_min_primitives = 1;
   for (const auto& c : cases) {
-    const Scene scene = build_scene(c.desc, {});
+   for (const SceneBuildOptions& options : {SceneBuildOptions{}, every_store_indexed}) {
+    const Scene scene = build_scene(c.desc, options);
     RenderSettings settings = small_settings(48, 36, c.aa);
     settings.isa = Isa::scalar;
     settings.threads = 1;
@@ -103,6 +106,41 @@ TEST(Render, EveryUnitGivesTheSameBits) {
       const RenderResult r = render(scene, settings);
       expect_same_image(reference.image, r.image, std::string(c.name) + " at " + std::string(kernel_unit_name(unit)));
       EXPECT_EQ(r.stats.rays.total(), reference.stats.rays.total()) << c.name;
+    }
+   }
+  }
+}
+
+TEST(Render, BvhGivesTheSameImageAsScanning) {
+  // Hit ids differ (a BVH reorders its store); everything seen does not.
+  SceneDesc crowded = every_kind_scene();
+  for (int i = 0; i < 40; ++i) {
+    const float x = -3.f + 0.15f * static_cast<float>(i);
+    add_octahedron(crowded, {x, 0.3f + 0.02f * static_cast<float>(i % 7), 1.5f - 0.1f * static_cast<float>(i % 5)},
+                   0.12f, static_cast<std::size_t>(i % 4));
+  }
+  const struct {
+    const char* name;
+    SceneDesc desc;
+  } cases[] = {{"crowded", crowded}, {"every_entity.nff", nff_scene()}};
+  for (const auto& c : cases) {
+    SceneBuildOptions scan;
+    scan.acceleration = Acceleration::none;
+    RenderSettings settings = small_settings(64, 48, "jitter:2");
+    const RenderResult reference = render(build_scene(c.desc, scan), settings);
+    for (int width : {2, 4, 8}) {
+      SceneBuildOptions indexed;
+      indexed.bvh_min_primitives = 1;
+      indexed.bvh.width = width;
+      const Scene scene = build_scene(c.desc, indexed);
+      EXPECT_GT(scene.acceleration_bytes(), 0u);
+      const RenderResult r = render(scene, settings);
+      const std::string what = std::string(c.name) + ", node width " + std::to_string(width);
+      EXPECT_TRUE(same_bits(reference.image.rgb, r.image.rgb)) << what << ": colour";
+      EXPECT_TRUE(same_bits(reference.image.depth, r.image.depth)) << what << ": depth";
+      EXPECT_TRUE(same_bits(reference.image.normal, r.image.normal)) << what << ": normal";
+      EXPECT_EQ(reference.image.kind, r.image.kind) << what << ": kind";
+      EXPECT_EQ(r.stats.rays.total(), reference.stats.rays.total()) << what;
     }
   }
 }

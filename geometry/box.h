@@ -1,0 +1,44 @@
+// Axis-aligned boxes for the BVH build: the empty box is inverted
+// (lo = +inf, hi = -inf), so growing it by anything gives that thing.
+#pragma once
+
+#include <algorithm>
+#include <limits>
+
+#include "simd/vec3.h"
+
+namespace quiver {
+
+struct Box {
+  Vec3<float> lo, hi;
+};
+
+inline Box empty_box() {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  return {{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+
+inline void grow(Box& b, const Vec3<float>& p) {
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min(b.lo[a], p[a]);
+    b.hi[a] = std::max(b.hi[a], p[a]);
+  }
+}
+
+inline void grow(Box& b, const Box& other) {
+  grow(b, other.lo);
+  grow(b, other.hi);
+}
+
+inline bool is_empty(const Box& b) { return !(b.lo.x <= b.hi.x); }
+
+// Half the surface area (the SAH compares only ratios); 0 for an empty box.
+inline float half_area(const Box& b) {
+  if (is_empty(b)) return 0.f;
+  const Vec3<float> e = b.hi - b.lo;
+  return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+
+inline Vec3<float> centroid(const Box& b) { return (b.lo + b.hi) * 0.5f; }
+
+}  // namespace quiver

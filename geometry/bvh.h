@@ -1,0 +1,77 @@
+// A bounding volume hierarchy over one primitive store: binned SAH (Wald,
+// "On fast construction of SAH-based bounding volume hierarchies", 2007) on
+// a binary tree, collapsed into nodes of 2, 4 or 8 children whose boxes are
+// stored SoA (lo x, y, z then hi x, y, z, `width` floats each), so one ray
+// tests every child box of a node in one SIMD operation.
+//
+// The build reorders the store: a leaf is a contiguous range of at most
+// max_leaf_size primitives, so the leaf is an SoA block the scan kernels load
+// directly. build_bvh returns that order (order[k] = input index of the
+// primitive that goes to position k).
+//
+// Boxes are conservative: each primitive's box contains every point the
+// kernel can report on it (see geometry/primitive_bounds.h), and the
+// traversal widens the slab interval (geometry/bvh_traversal.h), so culling
+// never removes a primitive a brute-force scan would report.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/box.h"
+#include "geometry/soa.h"
+
+namespace quiver {
+
+// Child slot of a wide node: >= 0 is an inner node; < 0 a leaf holding
+// primitives [first, first + count) (count 0 is an empty slot).
+inline constexpr std::int32_t kMaxLeafSize = 15;
+constexpr std::int32_t encode_leaf(std::int32_t first, std::int32_t count) { return -1 - (first * 16 + count); }
+constexpr bool is_leaf(std::int32_t child) { return child < 0; }
+constexpr std::int32_t leaf_first(std::int32_t child) { return (-1 - child) / 16; }
+constexpr std::int32_t leaf_count(std::int32_t child) { return (-1 - child) % 16; }
+// Largest primitive count a BVH can index (first * 16 must fit an int32).
+inline constexpr std::size_t kMaxBvhPrimitives = std::size_t(1) << 26;
+
+struct BvhBuildOptions {
+  int width = 4;               // children per node: 2, 4 or 8
+  int max_leaf_size = 8;       // at most kMaxLeafSize
+  int bins = 16;               // SAH bins per axis
+  float traversal_cost = 1.f;  // relative to one primitive test
+  std::size_t parallel_threshold = 4096;  // subtrees at least this big build in parallel (oneTBB)
+};
+
+struct Bvh {
+  int width = 0;  // 0: no BVH
+  // Per node, 6 * width floats: lo x, lo y, lo z, hi x, hi y, hi z.
+  AlignedFloats boxes;
+  // Per node, width child slots.
+  AlignedInts children;
+  std::size_t node_count = 0;
+  int depth = 0;  // deepest node, root = 1
+  Box bounds{};   // of the whole store
+
+  bool empty() const { return width == 0; }
+  std::size_t memory_bytes() const {
+    return boxes.capacity() * sizeof(float) + children.capacity() * sizeof(std::int32_t);
+  }
+};
+
+// Builds the BVH of `boxes` and the primitive order its leaves use. An empty
+// input gives an empty Bvh. Throws std::length_error past kMaxBvhPrimitives
+// and std::invalid_argument for a bad width or leaf size.
+Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order);
+
+// Deepest tree the build makes: past kSahDepthLimit it splits at the object
+// median, which halves the count per level (kMaxBvhPrimitives = 2^26).
+inline constexpr int kSahDepthLimit = 32;
+inline constexpr int kMaxBvhDepth = kSahDepthLimit + 27;
+// A traversal stack never holds more entries than this: each level leaves at
+// most width - 1 siblings behind.
+constexpr std::size_t bvh_stack_size(int width) {
+  return static_cast<std::size_t>(kMaxBvhDepth) * static_cast<std::size_t>(width - 1) + 1;
+}
+
+}  // namespace quiver

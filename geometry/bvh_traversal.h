@@ -1,0 +1,438 @@
+// BVH traversal for one primitive store, written once for every width:
+//   packet: W rays walk the tree together (Wald, Slusallek, Benthin, Wagner,
+//           "Interactive rendering with coherent ray tracing", 2001); a child
+//           is entered when any active lane's slab interval meets it; a
+//           popped entry keeps only the lanes whose entry distance is still
+//           within their closest hit; leaves test W rays against one
+//           primitive at a time (the packet kernels);
+//   single: one ray tests all children of a wide node at once (a node's
+//           boxes are SoA), nearest child first; leaves test the ray against
+//           W primitives at a time (the scan kernels), or one at a time for
+//           kinds without a scan orientation.
+// The stream decides per packet: packet traversal when every active lane's
+// direction lies in the same octant (coherent: camera rays), otherwise each
+// active lane traverses alone (see bench/README.md for the measurement).
+//
+// Slab test: Williams, Barrus, Morley, Shirley, "An efficient and robust
+// ray-box intersection algorithm" (2005): near/far planes chosen by the sign
+// of 1/d, so d = +-0 gives +-inf, never 0 * inf for an origin off the slab;
+// a NaN slab value is dropped by the order of the min/max operands. The
+// interval is then widened by kSlabSlack relative (beyond Ize's 2 gamma(3),
+// "Robust BVH ray traversal", JCGT 2013, to cover the kernels' own error in
+// t), so no primitive a brute-force scan reports is culled.
+//
+// Closest hit: the lexicographic minimum of (t, id) over the store, as the
+// brute-force scan in id order gives it: kernels get tmax = next_float_up(t)
+// and a hit at exactly t wins only with a smaller id. So the result does not
+// depend on traversal order, packet or single, or width.
+// Any hit: occlusion within (tmin, tmax); a packet stops when every lane is
+// blocked, a single ray at its first hit.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "geometry/bvh.h"
+#include "geometry/streams.h"
+
+namespace quiver {
+
+// Relative widening of every slab interval: 2^-10, above the relative t
+// error of every kernel in the stability tests.
+inline constexpr float kSlabSlack = 0x1p-10f;
+
+enum class BvhTraversal { automatic, packets, single };
+
+// Lanes for one ray against a node's children, per kernel unit and node width.
+template <KernelUnit U, int N>
+struct NodeLanesOf {
+  using type = float;  // children one at a time
+};
+#if XSIMD_WITH_SSE4_2 && defined(__FMA__)
+template <>
+struct NodeLanesOf<KernelUnit::sse4, 4> {
+  using type = UnitLanes<KernelUnit::sse4>;
+};
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+template <>
+struct NodeLanesOf<KernelUnit::avx2, 4> {
+  using type = xsimd::batch<float, xsimd::sse4_2>;
+};
+template <>
+struct NodeLanesOf<KernelUnit::avx2, 8> {
+  using type = UnitLanes<KernelUnit::avx2>;
+};
+#endif
+
+// A ray prepared for slab tests.
+template <class F>
+struct SlabRay {
+  Vec3<F> origin, inv_dir;
+  std::array<Mask<F>, 3> negative;  // 1/d < 0: the near plane is hi
+
+  SlabRay(const Vec3<F>& o, const Vec3<F>& inv) : origin(o), inv_dir(inv) {
+    for (int a = 0; a < 3; ++a) negative[a] = inv_dir[a] < F(0.f);
+  }
+  explicit SlabRay(const Ray<F>& ray)
+      : SlabRay(ray.origin, Vec3<F>(F(1.f) / ray.direction.x, F(1.f) / ray.direction.y, F(1.f) / ray.direction.z)) {}
+};
+
+// Lanes whose widened interval [near, far] within [tmin, tmax] is not empty;
+// `near` receives the widened entry distance.
+template <class F>
+inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec3<F>& hi, const F& tmin,
+                             const F& tmax, F& near) {
+  F t0 = tmin, t1 = tmax;
+  for (int a = 0; a < 3; ++a) {
+    const F enter = (select(ray.negative[a], hi[a], lo[a]) - ray.origin[a]) * ray.inv_dir[a];
+    const F leave = (select(ray.negative[a], lo[a], hi[a]) - ray.origin[a]) * ray.inv_dir[a];
+    t0 = max(t0, enter);  // a NaN `enter` keeps t0
+    t1 = min(t1, leave);  // a NaN `leave` keeps t1
+  }
+  near = t0 * F(1.f - kSlabSlack);
+  return near <= t1 * F(1.f + kSlabSlack);
+}
+
+template <class F>
+inline Vec3<F> node_box_corner(const Bvh& bvh, std::size_t node, int N, int corner, int child) {
+  const float* b = bvh.boxes.data() + node * 6 * static_cast<std::size_t>(N) + static_cast<std::size_t>(child);
+  const std::size_t n = static_cast<std::size_t>(N);
+  return {F(b[(3 * corner + 0) * n]), F(b[(3 * corner + 1) * n]), F(b[(3 * corner + 2) * n])};
+}
+
+// The closest-hit rule: a candidate at exactly the current t wins only with a smaller id.
+template <class F>
+inline Mask<F> wins_over(const Mask<F>& hit, const F& t, const IntLanes<F>& id, const Hit<F>& best) {
+  return hit && (t < best.t || (t == best.t && int_less(id, best.id)));
+}
+
+// Primitive stores with a scan orientation (one ray, W primitives).
+template <class S>
+concept ScanStore = requires(const S& s) { s.template load<float>(0); };
+
+// ---- packet traversal -------------------------------------------------------
+
+template <class Method, class F, int N, class S>
+[[gnu::always_inline]] inline void closest_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
+                                                      const Mask<F>& active, Hit<F>& hit) {
+  struct Entry {
+    std::int32_t node;
+    F near;  // +inf in lanes that do not enter
+  };
+  std::array<Entry, bvh_stack_size(N)> stack;
+  const auto prepared = Method::prepare(ray);
+  const SlabRay<F> slab(ray);
+  const F inf(std::numeric_limits<float>::infinity());
+  std::size_t top = 0;
+  stack[top++] = {0, select(active, ray.tmin, inf)};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    const Mask<F> lanes = entry.near <= hit.t * F(1.f + kSlabSlack);
+    if (none(lanes)) continue;
+    if (is_leaf(entry.node)) {
+      const std::int32_t first = leaf_first(entry.node), end = first + leaf_count(entry.node);
+      for (std::int32_t p = first; p < end; ++p) {
+        Candidate<F> c;
+        const Mask<F> hits_p = Method::intersect(prepared, prims.template broadcast<F>(static_cast<std::size_t>(p)),
+                                                 next_float_up(hit.t), lanes, c);
+        const IntLanes<F> id(prims.id_base + p);
+        const Mask<F> closer = wins_over(hits_p, c.t, id, hit);
+        if (any(closer)) hit.commit(closer, c, id);
+      }
+      continue;
+    }
+    // Children that some lane enters, pushed farthest first.
+    std::array<Entry, N> entered;
+    std::array<float, N> key;
+    int count = 0;
+    const std::size_t node = static_cast<std::size_t>(entry.node);
+    for (int c = 0; c < N; ++c) {
+      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      if (is_leaf(child) && leaf_count(child) == 0) continue;
+      F near;
+      const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
+                                           node_box_corner<F>(bvh, node, N, 1, c), ray.tmin, hit.t, near) &&
+                             lanes;
+      if (none(enters)) continue;
+      const F lane_near = select(enters, near, inf);
+      const float k = horizontal_min(lane_near);
+      int at = count++;
+      for (; at > 0 && key[at - 1] < k; --at) {
+        key[at] = key[at - 1];
+        entered[at] = entered[at - 1];
+      }
+      key[at] = k;
+      entered[at] = {child, lane_near};
+    }
+    for (int e = 0; e < count; ++e) stack[top++] = entered[e];
+  }
+}
+
+template <class Method, class F, int N, class S>
+[[gnu::always_inline]] inline Mask<F> occluded_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
+                                                          Mask<F> occluded, const Mask<F>& valid) {
+  struct Entry {
+    std::int32_t node;
+    Mask<F> lanes;  // that entered it
+  };
+  std::array<Entry, bvh_stack_size(N)> stack;
+  const auto prepared = Method::prepare(ray);
+  const SlabRay<F> slab(ray);
+  std::size_t top = 0;
+  stack[top++] = {0, valid};
+  while (top > 0) {
+    if (none(valid && !occluded)) break;
+    const Entry entry = stack[--top];
+    const Mask<F> active = entry.lanes && !occluded;
+    if (none(active)) continue;
+    if (is_leaf(entry.node)) {
+      const std::int32_t first = leaf_first(entry.node), end = first + leaf_count(entry.node);
+      for (std::int32_t p = first; p < end; ++p) {
+        const Mask<F> open = entry.lanes && !occluded;
+        if (none(open)) break;
+        Candidate<F> unused;
+        occluded = occluded || Method::intersect(prepared, prims.template broadcast<F>(static_cast<std::size_t>(p)),
+                                                 ray.tmax, open, unused);
+      }
+      continue;
+    }
+    const std::size_t node = static_cast<std::size_t>(entry.node);
+    for (int c = N - 1; c >= 0; --c) {
+      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      if (is_leaf(child) && leaf_count(child) == 0) continue;
+      F near;
+      const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
+                                           node_box_corner<F>(bvh, node, N, 1, c), ray.tmin, ray.tmax, near) &&
+                             active;
+      if (any(enters)) stack[top++] = {child, enters};
+    }
+  }
+  return occluded;
+}
+
+// ---- single-ray traversal -----------------------------------------------------
+
+// The node's children one ray enters: bit c of the result, near[c] their entry distances.
+template <KernelUnit U, int N>
+[[gnu::always_inline]] inline unsigned enter_children(const Bvh& bvh, std::size_t node, const SlabRay<float>& ray,
+                                                      float tmin, float tmax, std::array<float, N>& near) {
+  using G = typename NodeLanesOf<U, N>::type;
+  constexpr int kG = lane_count<G>;
+  const SlabRay<G> slab({G(ray.origin.x), G(ray.origin.y), G(ray.origin.z)},
+                        {G(ray.inv_dir.x), G(ray.inv_dir.y), G(ray.inv_dir.z)});
+  const float* b = bvh.boxes.data() + node * 6 * N;
+  unsigned bits = 0;
+  for (int c = 0; c < N; c += kG) {
+    const Vec3<G> lo{load_lanes<G>(b + 0 * N + c), load_lanes<G>(b + 1 * N + c), load_lanes<G>(b + 2 * N + c)};
+    const Vec3<G> hi{load_lanes<G>(b + 3 * N + c), load_lanes<G>(b + 4 * N + c), load_lanes<G>(b + 5 * N + c)};
+    G lane_near;
+    const Mask<G> enters = slab_interval(slab, lo, hi, G(tmin), G(tmax), lane_near);
+    if constexpr (kG == 1) {
+      near[c] = lane_near;
+    } else {
+      store_lanes(lane_near, near.data() + c);
+    }
+    bits |= lane_bits(enters) << c;
+  }
+  return bits;
+}
+
+template <KernelUnit U, class Method, int N, class S>
+[[gnu::always_inline]] inline void closest_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray,
+                                                      Hit<float>& hit) {
+  using F = UnitLanes<U>;
+  struct Entry {
+    std::int32_t node;
+    float near;
+  };
+  std::array<Entry, bvh_stack_size(N)> stack;
+  const SlabRay<float> slab(ray);
+  const Ray<F> wide = broadcast_ray<F>(ray);
+  const auto prepared_wide = Method::prepare(wide);
+  std::size_t top = 0;
+  stack[top++] = {0, ray.tmin};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    if (!(entry.near <= hit.t * (1.f + kSlabSlack))) continue;
+    if (is_leaf(entry.node)) {
+      const std::size_t first = static_cast<std::size_t>(leaf_first(entry.node));
+      const std::size_t end = first + static_cast<std::size_t>(leaf_count(entry.node));
+      if constexpr (ScanStore<S>) {
+        for (std::size_t block = first; block < end; block += lane_count<F>) {
+          Candidate<F> c;
+          const Mask<F> hits_block = Method::intersect(prepared_wide, prims.template load<F>(block),
+                                                       F(next_float_up(hit.t)), first_lanes<F>(end - block), c);
+          if (none(hits_block)) continue;
+          Hit<F> lanes = Hit<F>::none(F(hit.t));
+          lanes.commit(hits_block, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(block)) + lane_index<F>());
+          const Hit<float> best = closest_lane(lanes, hit.t);
+          if (wins_over(best.id != kNoHit, best.t, best.id, hit)) hit = best;
+        }
+      } else {
+        const auto prepared = Method::prepare(ray);
+        for (std::size_t p = first; p < end; ++p) {
+          Candidate<float> c;
+          const bool hits_p = Method::intersect(prepared, prims.template broadcast<float>(p), next_float_up(hit.t),
+                                                true, c);
+          const std::int32_t id = prims.id_base + static_cast<std::int32_t>(p);
+          if (wins_over(hits_p, c.t, id, hit)) hit.commit(true, c, id);
+        }
+      }
+      continue;
+    }
+    std::array<float, N> near;
+    const std::size_t node = static_cast<std::size_t>(entry.node);
+    unsigned bits = enter_children<U, N>(bvh, node, slab, ray.tmin, hit.t, near);
+    // Push farthest first, so the nearest child is popped next.
+    std::array<Entry, N> entered;
+    int count = 0;
+    for (; bits != 0; bits &= bits - 1) {
+      const int c = __builtin_ctz(bits);
+      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      if (is_leaf(child) && leaf_count(child) == 0) continue;
+      int at = count++;
+      for (; at > 0 && entered[at - 1].near < near[c]; --at) entered[at] = entered[at - 1];
+      entered[at] = {child, near[c]};
+    }
+    for (int e = 0; e < count; ++e) stack[top++] = entered[e];
+  }
+}
+
+template <KernelUnit U, class Method, int N, class S>
+[[gnu::always_inline]] inline bool occluded_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray) {
+  using F = UnitLanes<U>;
+  std::array<std::int32_t, bvh_stack_size(N)> stack;
+  const SlabRay<float> slab(ray);
+  const Ray<F> wide = broadcast_ray<F>(ray);
+  const auto prepared_wide = Method::prepare(wide);
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const std::int32_t entry = stack[--top];
+    if (is_leaf(entry)) {
+      const std::size_t first = static_cast<std::size_t>(leaf_first(entry));
+      const std::size_t end = first + static_cast<std::size_t>(leaf_count(entry));
+      if constexpr (ScanStore<S>) {
+        for (std::size_t block = first; block < end; block += lane_count<F>) {
+          Candidate<F> unused;
+          if (any(Method::intersect(prepared_wide, prims.template load<F>(block), wide.tmax,
+                                    first_lanes<F>(end - block), unused))) {
+            return true;
+          }
+        }
+      } else {
+        const auto prepared = Method::prepare(ray);
+        for (std::size_t p = first; p < end; ++p) {
+          Candidate<float> unused;
+          if (Method::intersect(prepared, prims.template broadcast<float>(p), ray.tmax, true, unused)) return true;
+        }
+      }
+      continue;
+    }
+    std::array<float, N> near;
+    const std::size_t node = static_cast<std::size_t>(entry);
+    for (unsigned bits = enter_children<U, N>(bvh, node, slab, ray.tmin, ray.tmax, near); bits != 0;
+         bits &= bits - 1) {
+      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(__builtin_ctz(bits))];
+      if (!(is_leaf(child) && leaf_count(child) == 0)) stack[top++] = child;
+    }
+  }
+  return false;
+}
+
+// ---- streams --------------------------------------------------------------------
+
+// Every active lane's direction in one octant.
+template <class F>
+inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
+  for (int a = 0; a < 3; ++a) {
+    const Mask<F> negative = ray.direction[a] < F(0.f);
+    if (any(negative && active) && any(!negative && active)) return false;
+  }
+  return true;
+}
+
+// Whether the packet's active lanes walk the tree together.
+template <class F>
+inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
+  if (traversal != BvhTraversal::automatic) return traversal == BvhTraversal::packets;
+  return lane_count<F> > 1 && same_octant(ray, active);
+}
+
+template <KernelUnit U, class Method, class S, int N>
+[[gnu::flatten]] void closest_bvh(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
+                                  BvhTraversal traversal) {
+  using F = UnitLanes<U>;
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Mask<F> active = first_lanes<F>(rays.count - first);
+    const Ray<F> ray = rays.load<F>(first);
+    if (travels_together(traversal, ray, active)) {
+      Hit<F> hit = hits.load<F>(first);
+      closest_bvh_packet<Method, F, N>(prims, bvh, ray, active, hit);
+      hits.store(first, hit);
+      continue;
+    }
+    const std::size_t end = first + W < rays.count ? first + W : rays.count;
+    for (std::size_t r = first; r < end; ++r) {
+      Hit<float> hit = hits.get(r);
+      closest_bvh_single<U, Method, N>(prims, bvh, rays.get(r), hit);
+      hits.set(r, hit);
+    }
+  }
+}
+
+template <KernelUnit U, class Method, class S, int N>
+[[gnu::flatten]] void occluded_bvh(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
+                                   BvhTraversal traversal) {
+  using F = UnitLanes<U>;
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Mask<F> valid = first_lanes<F>(rays.count - first);
+    const Ray<F> ray = rays.load<F>(first);
+    const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
+    if (none(valid && !occluded)) continue;
+    if (travels_together(traversal, ray, valid && !occluded)) {
+      const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(prims, bvh, ray, occluded, valid);
+      store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
+      continue;
+    }
+    const std::size_t end = first + W < rays.count ? first + W : rays.count;
+    for (std::size_t r = first; r < end; ++r) {
+      if (result.occluded[r] == 0 && occluded_bvh_single<U, Method, N>(prims, bvh, rays.get(r))) {
+        result.occluded[r] = 1;
+      }
+    }
+  }
+}
+
+// The BVH streams of one method for node widths 2, 4 and 8.
+template <class S>
+struct BvhStreams {
+  using Closest = void (*)(const RaySoA&, const S&, const Bvh&, HitSoA&, BvhTraversal);
+  using Occluded = void (*)(const RaySoA&, const S&, const Bvh&, OcclusionSoA&, BvhTraversal);
+  std::array<Closest, 3> closest{};
+  std::array<Occluded, 3> occluded{};
+
+  static constexpr int slot(int width) { return width == 2 ? 0 : (width == 4 ? 1 : 2); }
+  void closest_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
+                    BvhTraversal traversal = BvhTraversal::automatic) const {
+    closest[slot(bvh.width)](rays, prims, bvh, hits, traversal);
+  }
+  void any_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
+                BvhTraversal traversal = BvhTraversal::automatic) const {
+    occluded[slot(bvh.width)](rays, prims, bvh, result, traversal);
+  }
+};
+
+template <KernelUnit U, class Method, class S>
+BvhStreams<S> make_bvh_streams() {
+  BvhStreams<S> s;
+  s.closest = {&closest_bvh<U, Method, S, 2>, &closest_bvh<U, Method, S, 4>, &closest_bvh<U, Method, S, 8>};
+  s.occluded = {&occluded_bvh<U, Method, S, 2>, &occluded_bvh<U, Method, S, 4>, &occluded_bvh<U, Method, S, 8>};
+  return s;
+}
+
+}  // namespace quiver

@@ -1,0 +1,353 @@
+// BVH build invariants, and traversal against the brute-force scan: for every
+// kernel unit, node width, and traversal (packets, single rays, automatic),
+// closest hits equal the scalar unit's scan of the same store bit for bit,
+// and any-hit answers equal too.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include "geometry/bvh.h"
+#include "geometry/bvh_store.h"
+#include "geometry/cone_streams.h"
+#include "geometry/polygon_streams.h"
+#include "geometry/primitive_bounds.h"
+#include "geometry/sphere_streams.h"
+#include "geometry/triangle_streams.h"
+#include "tests/support/kernel_checks.h"
+#include "tests/support/ray_sampling.h"
+
+namespace quiver {
+namespace {
+
+using testing::RaySampler;
+
+std::vector<Box> random_boxes(RaySampler& s, std::size_t n) {
+  std::vector<Box> boxes;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3<float> c = s.in_box({-10, -10, -10}, {10, 10, 10});
+    const Vec3<float> e{s.uniform(0.f, 0.5f), s.uniform(0.f, 0.5f), s.uniform(0.f, 0.5f)};
+    boxes.push_back({c - e, c + e});
+  }
+  return boxes;
+}
+
+bool contains(const Box& outer, const Box& inner) {
+  for (int a = 0; a < 3; ++a) {
+    if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
+  }
+  return true;
+}
+
+Box child_box(const Bvh& bvh, std::size_t node, int c) {
+  const std::size_t w = static_cast<std::size_t>(bvh.width);
+  const float* b = bvh.boxes.data() + node * 6 * w + static_cast<std::size_t>(c);
+  return {{b[0 * w], b[1 * w], b[2 * w]}, {b[3 * w], b[4 * w], b[5 * w]}};
+}
+
+// Walks the tree: every child box contains the boxes of the primitives under
+// it; returns how often each stored position is reached and the leaf sizes.
+void check_subtree(const Bvh& bvh, std::size_t node, const std::vector<Box>& boxes,
+                   const std::vector<std::uint32_t>& order, std::vector<int>& reached, int max_leaf, int depth) {
+  ASSERT_LE(depth, bvh.depth);
+  for (int c = 0; c < bvh.width; ++c) {
+    const std::int32_t child = bvh.children[node * static_cast<std::size_t>(bvh.width) + static_cast<std::size_t>(c)];
+    const Box box = child_box(bvh, node, c);
+    if (is_leaf(child)) {
+      ASSERT_LE(leaf_count(child), max_leaf);
+      for (std::int32_t k = leaf_first(child); k < leaf_first(child) + leaf_count(child); ++k) {
+        ++reached.at(static_cast<std::size_t>(k));
+        EXPECT_TRUE(contains(box, boxes[order[static_cast<std::size_t>(k)]])) << "position " << k;
+      }
+      continue;
+    }
+    ASSERT_LT(static_cast<std::size_t>(child), bvh.node_count);
+    ASSERT_GT(static_cast<std::size_t>(child), node);  // depth-first layout: no cycles
+    check_subtree(bvh, static_cast<std::size_t>(child), boxes, order, reached, max_leaf, depth + 1);
+  }
+}
+
+void expect_valid_bvh(const std::vector<Box>& boxes, const BvhBuildOptions& options) {
+  std::vector<std::uint32_t> order;
+  const Bvh bvh = build_bvh(boxes, options, order);
+  ASSERT_EQ(order.size(), boxes.size());
+  ASSERT_EQ(bvh.width, options.width);
+  ASSERT_LE(bvh.depth, kMaxBvhDepth);
+  ASSERT_EQ(bvh.boxes.size(), bvh.node_count * 6 * static_cast<std::size_t>(options.width));
+  std::vector<int> reached(boxes.size(), 0);
+  check_subtree(bvh, 0, boxes, order, reached, options.max_leaf_size, 1);
+  for (std::size_t k = 0; k < reached.size(); ++k) ASSERT_EQ(reached[k], 1) << "position " << k;
+  std::vector<std::uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], k);  // a permutation
+}
+
+TEST(BvhBuild, EveryPrimitiveInOneLeafInsideEveryBoxAboveIt) {
+  RaySampler s(11);
+  for (int width : {2, 4, 8}) {
+    for (std::size_t n : {1u, 7u, 9u, 100u, 5000u}) {
+      SCOPED_TRACE(::testing::Message() << "width " << width << ", " << n << " boxes");
+      BvhBuildOptions options;
+      options.width = width;
+      options.parallel_threshold = 256;  // exercise the parallel build
+      expect_valid_bvh(random_boxes(s, n), options);
+    }
+  }
+}
+
+TEST(BvhBuild, IdenticalBoxesStillSplitIntoSmallLeaves) {
+  const std::vector<Box> boxes(5000, Box{{1, 2, 3}, {1.5f, 2.5f, 3.5f}});
+  BvhBuildOptions options;
+  options.max_leaf_size = 4;
+  expect_valid_bvh(boxes, options);
+}
+
+TEST(BvhBuild, ExponentiallySpacedBoxesStayWithinTheDepthLimit) {
+  // SAH peels one box per level here; past kSahDepthLimit the median split takes over.
+  std::vector<Box> boxes;
+  for (int i = 0; i < 120; ++i) {
+    const float x = std::ldexp(1.f, i - 60);
+    boxes.push_back({{x, 0, 0}, {x * 1.01f, 1, 1}});
+  }
+  BvhBuildOptions options;
+  options.max_leaf_size = 1;
+  options.width = 2;
+  expect_valid_bvh(boxes, options);
+}
+
+TEST(BvhBuild, SameTreeForAnyThreadCount) {
+  RaySampler s(5);
+  const std::vector<Box> boxes = random_boxes(s, 20000);
+  BvhBuildOptions options;
+  options.parallel_threshold = 64;
+  auto build_with = [&](int threads, std::vector<std::uint32_t>& order) {
+    oneapi::tbb::task_arena arena(threads);
+    return arena.execute([&] { return build_bvh(boxes, options, order); });
+  };
+  std::vector<std::uint32_t> order1, order2;
+  const Bvh one = build_with(1, order1), two = build_with(2, order2);
+  EXPECT_EQ(order1, order2);
+  EXPECT_EQ(one.node_count, two.node_count);
+  EXPECT_TRUE(std::equal(one.boxes.begin(), one.boxes.end(), two.boxes.begin(), two.boxes.end()));
+  EXPECT_TRUE(std::equal(one.children.begin(), one.children.end(), two.children.begin(), two.children.end()));
+}
+
+TEST(BvhBuild, RejectsBadOptionsAndEmptyInputGivesNoTree) {
+  std::vector<std::uint32_t> order;
+  const std::vector<Box> one{Box{{0, 0, 0}, {1, 1, 1}}};
+  BvhBuildOptions bad_width;
+  bad_width.width = 3;
+  EXPECT_THROW(build_bvh(one, bad_width, order), std::invalid_argument);
+  BvhBuildOptions bad_leaf;
+  bad_leaf.max_leaf_size = kMaxLeafSize + 1;
+  EXPECT_THROW(build_bvh(one, bad_leaf, order), std::invalid_argument);
+  EXPECT_TRUE(build_bvh(std::vector<Box>{}, BvhBuildOptions{}, order).empty());
+}
+
+// ---- traversal vs brute force ---------------------------------------------------
+
+// A scene per kind: random primitives (some duplicated, so hits tie exactly)
+// in [-10, 10]^3.
+template <class Desc>
+void add_duplicates(RaySampler& s, std::vector<Desc>& out, int n) {
+  for (int i = 0; i < n / 10; ++i) out.push_back(out[static_cast<std::size_t>(s.uniform_int(0, n - 1))]);
+}
+
+std::vector<SphereDesc> random_spheres(RaySampler& s, int n) {
+  std::vector<SphereDesc> out;
+  for (int i = 0; i < n; ++i) out.push_back({s.in_box({-10, -10, -10}, {10, 10, 10}), s.uniform(0.05f, 1.f)});
+  add_duplicates(s, out, n);
+  return out;
+}
+
+std::vector<TriangleDesc> random_triangles(RaySampler& s, int n) {
+  std::vector<TriangleDesc> out;
+  for (int i = 0; i < n; ++i) {
+    const Vec3<float> c = s.in_box({-10, -10, -10}, {10, 10, 10});
+    TriangleDesc t;
+    for (auto& p : t.p) p = c + s.unit_direction() * s.uniform(0.2f, 2.f);
+    out.push_back(t);
+  }
+  // Neighbours sharing an edge, and exact duplicates.
+  for (int i = 0; i < n / 5; ++i) {
+    TriangleDesc t = out[static_cast<std::size_t>(i)];
+    t.p[2] = t.p[0] + t.p[1] - t.p[2];
+    out.push_back(t);
+  }
+  add_duplicates(s, out, n);
+  return out;
+}
+
+std::vector<PolygonDesc> random_polygons(RaySampler& s, int n) {
+  std::vector<PolygonDesc> out;
+  for (int i = 0; i < n; ++i) {
+    // A star (concave) in a random plane.
+    const Vec3<float> c = s.in_box({-10, -10, -10}, {10, 10, 10});
+    const Vec3<float> u = normalize(s.unit_direction());
+    const Vec3<float> v = normalize(cross(u, s.unit_direction()));
+    const int points = s.uniform_int(3, 7);
+    PolygonDesc p;
+    for (int k = 0; k < 2 * points; ++k) {
+      const float angle = std::numbers::pi_v<float> * static_cast<float>(k) / static_cast<float>(points);
+      const float radius = (k % 2 == 0 ? 1.5f : 0.6f) * s.uniform(0.5f, 1.f);
+      p.vertices.push_back(c + u * (radius * std::cos(angle)) + v * (radius * std::sin(angle)));
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+TEST(PrimitiveBounds, SpheresAndPolygonsLieInsideTheirBoxesInExactArithmetic) {
+  // Sphere extents c +- sqrt(r^2) (the kernels use r^2) and the corners of
+  // stored polygons (projected vertices lifted onto the stored plane), in
+  // double, against boxes computed with float rounding.
+  RaySampler s(3);
+  std::vector<SphereDesc> sphere_descs;
+  for (int i = 0; i < 2000; ++i) {
+    sphere_descs.push_back({s.in_box({-1e4f, -1e4f, -1e4f}, {1e4f, 1e4f, 1e4f}), s.uniform(1e-3f, 10.f)});
+  }
+  BuildReport report;
+  const SphereSoA spheres = build_spheres(sphere_descs, report);
+  for (std::size_t i = 0; i < spheres.count; ++i) {
+    const Box box = primitive_box(spheres, i);
+    const double c[3] = {spheres.cx[i], spheres.cy[i], spheres.cz[i]};
+    const double r = std::sqrt(static_cast<double>(spheres.r2[i]));
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_LE(static_cast<double>(box.lo[a]), c[a] - r) << "sphere " << i;
+      ASSERT_GE(static_cast<double>(box.hi[a]), c[a] + r) << "sphere " << i;
+    }
+  }
+  const std::vector<PolygonDesc> polygon_descs = random_polygons(s, 500);
+  const PolygonSoA polygons = build_polygons(polygon_descs, report);
+  for (std::size_t i = 0; i < polygons.count; ++i) {
+    const Box box = primitive_box(polygons, i);
+    const int au = polygons.axis_u[i], av = polygons.axis_v[i], ak = 3 - au - av;
+    const double n[3] = {polygons.nx[i], polygons.ny[i], polygons.nz[i]};
+    for (std::int32_t k = 0; k < polygons.vertex_count[i]; ++k) {
+      double p[3];
+      p[au] = static_cast<double>(polygons.origin_u[i]) + polygons.pu[polygons.first_vertex[i] + k];
+      p[av] = static_cast<double>(polygons.origin_v[i]) + polygons.pv[polygons.first_vertex[i] + k];
+      p[ak] = -(polygons.d[i] + n[au] * p[au] + n[av] * p[av]) / n[ak];
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_LE(static_cast<double>(box.lo[a]), p[a]) << "polygon " << i;
+        ASSERT_GE(static_cast<double>(box.hi[a]), p[a]) << "polygon " << i;
+      }
+    }
+  }
+}
+
+std::vector<ConeDesc> random_cones(RaySampler& s, int n) {
+  std::vector<ConeDesc> out;
+  for (int i = 0; i < n; ++i) {
+    const Vec3<float> b = s.in_box({-10, -10, -10}, {10, 10, 10});
+    const float r0 = s.uniform(0.1f, 0.8f);
+    const float r1 = i % 2 == 0 ? r0 : s.uniform(0.f, 0.8f);  // cylinders and cones
+    out.push_back({b, r0, b + s.unit_direction() * s.uniform(0.5f, 3.f), r1});
+  }
+  return out;
+}
+
+// Coherent camera rays (one eye, a grid of directions), random rays from
+// inside the scene, and adversarial ones (NaN, Inf, empty intervals).
+RaySoA traversal_rays(RaySampler& s) {
+  std::vector<Ray<float>> rays;
+  const Vec3<float> eye{0.5f, 1.f, -30.f};
+  for (int j = 0; j < 61; ++j) {
+    for (int i = 0; i < 61; ++i) {
+      const Vec3<float> target{-12.f + 0.4f * static_cast<float>(i), -12.f + 0.4f * static_cast<float>(j), 0.f};
+      rays.push_back(s.toward(eye, target));
+    }
+  }
+  for (int i = 0; i < 3000; ++i) {
+    Ray<float> r{s.in_box({-11, -11, -11}, {11, 11, 11}), s.unit_direction(), 0.f,
+                 std::numeric_limits<float>::infinity()};
+    if (i % 3 == 0) r.tmax = s.uniform(0.5f, 10.f);
+    rays.push_back(r);
+  }
+  for (const Ray<float>& r : testing::adversarial_rays(s, 500, {0, 0, 0}, 10.f)) rays.push_back(r);
+  RaySoA soa = testing::to_soa(rays);
+  testing::poison_padding(soa);
+  return soa;
+}
+
+template <class S>
+void expect_bvh_matches_scan(const KernelStreams<S>& scan, const BvhStreams<S>& tree, const S& store, const Bvh& bvh,
+                             const RaySoA& rays) {
+  HitSoA expected(rays);
+  OcclusionSoA expected_occlusion(rays);
+  scan.closest_packets(rays, store, expected);
+  scan.occluded_packets(rays, store, expected_occlusion);
+  ASSERT_GT(expected.hit_count(), rays.count / 10);  // the scene is hit
+  for (BvhTraversal traversal : {BvhTraversal::automatic, BvhTraversal::packets, BvhTraversal::single}) {
+    SCOPED_TRACE(::testing::Message() << "traversal " << static_cast<int>(traversal));
+    HitSoA hits(rays);
+    OcclusionSoA occlusion(rays);
+    tree.closest_hits(rays, store, bvh, hits, traversal);
+    tree.any_hits(rays, store, bvh, occlusion, traversal);
+    EXPECT_TRUE(testing::hits_bit_equal(expected, hits));
+    EXPECT_TRUE(testing::occlusion_equal(expected_occlusion, occlusion));
+  }
+}
+
+// Builds the kind's store in BVH order for each node width and compares.
+template <KernelUnit U, class Desc, class Builder, class Scan, class Tree>
+void check_kind(const std::vector<Desc>& descs, Builder builder, const Scan& scan, const Tree& tree,
+                const RaySoA& rays) {
+  for (int width : {2, 4, 8}) {
+    SCOPED_TRACE(::testing::Message() << "node width " << width);
+    BuildReport report;
+    auto store = builder(std::span<const Desc>(descs), report);
+    BvhBuildOptions options;
+    options.width = width;
+    options.max_leaf_size = width == 2 ? 3 : 8;
+    const Bvh bvh = reorder_for_bvh(std::span<const Desc>(descs), builder, options, store);
+    ASSERT_FALSE(bvh.empty());
+    expect_bvh_matches_scan(scan, tree, store, bvh, rays);
+  }
+}
+
+template <class U>
+using BvhTraversalTest = testing::UnitTest<U>;
+TYPED_TEST_SUITE(BvhTraversalTest, testing::KernelUnits);
+
+TYPED_TEST(BvhTraversalTest, SpheresMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(21);
+  const RaySoA rays = traversal_rays(s);
+  check_kind<kUnit>(random_spheres(s, 400), build_spheres, sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
+                    sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
+}
+
+TYPED_TEST(BvhTraversalTest, TrianglesMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(22);
+  const RaySoA rays = traversal_rays(s);
+  for (TriangleMethod m : {TriangleMethod::watertight, TriangleMethod::moller_trumbore}) {
+    check_kind<kUnit>(random_triangles(s, 400), build_triangles, triangle_streams<KernelUnit::scalar>(m),
+                      triangle_bvh_streams<kUnit>(m), rays);
+  }
+}
+
+TYPED_TEST(BvhTraversalTest, PolygonsMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(23);
+  const RaySoA rays = traversal_rays(s);
+  check_kind<kUnit>(random_polygons(s, 300), build_polygons,
+                    polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
+                    polygon_bvh_streams<kUnit>(PolygonMethod::crossing), rays);
+}
+
+TYPED_TEST(BvhTraversalTest, ConesMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(24);
+  const RaySoA rays = traversal_rays(s);
+  check_kind<kUnit>(random_cones(s, 300), build_cones, cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
+                    cone_bvh_streams<kUnit>(ConeMethod::quadric), rays);
+}
+
+}  // namespace
+}  // namespace quiver
