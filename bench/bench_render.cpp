@@ -62,11 +62,6 @@ void render_benchmark(benchmark::State& state, std::shared_ptr<const Scene> scen
   state.counters["util_shadow_uncompacted"] = ratio(stats.shadow.active, stats.shadow.issued_uncompacted);
 }
 
-std::filesystem::path shared_dir() {
-  if (const char* env = std::getenv("QUIVER_SHARED_DIR")) return env;
-  return QUIVER_SHARED_DIR;
-}
-
 void register_scene(const std::string& name, std::shared_ptr<const Scene> scene, int size, const char* aa) {
   const int all = tbb::info::default_concurrency();
   for (KernelUnit unit : bench_units()) {

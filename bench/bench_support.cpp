@@ -6,6 +6,11 @@
 
 namespace quiver::bench {
 
+std::filesystem::path shared_dir() {
+  if (const char* env = std::getenv("QUIVER_SHARED_DIR")) return env;
+  return QUIVER_SHARED_DIR;
+}
+
 std::vector<KernelUnit> bench_units() {
   const char* forced = std::getenv("QUIVER_SIMD");
   if (forced && std::string_view(forced) != "auto" && *forced != '\0') {

@@ -5,6 +5,7 @@
 // tracer issues them), hits (incoherent rays aimed at primitives) and misses.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -16,6 +17,10 @@
 #include "simd/isa.h"
 
 namespace quiver::bench {
+
+// The shared data folder (scenes/spd, meshes): QUIVER_SHARED_DIR from the
+// environment, else the one CMake saw beside the source tree.
+std::filesystem::path shared_dir();
 
 inline constexpr std::size_t kBenchRays = 4096;
 inline constexpr std::size_t kBenchPrimitives = 64;

@@ -79,6 +79,21 @@ struct SlabRay {
       : SlabRay(ray.origin, Vec3<F>(F(1.f) / ray.direction.x, F(1.f) / ray.direction.y, F(1.f) / ray.direction.z)) {}
 };
 
+// The slab interval [t0, t1] narrowed by one axis; a NaN `enter` or
+// `leave` (0 * inf) is dropped by the operand order of max and min.
+template <class F>
+inline void narrow_interval(F& t0, F& t1, const F& enter, const F& leave) {
+  t0 = max(t0, enter);
+  t1 = min(t1, leave);
+}
+
+// Lanes whose widened interval is not empty; `near` receives the widened entry.
+template <class F>
+inline Mask<F> widened_overlap(const F& t0, const F& t1, F& near) {
+  near = t0 * F(1.f - kSlabSlack);
+  return near <= t1 * F(1.f + kSlabSlack);
+}
+
 // Lanes whose widened interval [near, far] within [tmin, tmax] is not empty;
 // `near` receives the widened entry distance.
 template <class F>
@@ -86,13 +101,10 @@ inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec
                              const F& tmax, F& near) {
   F t0 = tmin, t1 = tmax;
   for (int a = 0; a < 3; ++a) {
-    const F enter = (select(ray.negative[a], hi[a], lo[a]) - ray.origin[a]) * ray.inv_dir[a];
-    const F leave = (select(ray.negative[a], lo[a], hi[a]) - ray.origin[a]) * ray.inv_dir[a];
-    t0 = max(t0, enter);  // a NaN `enter` keeps t0
-    t1 = min(t1, leave);  // a NaN `leave` keeps t1
+    narrow_interval(t0, t1, (select(ray.negative[a], hi[a], lo[a]) - ray.origin[a]) * ray.inv_dir[a],
+                    (select(ray.negative[a], lo[a], hi[a]) - ray.origin[a]) * ray.inv_dir[a]);
   }
-  near = t0 * F(1.f - kSlabSlack);
-  return near <= t1 * F(1.f + kSlabSlack);
+  return widened_overlap(t0, t1, near);
 }
 
 template <class F>
@@ -143,10 +155,9 @@ template <class Method, class F, int N, class S>
       }
       continue;
     }
-    // Children that some lane enters, pushed farthest first.
-    std::array<Entry, N> entered;
-    std::array<float, N> key;
-    int count = 0;
+    // Children that some lane enters, pushed farthest first (insertion into the stack top).
+    std::array<float, bvh_stack_size(N)> key;
+    const std::size_t base = top;
     const std::size_t node = static_cast<std::size_t>(entry.node);
     for (int c = 0; c < N; ++c) {
       const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
@@ -158,15 +169,14 @@ template <class Method, class F, int N, class S>
       if (none(enters)) continue;
       const F lane_near = select(enters, near, inf);
       const float k = horizontal_min(lane_near);
-      int at = count++;
-      for (; at > 0 && key[at - 1] < k; --at) {
+      std::size_t at = top++;
+      for (; at > base && key[at - 1] < k; --at) {
         key[at] = key[at - 1];
-        entered[at] = entered[at - 1];
+        stack[at] = stack[at - 1];
       }
       key[at] = k;
-      entered[at] = {child, lane_near};
+      stack[at] = {child, lane_near};
     }
-    for (int e = 0; e < count; ++e) stack[top++] = entered[e];
   }
 }
 
@@ -214,21 +224,43 @@ template <class Method, class F, int N, class S>
 
 // ---- single-ray traversal -----------------------------------------------------
 
-// The node's children one ray enters: bit c of the result, near[c] their entry distances.
+// One ray set up for a node's children: origin and 1/d in node lanes, and
+// per axis where a node's box block keeps the near and the far plane (lo or
+// hi by the sign of 1/d, chosen once per ray).
 template <KernelUnit U, int N>
-[[gnu::always_inline]] inline unsigned enter_children(const Bvh& bvh, std::size_t node, const SlabRay<float>& ray,
-                                                      float tmin, float tmax, std::array<float, N>& near) {
+struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
+  std::array<G, 3> origin, inv_dir;
+  std::array<int, 3> near_plane, far_plane;  // float offsets in the block
+
+  explicit NodeRay(const Ray<float>& ray) {
+    for (int a = 0; a < 3; ++a) {
+      const float inv = 1.f / ray.direction[a];
+      origin[a] = G(ray.origin[a]);
+      inv_dir[a] = G(inv);
+      near_plane[a] = (inv < 0.f ? 3 + a : a) * N;
+      far_plane[a] = (inv < 0.f ? a : 3 + a) * N;
+    }
+  }
+};
+
+// The node's children the ray enters within [tmin, tmax]: bit c of the
+// result, near[c] their widened entry distances.
+template <KernelUnit U, int N>
+[[gnu::always_inline]] inline unsigned enter_children(const Bvh& bvh, std::size_t node, const NodeRay<U, N>& ray,
+                                                      float tmin, float tmax, std::array<float, N>& near) {
+  using G = typename NodeRay<U, N>::G;
   constexpr int kG = lane_count<G>;
-  const SlabRay<G> slab({G(ray.origin.x), G(ray.origin.y), G(ray.origin.z)},
-                        {G(ray.inv_dir.x), G(ray.inv_dir.y), G(ray.inv_dir.z)});
-  const float* b = bvh.boxes.data() + node * 6 * N;
+  const float* block = bvh.boxes.data() + node * 6 * N;
   unsigned bits = 0;
   for (int c = 0; c < N; c += kG) {
-    const Vec3<G> lo{load_lanes<G>(b + 0 * N + c), load_lanes<G>(b + 1 * N + c), load_lanes<G>(b + 2 * N + c)};
-    const Vec3<G> hi{load_lanes<G>(b + 3 * N + c), load_lanes<G>(b + 4 * N + c), load_lanes<G>(b + 5 * N + c)};
+    G t0(tmin), t1(tmax);
+    for (int a = 0; a < 3; ++a) {
+      narrow_interval(t0, t1, (load_lanes<G>(block + ray.near_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a],
+                      (load_lanes<G>(block + ray.far_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a]);
+    }
     G lane_near;
-    const Mask<G> enters = slab_interval(slab, lo, hi, G(tmin), G(tmax), lane_near);
+    const Mask<G> enters = widened_overlap(t0, t1, lane_near);
     if constexpr (kG == 1) {
       near[c] = lane_near;
     } else {
@@ -248,7 +280,7 @@ template <KernelUnit U, class Method, int N, class S>
     float near;
   };
   std::array<Entry, bvh_stack_size(N)> stack;
-  const SlabRay<float> slab(ray);
+  const NodeRay<U, N> node_ray(ray);
   const Ray<F> wide = broadcast_ray<F>(ray);
   const auto prepared_wide = Method::prepare(wide);
   std::size_t top = 0;
@@ -284,19 +316,17 @@ template <KernelUnit U, class Method, int N, class S>
     }
     std::array<float, N> near;
     const std::size_t node = static_cast<std::size_t>(entry.node);
-    unsigned bits = enter_children<U, N>(bvh, node, slab, ray.tmin, hit.t, near);
-    // Push farthest first, so the nearest child is popped next.
-    std::array<Entry, N> entered;
-    int count = 0;
+    unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, hit.t, near);
+    // Pushed farthest first (insertion into the stack top), so the nearest child is popped next.
+    const std::size_t base = top;
     for (; bits != 0; bits &= bits - 1) {
       const int c = __builtin_ctz(bits);
       const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
       if (is_leaf(child) && leaf_count(child) == 0) continue;
-      int at = count++;
-      for (; at > 0 && entered[at - 1].near < near[c]; --at) entered[at] = entered[at - 1];
-      entered[at] = {child, near[c]};
+      std::size_t at = top++;
+      for (; at > base && stack[at - 1].near < near[c]; --at) stack[at] = stack[at - 1];
+      stack[at] = {child, near[c]};
     }
-    for (int e = 0; e < count; ++e) stack[top++] = entered[e];
   }
 }
 
@@ -304,7 +334,7 @@ template <KernelUnit U, class Method, int N, class S>
 [[gnu::always_inline]] inline bool occluded_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray) {
   using F = UnitLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
-  const SlabRay<float> slab(ray);
+  const NodeRay<U, N> node_ray(ray);
   const Ray<F> wide = broadcast_ray<F>(ray);
   const auto prepared_wide = Method::prepare(wide);
   std::size_t top = 0;
@@ -333,7 +363,7 @@ template <KernelUnit U, class Method, int N, class S>
     }
     std::array<float, N> near;
     const std::size_t node = static_cast<std::size_t>(entry);
-    for (unsigned bits = enter_children<U, N>(bvh, node, slab, ray.tmin, ray.tmax, near); bits != 0;
+    for (unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, ray.tmax, near); bits != 0;
          bits &= bits - 1) {
       const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(__builtin_ctz(bits))];
       if (!(is_leaf(child) && leaf_count(child) == 0)) stack[top++] = child;

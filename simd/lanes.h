@@ -276,16 +276,21 @@ inline xsimd::batch<float, A> next_float_up(const xsimd::batch<float, A>& t) {
   return select(t < Float(std::numeric_limits<float>::infinity()), stepped, t);
 }
 
-// The smallest lane.
+// The smallest lane, for lanes without NaN (min by halves).
 inline float horizontal_min(float v) { return v; }
-template <class A>
-inline float horizontal_min(const xsimd::batch<float, A>& v) {
-  alignas(64) float lanes[kMaxLanes];
-  v.store_aligned(lanes);
-  float m = lanes[0];
-  for (std::size_t k = 1; k < xsimd::batch<float, A>::size; ++k) m = lanes[k] < m ? lanes[k] : m;
-  return m;
+#if defined(__SSE4_2__) && defined(__FMA__)
+inline float horizontal_min(const xsimd::batch<float, xsimd::sse4_2>& v) {
+  const __m128 pairs = _mm_min_ps(v, _mm_movehl_ps(v, v));
+  return _mm_cvtss_f32(_mm_min_ss(pairs, _mm_shuffle_ps(pairs, pairs, 1)));
 }
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+inline float horizontal_min(const xsimd::batch<float, xsimd::fma3<xsimd::avx2>>& v) {
+  const __m256 x = v;
+  return horizontal_min(xsimd::batch<float, xsimd::sse4_2>(_mm_min_ps(_mm256_castps256_ps128(x),
+                                                                     _mm256_extractf128_ps(x, 1))));
+}
+#endif
 
 // Lane numbers 0..W-1 as int and float lanes.
 template <class F>
