@@ -2,7 +2,8 @@
 // "On fast construction of SAH-based bounding volume hierarchies", 2007) on
 // a binary tree, collapsed into nodes of 2, 4 or 8 children whose boxes are
 // stored SoA (lo x, y, z then hi x, y, z, `width` floats each), so one ray
-// tests every child box of a node in one SIMD operation.
+// tests every child box of a node in one SIMD operation. A node's child
+// slots follow its boxes in the same block (one run of cache lines).
 //
 // The build reorders the store: a leaf is a contiguous range of at most
 // max_leaf_size primitives, so the leaf is an SoA block the scan kernels load
@@ -15,6 +16,7 @@
 // never removes a primitive a brute-force scan would report.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -45,18 +47,21 @@ struct BvhBuildOptions {
 
 struct Bvh {
   int width = 0;  // 0: no BVH
-  // Per node, 6 * width floats: lo x, lo y, lo z, hi x, hi y, hi z.
-  AlignedFloats boxes;
-  // Per node, width child slots.
-  AlignedInts children;
+  // Per node, 7 * width floats: the boxes (lo x, lo y, lo z, hi x, hi y,
+  // hi z, width each), then the width child slots (int32 bits).
+  AlignedFloats nodes;
   std::size_t node_count = 0;
   int depth = 0;  // deepest node, root = 1
   Box bounds{};   // of the whole store
 
   bool empty() const { return width == 0; }
-  std::size_t memory_bytes() const {
-    return boxes.capacity() * sizeof(float) + children.capacity() * sizeof(std::int32_t);
+  std::size_t node_floats() const { return 7 * static_cast<std::size_t>(width); }
+  const float* boxes(std::size_t node) const { return nodes.data() + node * node_floats(); }
+  std::int32_t child(std::size_t node, int slot) const {
+    return std::bit_cast<std::int32_t>(nodes[node * node_floats() + 6 * static_cast<std::size_t>(width) +
+                                             static_cast<std::size_t>(slot)]);
   }
+  std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <limits>
 #include <stdexcept>
 
@@ -202,8 +203,8 @@ class Collapser {
   std::int32_t write_node(const std::vector<std::int32_t>& slots, int depth) {
     const std::size_t index = bvh_.node_count++;
     const std::size_t w = static_cast<std::size_t>(width_);
-    bvh_.boxes.resize(bvh_.node_count * 6 * w);
-    bvh_.children.resize(bvh_.node_count * w);
+    bvh_.nodes.resize(bvh_.node_count * bvh_.node_floats());
+    float* block = bvh_.nodes.data() + index * bvh_.node_floats();
     bvh_.depth = std::max(bvh_.depth, depth);
     for (std::size_t s = 0; s < w; ++s) {
       Box box = empty_box();
@@ -214,15 +215,15 @@ class Collapser {
         if (n.leaf()) child = encode_leaf(static_cast<std::int32_t>(n.first), static_cast<std::int32_t>(n.count));
       }
       for (int a = 0; a < 3; ++a) {
-        bvh_.boxes[index * 6 * w + static_cast<std::size_t>(a) * w + s] = box.lo[a];
-        bvh_.boxes[index * 6 * w + static_cast<std::size_t>(3 + a) * w + s] = box.hi[a];
+        block[static_cast<std::size_t>(a) * w + s] = box.lo[a];
+        block[static_cast<std::size_t>(3 + a) * w + s] = box.hi[a];
       }
-      bvh_.children[index * w + s] = child;
+      block[6 * w + s] = std::bit_cast<float>(child);
     }
     for (std::size_t s = 0; s < slots.size(); ++s) {
       if (nodes_[slots[s]].leaf()) continue;
       const std::int32_t child = write_node(open_children(slots[s]), depth + 1);
-      bvh_.children[index * w + s] = child;
+      bvh_.nodes[index * bvh_.node_floats() + 6 * w + s] = std::bit_cast<float>(child);
     }
     return static_cast<std::int32_t>(index);
   }
@@ -254,8 +255,7 @@ Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::v
   const std::int32_t root = builder.build();
   bvh.bounds = builder.nodes()[root].box;
   Collapser(builder.nodes(), bvh).collapse_root(root);
-  bvh.boxes.shrink_to_fit();
-  bvh.children.shrink_to_fit();
+  bvh.nodes.shrink_to_fit();
   return bvh;
 }
 

@@ -109,7 +109,7 @@ inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec
 
 template <class F>
 inline Vec3<F> node_box_corner(const Bvh& bvh, std::size_t node, int N, int corner, int child) {
-  const float* b = bvh.boxes.data() + node * 6 * static_cast<std::size_t>(N) + static_cast<std::size_t>(child);
+  const float* b = bvh.boxes(node) + static_cast<std::size_t>(child);
   const std::size_t n = static_cast<std::size_t>(N);
   return {F(b[(3 * corner + 0) * n]), F(b[(3 * corner + 1) * n]), F(b[(3 * corner + 2) * n])};
 }
@@ -160,7 +160,7 @@ template <class Method, class F, int N, class S>
     const std::size_t base = top;
     const std::size_t node = static_cast<std::size_t>(entry.node);
     for (int c = 0; c < N; ++c) {
-      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       F near;
       const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
@@ -210,7 +210,7 @@ template <class Method, class F, int N, class S>
     }
     const std::size_t node = static_cast<std::size_t>(entry.node);
     for (int c = N - 1; c >= 0; --c) {
-      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       F near;
       const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
@@ -251,7 +251,7 @@ template <KernelUnit U, int N>
                                                       float tmin, float tmax, std::array<float, N>& near) {
   using G = typename NodeRay<U, N>::G;
   constexpr int kG = lane_count<G>;
-  const float* block = bvh.boxes.data() + node * 6 * N;
+  const float* block = bvh.boxes(node);
   unsigned bits = 0;
   for (int c = 0; c < N; c += kG) {
     G t0(tmin), t1(tmax);
@@ -321,7 +321,7 @@ template <KernelUnit U, class Method, int N, class S>
     const std::size_t base = top;
     for (; bits != 0; bits &= bits - 1) {
       const int c = __builtin_ctz(bits);
-      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(c)];
+      const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       std::size_t at = top++;
       for (; at > base && stack[at - 1].near < near[c]; --at) stack[at] = stack[at - 1];
@@ -365,7 +365,7 @@ template <KernelUnit U, class Method, int N, class S>
     const std::size_t node = static_cast<std::size_t>(entry);
     for (unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, ray.tmax, near); bits != 0;
          bits &= bits - 1) {
-      const std::int32_t child = bvh.children[node * N + static_cast<std::size_t>(__builtin_ctz(bits))];
+      const std::int32_t child = bvh.child(node, __builtin_ctz(bits));
       if (!(is_leaf(child) && leaf_count(child) == 0)) stack[top++] = child;
     }
   }

@@ -19,6 +19,7 @@
 // through the linker with another unit.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -262,7 +263,10 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2
 // The smallest float greater than t (t itself for +inf and NaN): with it as
 // a kernel's exclusive tmax, a hit at exactly t is still reported.
 inline float next_float_up(float t) {
-  return t < std::numeric_limits<float>::infinity() ? std::nextafter(t, std::numeric_limits<float>::infinity()) : t;
+  if (!(t < std::numeric_limits<float>::infinity())) return t;
+  if (t == 0.f) return std::numeric_limits<float>::denorm_min();
+  const std::int32_t bits = std::bit_cast<std::int32_t>(t);
+  return std::bit_cast<float>(t > 0.f ? bits + 1 : bits - 1);
 }
 template <class A>
 inline xsimd::batch<float, A> next_float_up(const xsimd::batch<float, A>& t) {

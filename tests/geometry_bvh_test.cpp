@@ -45,7 +45,7 @@ bool contains(const Box& outer, const Box& inner) {
 
 Box child_box(const Bvh& bvh, std::size_t node, int c) {
   const std::size_t w = static_cast<std::size_t>(bvh.width);
-  const float* b = bvh.boxes.data() + node * 6 * w + static_cast<std::size_t>(c);
+  const float* b = bvh.boxes(node) + static_cast<std::size_t>(c);
   return {{b[0 * w], b[1 * w], b[2 * w]}, {b[3 * w], b[4 * w], b[5 * w]}};
 }
 
@@ -55,7 +55,7 @@ void check_subtree(const Bvh& bvh, std::size_t node, const std::vector<Box>& box
                    const std::vector<std::uint32_t>& order, std::vector<int>& reached, int max_leaf, int depth) {
   ASSERT_LE(depth, bvh.depth);
   for (int c = 0; c < bvh.width; ++c) {
-    const std::int32_t child = bvh.children[node * static_cast<std::size_t>(bvh.width) + static_cast<std::size_t>(c)];
+    const std::int32_t child = bvh.child(node, c);
     const Box box = child_box(bvh, node, c);
     if (is_leaf(child)) {
       ASSERT_LE(leaf_count(child), max_leaf);
@@ -77,7 +77,7 @@ void expect_valid_bvh(const std::vector<Box>& boxes, const BvhBuildOptions& opti
   ASSERT_EQ(order.size(), boxes.size());
   ASSERT_EQ(bvh.width, options.width);
   ASSERT_LE(bvh.depth, kMaxBvhDepth);
-  ASSERT_EQ(bvh.boxes.size(), bvh.node_count * 6 * static_cast<std::size_t>(options.width));
+  ASSERT_EQ(bvh.nodes.size(), bvh.node_count * 7 * static_cast<std::size_t>(options.width));
   std::vector<int> reached(boxes.size(), 0);
   check_subtree(bvh, 0, boxes, order, reached, options.max_leaf_size, 1);
   for (std::size_t k = 0; k < reached.size(); ++k) ASSERT_EQ(reached[k], 1) << "position " << k;
@@ -132,8 +132,8 @@ TEST(BvhBuild, SameTreeForAnyThreadCount) {
   const Bvh one = build_with(1, order1), two = build_with(2, order2);
   EXPECT_EQ(order1, order2);
   EXPECT_EQ(one.node_count, two.node_count);
-  EXPECT_TRUE(std::equal(one.boxes.begin(), one.boxes.end(), two.boxes.begin(), two.boxes.end()));
-  EXPECT_TRUE(std::equal(one.children.begin(), one.children.end(), two.children.begin(), two.children.end()));
+  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(), two.nodes.end(),
+                         [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }));
 }
 
 TEST(BvhBuild, RejectsBadOptionsAndEmptyInputGivesNoTree) {
