@@ -1,8 +1,10 @@
 // quiver, the command-line program: `quiver render [SCENE]` renders a scene
 // file (or the built-in scene) to an image, `quiver info SCENE` reports what
-// a scene holds. Exit codes: 0 success, 1 failure (unreadable or invalid
-// scene, render or write error), 2 usage error (bad flag or value). Errors
-// go to stderr as "quiver: <message>"; no output file is left on failure.
+// a scene holds, `quiver trace SCENE` times the primary rays' closest hits
+// and prints one JSON line (io/trace_command.h). Exit codes: 0 success,
+// 1 failure (unreadable or invalid scene, render or write error), 2 usage
+// error (bad flag or value). Errors go to stderr as "quiver: <message>"; no
+// output file is left on failure.
 // The only translation unit that includes CLI11 (it is slow to compile).
 #include <CLI/CLI.hpp>
 
@@ -32,6 +34,7 @@
 #include "io/scene_info.h"
 #include "io/scene_loader.h"
 #include "io/stats_json.h"
+#include "io/trace_command.h"
 
 namespace {
 
@@ -52,6 +55,19 @@ struct RenderArgs {
   RenderOptions options;
 };
 
+// What `quiver trace` was given, as parsed.
+struct TraceArgs {
+  std::string scene;
+  quiver::TraceOptions options;
+};
+
+// The parsed values of `quiver trace`, before we know which were given.
+struct RawTraceFlags {
+  int width = 0, height = 0;
+  std::string simd;
+  CLI::Option *width_option, *height_option, *simd_option;
+};
+
 // The parsed values, before we know which optional flags were given.
 struct RawRenderFlags {
   int width = 0, height = 0, max_depth = 0;
@@ -64,6 +80,19 @@ struct RawRenderFlags {
 int report(std::string_view message, int exit_code) {
   std::cerr << "quiver: " << message << "\n";
   return exit_code;
+}
+
+// Reports the exception being handled: a UsageError exits 2, anything else 1.
+int report_exception() {
+  try {
+    throw;
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  } catch (const std::bad_alloc&) {
+    return report("out of memory", kExitFailure);
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitFailure);
+  }
 }
 
 double ms_since(Clock::time_point start) {
@@ -172,12 +201,8 @@ int run_render(const RenderArgs& args) {
     }
     if (!args.quiet) print_summary(result, plan.settings, load_ms, build_ms, output);
     return 0;
-  } catch (const UsageError& error) {
-    return report(error.what(), kExitUsage);
-  } catch (const std::bad_alloc&) {
-    return report("out of memory", kExitFailure);
-  } catch (const std::exception& error) {
-    return report(error.what(), kExitFailure);
+  } catch (...) {
+    return report_exception();
   }
 }
 
@@ -204,6 +229,60 @@ int run_info(const std::string& scene_path) {
   } catch (const std::exception& error) {
     return report(error.what(), kExitFailure);
   }
+}
+
+int run_trace(const TraceArgs& args) {
+  quiver::Isa isa;
+  try {
+    quiver::check_trace_options(args.options);
+    isa = quiver::choose_isa(args.options.simd, std::getenv("QUIVER_SIMD"));
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitUsage);
+  }
+
+  try {
+    double load_ms = 0.0;
+    quiver::SceneDesc desc = load(args.scene, load_ms);
+    const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
+    if (!desc.camera) quiver::add_default_view(desc, width, height);
+    double build_ms = 0.0;
+    const quiver::Scene scene = build(desc, {}, args.scene, build_ms);
+    const quiver::PrimaryTraceResult result =
+        quiver::trace_primary(scene, width, height, isa, args.options.threads, args.options.repeat);
+    std::cout << quiver::trace_json_line(result, scene, width, height, build_ms) << "\n";
+    std::cout.flush();
+    if (!std::cout) return report("cannot write to standard output", kExitFailure);
+    return 0;
+  } catch (...) {
+    return report_exception();
+  }
+}
+
+void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
+  trace.add_option("scene", args.scene,
+                   "Scene file: .nff, .toml or .obj (any case). A scene without a camera (OBJ) gets the default "
+                   "view framing it, as in 'quiver render'")
+      ->required()
+      ->type_name("SCENE");
+  raw.width_option = trace.add_option("--width", raw.width,
+                                      "Image width in pixels, 1..65536 (at most 2^24 pixels in all: every ray is "
+                                      "held at once). Default: the scene camera's; with --height alone, the "
+                                      "camera's aspect is kept; 512 without a camera")
+                         ->type_name("PIXELS");
+  raw.height_option = trace.add_option("--height", raw.height, "Image height in pixels, 1..65536. Default as for "
+                                                               "--width")
+                          ->type_name("PIXELS");
+  trace.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")
+      ->type_name("N");
+  trace.add_option("--repeat", args.options.repeat,
+                   "Timed passes over every ray, 1..10000; the times reported are medians over them. Default: " +
+                       std::to_string(quiver::kDefaultTraceRepeat))
+      ->type_name("R");
+  raw.simd_option = trace.add_option("--simd", raw.simd,
+                                     "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4) or avx2 "
+                                     "(8); every choice finds the same hits. Default: $QUIVER_SIMD, else auto. A "
+                                     "choice this CPU lacks is an error")
+                        ->type_name("ISA");
 }
 
 void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
@@ -294,7 +373,8 @@ int main(int argc, char** argv) {
                "refraction, textures, anti-aliasing).\nExit codes: 0 success, 1 failure (bad scene, render or "
                "write error), 2 usage error.",
                "quiver"};
-  app.footer("Run 'quiver render --help' or 'quiver info --help' for the options of each command.");
+  app.footer("Run 'quiver render --help', 'quiver info --help' or 'quiver trace --help' for the options of each "
+             "command.");
   app.set_version_flag("--version", std::string("quiver ") + QUIVER_VERSION, "Print the version and exit");
   app.require_subcommand(1, 1);
 
@@ -308,6 +388,17 @@ int main(int argc, char** argv) {
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
               "camera, lights, materials, textures, memory (bytes) per structure, load and build times (ms)");
   info->add_option("scene", info_scene, "Scene file: .nff, .toml or .obj")->required()->type_name("SCENE");
+
+  TraceArgs trace_args;
+  RawTraceFlags raw_trace;
+  CLI::App* trace = app.add_subcommand(
+      "trace",
+      "Time the closest hits of the primary rays alone (one through each pixel centre, as --aa none; no shading, no "
+      "secondary rays) and print one JSON line: mrays_per_s (median over the repeats), hits (rays that hit), t_sum "
+      "(their hit distances added in double), rays, ms_median, threads, simd, lanes, build_ms, width, height, "
+      "repeat, primitives, acceleration_bytes (the BVH's). Rays are generated before timing; hits and t_sum are "
+      "the same for every --threads and --simd");
+  add_trace_flags(*trace, trace_args, raw_trace);
 
   try {
     app.parse(argc, argv);
@@ -324,6 +415,12 @@ int main(int argc, char** argv) {
       return report(error.what(), kExitUsage);
     }
     return run_render(render_args);
+  }
+  if (trace->parsed()) {
+    if (raw_trace.width_option->count()) trace_args.options.width = raw_trace.width;
+    if (raw_trace.height_option->count()) trace_args.options.height = raw_trace.height;
+    if (raw_trace.simd_option->count()) trace_args.options.simd = raw_trace.simd;
+    return run_trace(trace_args);
   }
   return run_info(info_scene);
 }

@@ -1,8 +1,9 @@
 // The quiver program end to end (io/cli_main.cpp), run as a child process
 // on tiny scenes: exit codes (0 success, 1 failure, 2 usage), images and
 // stats written only on success, error messages with file:line:column, the
-// SPD preset's ray count, `quiver info`, and byte-identical pixels from
-// every SIMD width.
+// SPD preset's ray count, `quiver info`, byte-identical pixels from every
+// SIMD width, and `quiver trace` (its JSON line, the same hits for every
+// width and thread count, its errors).
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -361,6 +363,99 @@ TEST_F(Cli, InfoPrintsTheCounts) {
   EXPECT_NE(r.out.find("lights          2"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("materials       4"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("resolution 32x24"), std::string::npos) << r.out;
+  EXPECT_TRUE(work_files().empty());
+}
+
+// `quiver trace`: one JSON line on stdout, nothing else, and no files.
+json trace_line(const Outcome& r) {
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  return json::parse(r.out);
+}
+
+TEST_F(Cli, TraceHelpDescribesEveryOption) {
+  const Outcome top = run({"--help"});
+  EXPECT_NE(top.out.find("trace"), std::string::npos);
+  const Outcome trace = run({"trace", "--help"});
+  EXPECT_EQ(trace.exit_code, 0);
+  for (const char* fact : {"SCENE", "--width", "--height", "--threads", "--repeat", "--simd", "2^24", "Default: 5",
+                           "Default: 0", "QUIVER_SIMD", "mrays_per_s", "t_sum"}) {
+    EXPECT_NE(trace.out.find(fact), std::string::npos) << fact;
+  }
+}
+
+TEST_F(Cli, TracePrintsTheSameHitsForEverySimdWidthAndThreadCount) {
+  std::vector<std::string> widths{"scalar"};
+  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2}) {
+    if (quiver::isa_supported(isa)) widths.push_back(std::string(quiver::isa_name(isa)));
+  }
+  std::optional<json> reference;
+  for (const std::string& simd : widths) {
+    for (const char* threads : {"1", "2"}) {
+      SCOPED_TRACE(simd + " threads " + threads);
+      const Outcome r = run({"trace", kTiny.string(), "--width", "40", "--height", "30", "--threads", threads,
+                             "--repeat", "3", "--simd", simd});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(r.err, "");
+      const json line = trace_line(r);
+      for (const char* key : {"mrays_per_s", "hits", "t_sum", "rays", "ms_median", "threads", "simd", "lanes",
+                              "build_ms", "width", "height", "repeat", "primitives", "acceleration_bytes"}) {
+        EXPECT_TRUE(line.contains(key)) << key;
+      }
+      EXPECT_EQ(line.at("rays"), 1200);
+      EXPECT_EQ(line.at("repeat"), 3);
+      EXPECT_EQ(line.at("simd"), simd);
+      EXPECT_EQ(line.at("lanes"), quiver::lane_width(*quiver::parse_isa(simd)));
+      EXPECT_EQ(line.at("threads"), std::stoi(threads));
+      EXPECT_GT(line.at("mrays_per_s").get<double>(), 0.0);
+      if (!reference) {
+        reference = line;
+        EXPECT_GT(line.at("hits").get<int>(), 0);
+        EXPECT_LT(line.at("hits").get<int>(), 1200);
+      }
+      EXPECT_EQ(line.at("hits"), reference->at("hits"));
+      EXPECT_EQ(line.at("t_sum").get<double>(), reference->at("t_sum").get<double>());  // bit for bit
+    }
+  }
+  EXPECT_TRUE(work_files().empty());
+}
+
+TEST_F(Cli, TraceFramesAnObjSceneAndDefaultsToTheCameraSize) {
+  const Outcome obj = run({"trace", kQuadObj.string(), "--width", "16", "--repeat", "1"});
+  ASSERT_EQ(obj.exit_code, 0) << obj.err;
+  const json square = trace_line(obj);
+  EXPECT_EQ(square.at("height"), 16);  // the default view is square
+  EXPECT_GT(square.at("hits").get<int>(), 0);
+  const Outcome nff = run({"trace", kTiny.string(), "--repeat", "1"});
+  ASSERT_EQ(nff.exit_code, 0) << nff.err;
+  EXPECT_EQ(trace_line(nff).at("rays"), 32 * 24);  // tiny.nff's resolution
+}
+
+TEST_F(Cli, TraceErrorsExitNonZeroAndPrintNoJson) {
+  const std::string scene = kTiny.string();
+  const std::vector<std::pair<std::vector<std::string>, int>> cases = {
+      {{"trace"}, 2},
+      {{"trace", scene, "--repeat", "0"}, 2},
+      {{"trace", scene, "--threads", "-1"}, 2},
+      {{"trace", scene, "--width", "0"}, 2},
+      {{"trace", scene, "--width", "5000", "--height", "5000"}, 2},
+      {{"trace", scene, "--simd", "avx512"}, 2},
+      {{"trace", scene, "--bogus"}, 2},
+      {{"trace", (io() / "missing.nff").string()}, 1},
+  };
+  for (const auto& [args, code] : cases) {
+    std::string joined;
+    for (const std::string& a : args) joined += a + " ";
+    SCOPED_TRACE(joined);
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, code);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err.rfind("quiver: ", 0), 0u) << r.err;
+  }
+  const fs::path bad = io() / "bad.nff";
+  std::ofstream(bad) << "f 1 1 1 1 0 1 0 1\ns 0 0 0 1\ns 1 2 oops 1\n";
+  const Outcome r = run({"trace", bad.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.nff:3:7: expected"), std::string::npos) << r.err;
   EXPECT_TRUE(work_files().empty());
 }
 

@@ -1,0 +1,63 @@
+// The same geometry as a built quiver Scene, as an Intel Embree 3 scene, for
+// bench/bench_embree.cpp. Mapping: spheres -> one RTC_GEOMETRY_TYPE_SPHERE_POINT
+// geometry (x, y, z, r); triangles (also NFF `pp` patches, which quiver
+// stores as triangles) -> one RTC_GEOMETRY_TYPE_TRIANGLE mesh, 3 vertices per
+// triangle (quiver's TriangleSoA is unshared too); polygons -> the same mesh,
+// ear-clipped by quiver's own triangulate_polygon (geometry/polygon_soa.h);
+// infinite planes and cones have no Embree counterpart here and are counted
+// as skipped (the benchmark warns: hit counts then cannot agree). Only the
+// primitives quiver's builders kept are passed on. Memory is what Embree's
+// device memory monitor reports (rtcSetDeviceMemoryMonitorFunction).
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include <embree3/rtcore.h>
+
+#include "integrator/scene.h"
+#include "io/scene_desc.h"
+
+namespace quiver::bench {
+
+// An Embree device whose memory monitor adds every allocation and release.
+class EmbreeDevice {
+ public:
+  EmbreeDevice();
+  ~EmbreeDevice();
+  EmbreeDevice(const EmbreeDevice&) = delete;
+  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+
+  RTCDevice get() const { return device_; }
+  // Bytes Embree holds now, as its memory monitor counted them.
+  std::int64_t monitored_bytes() const { return bytes_.load(); }
+
+ private:
+  static bool monitor(void* user, ssize_t bytes, bool post);
+  RTCDevice device_;
+  std::atomic<std::int64_t> bytes_{0};
+};
+
+struct ReleaseEmbreeScene {
+  void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
+};
+
+struct EmbreeScene {
+  std::unique_ptr<RTCSceneTy, ReleaseEmbreeScene> scene;
+  std::size_t spheres = 0, triangles = 0;  // Embree primitives
+  std::size_t polygons_triangulated = 0;   // quiver polygons among the triangles
+  std::size_t skipped_planes = 0, skipped_cones = 0;
+  std::size_t buffer_bytes = 0;      // vertex and index buffers handed to Embree
+  std::int64_t monitored_bytes = 0;  // monitor total after commit, buffers included
+  double build_ms = 0.0;             // buffers filled + rtcCommitScene
+  double commit_ms = 0.0;            // rtcCommitScene alone
+};
+
+// desc must be the SceneDesc `scene` was built from. robust adds
+// RTC_SCENE_FLAG_ROBUST (Embree's watertight mode); build quality is
+// Embree's default (medium). Throws std::runtime_error on an Embree error.
+EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc, const Scene& scene, bool robust);
+
+}  // namespace quiver::bench

@@ -1,0 +1,157 @@
+#include "io/trace_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "integrator/scene_intersector.h"
+
+namespace quiver {
+
+namespace {
+
+// The flags `quiver render` shares with `quiver trace`, for its checks.
+RenderOptions shared_render_options(const TraceOptions& options) {
+  RenderOptions shared;
+  shared.width = options.width;
+  shared.height = options.height;
+  shared.threads = options.threads;
+  shared.simd = options.simd;
+  return shared;
+}
+
+}  // namespace
+
+void check_trace_options(const TraceOptions& options) {
+  check_render_options(shared_render_options(options));
+  if (options.repeat < 1 || options.repeat > kMaxTraceRepeat) {
+    throw UsageError("--repeat: expected an integer in [1, " + std::to_string(kMaxTraceRepeat) + "], found " +
+                     std::to_string(options.repeat));
+  }
+}
+
+std::pair<int, int> trace_image_size(const TraceOptions& options, const std::optional<CameraDesc>& camera) {
+  const auto [width, height] = image_size(shared_render_options(options), camera);
+  if (std::int64_t(width) * std::int64_t(height) > kMaxTracePixels) {
+    throw UsageError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     ": quiver trace holds every ray at once, expected at most 2^24 (16777216) pixels");
+  }
+  return {width, height};
+}
+
+std::vector<PixelTile> pixel_tiles(int width, int height, int side) {
+  if (side < 1) throw std::invalid_argument("tile side must be at least 1");
+  std::vector<PixelTile> tiles;
+  for (int y = 0; y < height; y += side) {
+    for (int x = 0; x < width; x += side) {
+      tiles.push_back({x, y, std::min(side, width - x), std::min(side, height - y)});
+    }
+  }
+  return tiles;
+}
+
+void tile_primary_rays(const Camera& camera, const PixelTile& tile, RaySoA& rays) {
+  constexpr int kGroupWidth = 4, kGroupHeight = 2;
+  rays.clear();
+  for (int gy = 0; gy < tile.height; gy += kGroupHeight) {
+    for (int gx = 0; gx < tile.width; gx += kGroupWidth) {
+      for (int y = gy; y < std::min(gy + kGroupHeight, tile.height); ++y) {
+        for (int x = gx; x < std::min(gx + kGroupWidth, tile.width); ++x) {
+          rays.push(camera.ray(tile.x0 + x + 0.5, tile.y0 + y + 0.5));
+        }
+      }
+    }
+  }
+  rays.pad();
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa isa, int threads, int repeat) {
+  if (repeat < 1) throw std::invalid_argument("repeat must be at least 1");
+  const Camera camera(scene.camera, width, height);
+  const std::vector<PixelTile> tiles = pixel_tiles(width, height, kTraceTileSide);
+  PrimaryTraceResult result;
+  result.isa = isa;
+  result.threads = threads > 0 ? threads : tbb::info::default_concurrency();
+  tbb::task_arena arena(result.threads);
+
+  // Rays before timing; per tile, the hit count and t sum of the last repeat.
+  std::vector<RaySoA> tile_rays(tiles.size());
+  std::vector<std::uint64_t> tile_hits(tiles.size(), 0);
+  std::vector<double> tile_t_sum(tiles.size(), 0.0);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), tiles.size(),
+                      [&](std::size_t t) { tile_primary_rays(camera, tiles[t], tile_rays[t]); });
+  });
+
+  const SceneIntersector intersector(kernel_unit_for(isa));
+  tbb::enumerable_thread_specific<HitSoA> thread_hits;
+  for (int r = 0; r < repeat; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+          [&](const tbb::blocked_range<std::size_t>& range) {
+            HitSoA& hits = thread_hits.local();
+            for (std::size_t t = range.begin(); t != range.end(); ++t) {
+              const RaySoA& rays = tile_rays[t];
+              hits.reset(rays);
+              intersector.closest(scene, rays, hits);
+              std::uint64_t count = 0;
+              double sum = 0.0;
+              for (std::size_t i = 0; i < rays.count; ++i) {
+                if (hits.id[i] == kNoHit) continue;
+                ++count;
+                sum += double(hits.t[i]);
+              }
+              tile_hits[t] = count;
+              tile_t_sum[t] = sum;
+            }
+          },
+          tbb::simple_partitioner());
+    });
+    result.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    result.rays += tile_rays[t].count;
+    result.hits += tile_hits[t];
+    result.t_sum += tile_t_sum[t];
+  }
+  return result;
+}
+
+std::string trace_json_line(const PrimaryTraceResult& result, const Scene& scene, int width, int height,
+                            double build_ms) {
+  std::vector<double> mrays;
+  for (double ms : result.ms) mrays.push_back(ms > 0.0 ? double(result.rays) / (ms * 1e3) : 0.0);
+  nlohmann::ordered_json line;
+  line["mrays_per_s"] = median(mrays);
+  line["hits"] = result.hits;
+  line["t_sum"] = result.t_sum;
+  line["rays"] = result.rays;
+  line["ms_median"] = median(result.ms);
+  line["threads"] = result.threads;
+  line["simd"] = std::string(isa_name(result.isa));
+  line["lanes"] = lane_width(result.isa);
+  line["build_ms"] = build_ms;
+  line["width"] = width;
+  line["height"] = height;
+  line["repeat"] = result.ms.size();
+  line["primitives"] = scene.primitive_count();
+  line["acceleration_bytes"] = scene.acceleration_bytes();
+  return line.dump();
+}
+
+}  // namespace quiver
