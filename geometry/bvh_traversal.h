@@ -9,9 +9,9 @@
 //           boxes are SoA), nearest child first; leaves test the ray against
 //           W primitives at a time (the scan kernels), or one at a time for
 //           kinds without a scan orientation.
-// The stream decides per packet: packet traversal when every active lane's
-// direction lies in the same octant (coherent: camera rays), otherwise each
-// active lane traverses alone (see bench/README.md for the measurement).
+// The stream decides per packet: packets travel together, except that
+// triangle packets whose active lanes' directions span several octants
+// (incoherent) traverse lane by lane (measured, bench/README.md).
 //
 // Slab test: Williams, Barrus, Morley, Shirley, "An efficient and robust
 // ray-box intersection algorithm" (2005): near/far planes chosen by the sign
@@ -53,6 +53,10 @@ struct NodeLanesOf {
 template <>
 struct NodeLanesOf<KernelUnit::sse4, 4> {
   using type = UnitLanes<KernelUnit::sse4>;
+};
+template <>
+struct NodeLanesOf<KernelUnit::sse4, 8> {
+  using type = UnitLanes<KernelUnit::sse4>;  // two halves
 };
 #endif
 #if XSIMD_WITH_FMA3_AVX2
@@ -384,11 +388,22 @@ inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
   return true;
 }
 
+// Stores whose incoherent rays traverse faster one by one (scan leaves):
+// triangles. Sphere and polygon packets were faster together on every ray
+// set measured (bench/README.md); cones are assumed to follow spheres.
+template <class S>
+concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
+
 // Whether the packet's active lanes walk the tree together.
-template <class F>
+template <class S, class F>
 inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
   if (traversal != BvhTraversal::automatic) return traversal == BvhTraversal::packets;
-  return lane_count<F> > 1 && same_octant(ray, active);
+  if (lane_count<F> == 1) return false;
+  if constexpr (IncoherentRaysTraverseAlone<S>) {
+    return same_octant(ray, active);
+  } else {
+    return true;
+  }
 }
 
 template <KernelUnit U, class Method, class S, int N>
@@ -399,7 +414,7 @@ template <KernelUnit U, class Method, class S, int N>
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
-    if (travels_together(traversal, ray, active)) {
+    if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
       closest_bvh_packet<Method, F, N>(prims, bvh, ray, active, hit);
       hits.store(first, hit);
@@ -424,7 +439,7 @@ template <KernelUnit U, class Method, class S, int N>
     const Ray<F> ray = rays.load<F>(first);
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     if (none(valid && !occluded)) continue;
-    if (travels_together(traversal, ray, valid && !occluded)) {
+    if (travels_together<S>(traversal, ray, valid && !occluded)) {
       const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(prims, bvh, ray, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;

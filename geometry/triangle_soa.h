@@ -31,6 +31,9 @@ struct TriangleSoA {
   std::vector<std::uint32_t> source;
   std::int32_t id_base = 0;
 
+  // BVH traversal: incoherent packets go ray by ray (geometry/bvh_traversal.h).
+  static constexpr bool kIncoherentRaysTraverseAlone = true;
+
   std::size_t size() const { return count; }
   bool has_normals() const { return !n0x.empty(); }
   bool has_uvs() const { return !uv0u.empty(); }
