@@ -289,7 +289,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
     }
   }
 
-  const SceneIntersector intersector(kernel_unit_for(settings.isa));
+  const SceneIntersector intersector(kernel_unit_for(settings.isa), choose_sphere_method(scene, settings.methods));
+  result.sphere_method = intersector.sphere_method();
   std::vector<Vec3<float>> corners;
   if (settings.aa.mode == AntiAliasing::Mode::corners) {
     corners.resize((std::size_t(settings.width) + 1) * (std::size_t(settings.height) + 1));

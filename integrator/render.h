@@ -26,6 +26,7 @@ struct RenderSettings {
   Isa isa = Isa::scalar;
   bool aov_depth = false, aov_normal = false, aov_id = false;  // id also writes the kind
   int tile_size = 16;
+  MethodChoice methods = MethodChoice::per_scene;  // most_robust: robust sphere test in every scene
 };
 
 struct RenderResult {
@@ -33,6 +34,7 @@ struct RenderResult {
   TraceStats stats;
   double render_ms = 0.0;
   int threads = 0;  // threads actually used
+  SphereMethod sphere_method = SphereMethod::robust;  // the one the render used
 };
 
 // Called after each tile with (tiles done, tiles total), from worker

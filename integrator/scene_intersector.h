@@ -1,10 +1,13 @@
 // The scene's intersection queries for one kernel unit: each layer's stores
 // in turn, through the store's BVH where it has one (geometry/bvh_traversal.h)
 // and otherwise through the packet streams (W rays against one primitive),
-// with the robust sphere, watertight triangle, crossing polygon, seed plane
-// and quadric cone methods. HitSoA carries the closest t, so the stores
-// compose; every path reports the smallest (t, id), so the order does not
-// matter.
+// with the watertight triangle, crossing polygon, seed plane and quadric cone
+// methods, and the sphere method chosen per scene: the seed's algebraic test
+// where no ray origin is more than kAlgebraicSphereMaxDistanceRatio radii from
+// a sphere's centre (it gives no wrong answer on clear rays through 31.6
+// radii, bench/ACCURACY.md "Choosing per scene"), else the robust one. HitSoA
+// carries the closest t, so the stores compose; every path reports the
+// smallest (t, id), so the order does not matter.
 #pragma once
 
 #include "geometry/cone_streams.h"
@@ -16,11 +19,33 @@
 
 namespace quiver {
 
+// per_scene: the cheaper sphere test where the scene cannot trigger its
+// failure; most_robust: the robust methods everywhere.
+enum class MethodChoice { per_scene, most_robust };
+
+// Rays start at the camera eye or at hit points; both lie in the box holding
+// the scene's bounded primitives and the eye (plane hits are unbounded). The
+// largest distance from a sphere's centre to that box over the sphere's
+// radius, the largest over the scene's spheres: infinity when the scene has
+// planes, 0 without spheres.
+double sphere_origin_distance_ratio(const Scene& scene);
+
+// The algebraic sphere test is wrong on clear rays from 100 radii on and
+// clean through 31.6 (tests/accuracy_failure_points_test.cpp); its error
+// band grows as ratio^2, so 10 keeps it 10x inside the last clean point, and
+// 10 radii is where the acne study measured it with the robust offset.
+inline constexpr double kAlgebraicSphereMaxDistanceRatio = 10.0;
+
+// algebraic when the scene has spheres and every ray origin is within the
+// ratio above (per_scene); robust otherwise.
+SphereMethod choose_sphere_method(const Scene& scene, MethodChoice choice);
+
 class SceneIntersector {
  public:
-  explicit SceneIntersector(KernelUnit unit);
+  explicit SceneIntersector(KernelUnit unit, SphereMethod sphere = SphereMethod::robust);
 
   KernelUnit unit() const { return unit_; }
+  SphereMethod sphere_method() const { return sphere_method_; }
   // How packets walk the BVHs (automatic: together when coherent).
   void set_traversal(BvhTraversal traversal) { traversal_ = traversal; }
   int lanes() const { return lane_width(unit_); }
@@ -34,6 +59,7 @@ class SceneIntersector {
 
  private:
   KernelUnit unit_;
+  SphereMethod sphere_method_;
   BvhTraversal traversal_ = BvhTraversal::automatic;
   BvhStreams<SphereSoA> sphere_bvh_;
   BvhStreams<TriangleSoA> triangle_bvh_;

@@ -348,6 +348,9 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                           ->type_name("NAME");
   render.add_flag("--two-sided", args.options.two_sided,
                   "Make every surface two-sided (a one-sided surface seen from behind gets only ambient light)");
+  render.add_flag("--robust-methods", args.options.robust_methods,
+                  "Use the robust sphere test in every scene. Default: the seed's algebraic test where no ray can "
+                  "start more than 10 radii from a sphere (bench/ACCURACY.md), the robust one elsewhere");
 }
 
 // Copies the flags that were given into the optional fields.

@@ -196,6 +196,7 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
     s.aov_id = aovs.id;
   }
   plan.build.all_two_sided = options.preset_spd || options.two_sided;
+  s.methods = options.robust_methods ? MethodChoice::most_robust : MethodChoice::per_scene;
   return plan;
 }
 

@@ -51,6 +51,7 @@ struct RenderOptions {
   std::optional<std::string> aov;   // comma list of depth, normal, id
   bool preset_spd = false;
   bool two_sided = false;
+  bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
 };
 
 struct AovSelection {

@@ -91,6 +91,7 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
       {"threads", result.threads},
       {"simd", std::string(isa_name(settings.isa))},
       {"kernel_unit", std::string(kernel_unit_name(kernel_unit_for(settings.isa)))},
+      {"sphere_method", result.sphere_method == SphereMethod::algebraic ? "algebraic" : "robust"},
       {"lanes", lane_width(settings.isa)},
       {"width", settings.width},
       {"height", settings.height},

@@ -27,7 +27,7 @@ struct RenderStatsContext {
 };
 
 // Keys: version, scene, output, load_ms, build_ms, render_ms, threads, simd,
-// kernel_unit, lanes, width, height, aa, max_depth, min_weight, seed,
+// kernel_unit, sphere_method (algebraic or robust, chosen per scene), lanes, width, height, aa, max_depth, min_weight, seed,
 // aovs; rays {primary, eye_hit, shadow, reflection, refraction, total};
 // mrays_per_s (total rays / render seconds / 1e6; null for a zero time);
 // lane_utilization {waves: [{depth, active, issued_compacted,

@@ -57,6 +57,7 @@ TEST(RenderOptions, DefaultsWithoutFlagsOrSceneSettings) {
   EXPECT_EQ(s.isa, Isa::scalar);
   EXPECT_FALSE(s.aov_depth || s.aov_normal || s.aov_id);
   EXPECT_FALSE(plan.build.all_two_sided);
+  EXPECT_EQ(s.methods, MethodChoice::per_scene);
 }
 
 TEST(RenderOptions, SceneRenderDescAppliesWhenNoFlagIsGiven) {
@@ -84,6 +85,7 @@ TEST(RenderOptions, FlagsOverrideTheScene) {
   options.threads = 3;
   options.aov = "id,depth";
   options.two_sided = true;
+  options.robust_methods = true;
   const RenderPlan plan = plan_render(options, scene, Isa::sse4);
   const RenderSettings& s = plan.settings;
   EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::jitter);
@@ -97,6 +99,7 @@ TEST(RenderOptions, FlagsOverrideTheScene) {
   EXPECT_FALSE(s.aov_normal);
   EXPECT_TRUE(s.aov_id);
   EXPECT_TRUE(plan.build.all_two_sided);
+  EXPECT_EQ(s.methods, MethodChoice::most_robust);
 }
 
 TEST(RenderOptions, BadSceneSettingsAreSceneErrorsNotUsageErrors) {

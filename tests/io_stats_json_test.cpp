@@ -77,6 +77,7 @@ TEST(StatsJson, SettingsAndTimings) {
   EXPECT_EQ(j.at("threads"), 3);
   EXPECT_EQ(j.at("simd"), "scalar");
   EXPECT_EQ(j.at("kernel_unit"), std::string(kernel_unit_name(kernel_unit_for(Isa::scalar))));
+  EXPECT_EQ(j.at("sphere_method"), "robust");
   EXPECT_EQ(j.at("lanes"), 1);
   EXPECT_EQ(j.at("width"), 4);
   EXPECT_EQ(j.at("height"), 3);
