@@ -118,6 +118,41 @@ inline Vec3<F> node_box_corner(const Bvh& bvh, std::size_t node, int N, int corn
   return {F(b[(3 * corner + 0) * n]), F(b[(3 * corner + 1) * n]), F(b[(3 * corner + 2) * n])};
 }
 
+// A packet set up for slab tests against a node's children. When every
+// active lane's 1/d has the same signs, each axis' near and far planes are
+// the same for all lanes and are chosen once (no per-lane select); other
+// lanes are masked off by the caller.
+template <class F, int N>
+struct PacketSlab {
+  SlabRay<F> ray;
+  bool same_planes = true;
+  std::array<int, 3> near_plane{}, far_plane{};  // float offsets in a node block
+
+  PacketSlab(const Ray<F>& r, const Mask<F>& active) : ray(r) {
+    for (int a = 0; a < 3; ++a) {
+      const bool some_negative = any(ray.negative[a] && active);
+      same_planes = same_planes && !(some_negative && any(!ray.negative[a] && active));
+      near_plane[a] = (some_negative ? 3 + a : a) * N;
+      far_plane[a] = (some_negative ? a : 3 + a) * N;
+    }
+  }
+
+  // Lanes entering child c of the node within [tmin, tmax]; near as in slab_interval.
+  Mask<F> enters(const Bvh& bvh, std::size_t node, int c, const F& tmin, const F& tmax, F& near) const {
+    if (!same_planes) {
+      return slab_interval(ray, node_box_corner<F>(bvh, node, N, 0, c), node_box_corner<F>(bvh, node, N, 1, c), tmin,
+                           tmax, near);
+    }
+    const float* box = bvh.boxes(node) + c;
+    F t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+      narrow_interval(t0, t1, (F(box[near_plane[a]]) - ray.origin[a]) * ray.inv_dir[a],
+                      (F(box[far_plane[a]]) - ray.origin[a]) * ray.inv_dir[a]);
+    }
+    return widened_overlap(t0, t1, near);
+  }
+};
+
 // The closest-hit rule: a candidate at exactly the current t wins only with a smaller id.
 template <class F>
 inline Mask<F> wins_over(const Mask<F>& hit, const F& t, const IntLanes<F>& id, const Hit<F>& best) {
@@ -139,7 +174,7 @@ template <class Method, class F, int N, class S>
   };
   std::array<Entry, bvh_stack_size(N)> stack;
   const auto prepared = Method::prepare(ray);
-  const SlabRay<F> slab(ray);
+  const PacketSlab<F, N> slab(ray, active);
   const F inf(std::numeric_limits<float>::infinity());
   std::size_t top = 0;
   stack[top++] = {0, select(active, ray.tmin, inf)};
@@ -167,9 +202,7 @@ template <class Method, class F, int N, class S>
       const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       F near;
-      const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
-                                           node_box_corner<F>(bvh, node, N, 1, c), ray.tmin, hit.t, near) &&
-                             lanes;
+      const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, hit.t, near) && lanes;
       if (none(enters)) continue;
       const F lane_near = select(enters, near, inf);
       const float k = horizontal_min(lane_near);
@@ -193,7 +226,7 @@ template <class Method, class F, int N, class S>
   };
   std::array<Entry, bvh_stack_size(N)> stack;
   const auto prepared = Method::prepare(ray);
-  const SlabRay<F> slab(ray);
+  const PacketSlab<F, N> slab(ray, valid && !occluded);
   std::size_t top = 0;
   stack[top++] = {0, valid};
   while (top > 0) {
@@ -217,9 +250,7 @@ template <class Method, class F, int N, class S>
       const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       F near;
-      const Mask<F> enters = slab_interval(slab, node_box_corner<F>(bvh, node, N, 0, c),
-                                           node_box_corner<F>(bvh, node, N, 1, c), ray.tmin, ray.tmax, near) &&
-                             active;
+      const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, ray.tmax, near) && active;
       if (any(enters)) stack[top++] = {child, enters};
     }
   }
