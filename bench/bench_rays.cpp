@@ -8,6 +8,7 @@
 
 #include "integrator/camera.h"
 #include "integrator/optics.h"
+#include "integrator/render.h"
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
 
@@ -29,11 +30,9 @@ RaySoA to_soa(const std::vector<Ray<float>>& rays) {
 SceneRays make_scene_rays(const Scene& scene, int width, int height, std::uint32_t seed) {
   const Camera camera(scene.camera, width, height);
   std::vector<Ray<float>> primary;
-  for (int ty = 0; ty < height; ty += kTile) {
-    for (int tx = 0; tx < width; tx += kTile) {
-      for (int y = ty; y < std::min(ty + kTile, height); ++y) {
-        for (int x = tx; x < std::min(tx + kTile, width); ++x) primary.push_back(camera.ray(x + 0.5, y + 0.5));
-      }
+  for (const PixelTile& tile : pixel_tiles(width, height, kTile)) {
+    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) primary.push_back(camera.ray(x + 0.5, y + 0.5));
     }
   }
   SceneRays out;

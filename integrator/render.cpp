@@ -18,10 +18,6 @@ namespace quiver {
 
 namespace {
 
-struct Tile {
-  int x0, y0, width, height;
-};
-
 float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
   return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
 }
@@ -45,7 +41,7 @@ class TileRenderer {
                std::vector<Vec3<float>>* corners)
       : camera_(camera), settings_(settings), image_(image), corners_(corners) {}
 
-  void render(const Tile& tile, Worker& w) const {
+  void render(const PixelTile& tile, Worker& w) const {
     switch (settings_.aa.mode) {
       case AntiAliasing::Mode::none:
       case AntiAliasing::Mode::grid:
@@ -74,7 +70,7 @@ class TileRenderer {
   }
 
   // none, grid:N, jitter:N: N x N samples per pixel, averaged.
-  void render_supersampled(const Tile& tile, Worker& w) const {
+  void render_supersampled(const PixelTile& tile, Worker& w) const {
     const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
     const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
     w.samples.clear();
@@ -106,7 +102,7 @@ class TileRenderer {
   // The SPD rule, part one: the rays at the corners this tile owns (its
   // top-left corners, plus the image's right and bottom edges), each traced
   // once; render() averages them into pixels when every tile is done.
-  void render_corners(const Tile& tile, Worker& w) const {
+  void render_corners(const PixelTile& tile, Worker& w) const {
     const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
     const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
     w.samples.clear();
@@ -123,7 +119,7 @@ class TileRenderer {
   // Adaptive: corners on a lattice of 2^depth points per pixel side; level by
   // level, every square whose corners differ by more than the threshold asks
   // for its centre and edge midpoints, all of a level traced as one batch.
-  void render_adaptive(const Tile& tile, Worker& w) const {
+  void render_adaptive(const PixelTile& tile, Worker& w) const {
     const int depth = settings_.aa.depth;
     const int scale = 1 << depth;
     const int lw = tile.width * scale + 1, lh = tile.height * scale + 1;
@@ -218,7 +214,7 @@ class TileRenderer {
     }
   }
 
-  void render_aovs(const Tile& tile, Worker& w) const {
+  void render_aovs(const PixelTile& tile, Worker& w) const {
     w.centre_rays.clear();
     for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
       for (int x = tile.x0; x < tile.x0 + tile.width; ++x) w.centre_rays.push_back(camera_.ray(x + 0.5, y + 0.5));
@@ -267,6 +263,17 @@ void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image
 
 }  // namespace
 
+std::vector<PixelTile> pixel_tiles(int width, int height, int side) {
+  if (side < 1) throw std::invalid_argument("tile side must be at least 1");
+  std::vector<PixelTile> tiles;
+  for (int y = 0; y < height; y += side) {
+    for (int x = 0; x < width; x += side) {
+      tiles.push_back({x, y, std::min(side, width - x), std::min(side, height - y)});
+    }
+  }
+  return tiles;
+}
+
 RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress) {
   if (settings.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
   const Camera camera(scene.camera, settings.width, settings.height);
@@ -281,13 +288,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
     image.id.assign(pixels, -1);
   }
 
-  std::vector<Tile> tiles;
-  for (int y = 0; y < settings.height; y += settings.tile_size) {
-    for (int x = 0; x < settings.width; x += settings.tile_size) {
-      tiles.push_back({x, y, std::min(settings.tile_size, settings.width - x),
-                       std::min(settings.tile_size, settings.height - y)});
-    }
-  }
+  const std::vector<PixelTile> tiles = pixel_tiles(settings.width, settings.height, settings.tile_size);
 
   const SceneIntersector intersector(kernel_unit_for(settings.isa), choose_sphere_method(scene, settings.methods));
   result.sphere_method = intersector.sphere_method();

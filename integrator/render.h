@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "integrator/anti_aliasing.h"
 #include "integrator/framebuffer.h"
@@ -36,6 +37,15 @@ struct RenderResult {
   int threads = 0;  // threads actually used
   SphereMethod sphere_method = SphereMethod::robust;  // the one the render used
 };
+
+// A rectangle of pixels: the renderer's unit of work.
+struct PixelTile {
+  int x0, y0, width, height;
+};
+
+// Tiles of at most side x side pixels covering width x height, row by row.
+// Throws std::invalid_argument for side < 1.
+std::vector<PixelTile> pixel_tiles(int width, int height, int side);
 
 // Called after each tile with (tiles done, tiles total), from worker
 // threads one at a time.

@@ -45,17 +45,6 @@ std::pair<int, int> trace_image_size(const TraceOptions& options, const std::opt
   return {width, height};
 }
 
-std::vector<PixelTile> pixel_tiles(int width, int height, int side) {
-  if (side < 1) throw std::invalid_argument("tile side must be at least 1");
-  std::vector<PixelTile> tiles;
-  for (int y = 0; y < height; y += side) {
-    for (int x = 0; x < width; x += side) {
-      tiles.push_back({x, y, std::min(side, width - x), std::min(side, height - y)});
-    }
-  }
-  return tiles;
-}
-
 void tile_primary_rays(const Camera& camera, const PixelTile& tile, RaySoA& rays) {
   constexpr int kGroupWidth = 4, kGroupHeight = 2;
   rays.clear();

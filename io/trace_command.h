@@ -18,6 +18,7 @@
 
 #include "geometry/soa.h"
 #include "integrator/camera.h"
+#include "integrator/render.h"
 #include "integrator/scene.h"
 #include "io/render_options.h"
 #include "simd/isa.h"
@@ -44,13 +45,6 @@ void check_trace_options(const TraceOptions& options);
 // The image size (as image_size() for `quiver render`), checked against
 // kMaxTracePixels; throws UsageError.
 std::pair<int, int> trace_image_size(const TraceOptions& options, const std::optional<CameraDesc>& camera);
-
-struct PixelTile {
-  int x0, y0, width, height;
-};
-
-// Tiles of at most side x side pixels covering width x height, row by row.
-std::vector<PixelTile> pixel_tiles(int width, int height, int side);
 
 // The pixel-centre rays of one tile into rays (cleared, then padded), in
 // groups of 4x2 pixels (row-major inside a group, groups row-major), so each
