@@ -279,6 +279,17 @@ struct NodeRay {
   }
 };
 
+// One ray prepared once for its leaf tests: broadcast to the unit's lanes
+// for stores with a scan orientation, as it is otherwise.
+template <KernelUnit U, class Method, class S>
+auto prepare_for_leaves(const Ray<float>& ray) {
+  if constexpr (ScanStore<S>) {
+    return Method::prepare(broadcast_ray<UnitLanes<U>>(ray));
+  } else {
+    return Method::prepare(ray);
+  }
+}
+
 // The node's children the ray enters within [tmin, tmax]: bit c of the
 // result, near[c] their widened entry distances.
 template <KernelUnit U, int N>
@@ -316,8 +327,7 @@ template <KernelUnit U, class Method, int N, class S>
   };
   std::array<Entry, bvh_stack_size(N)> stack;
   const NodeRay<U, N> node_ray(ray);
-  const Ray<F> wide = broadcast_ray<F>(ray);
-  const auto prepared_wide = Method::prepare(wide);
+  const auto prepared = prepare_for_leaves<U, Method, S>(ray);
   std::size_t top = 0;
   stack[top++] = {0, ray.tmin};
   while (top > 0) {
@@ -329,7 +339,7 @@ template <KernelUnit U, class Method, int N, class S>
       if constexpr (ScanStore<S>) {
         for (std::size_t block = first; block < end; block += lane_count<F>) {
           Candidate<F> c;
-          const Mask<F> hits_block = Method::intersect(prepared_wide, prims.template load<F>(block),
+          const Mask<F> hits_block = Method::intersect(prepared, prims.template load<F>(block),
                                                        F(next_float_up(hit.t)), first_lanes<F>(end - block), c);
           if (none(hits_block)) continue;
           Hit<F> lanes = Hit<F>::none(F(hit.t));
@@ -338,7 +348,6 @@ template <KernelUnit U, class Method, int N, class S>
           if (wins_over(best.id != kNoHit, best.t, best.id, hit)) hit = best;
         }
       } else {
-        const auto prepared = Method::prepare(ray);
         for (std::size_t p = first; p < end; ++p) {
           Candidate<float> c;
           const bool hits_p = Method::intersect(prepared, prims.template broadcast<float>(p), next_float_up(hit.t),
@@ -370,8 +379,7 @@ template <KernelUnit U, class Method, int N, class S>
   using F = UnitLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
   const NodeRay<U, N> node_ray(ray);
-  const Ray<F> wide = broadcast_ray<F>(ray);
-  const auto prepared_wide = Method::prepare(wide);
+  const auto prepared = prepare_for_leaves<U, Method, S>(ray);
   std::size_t top = 0;
   stack[top++] = 0;
   while (top > 0) {
@@ -382,13 +390,12 @@ template <KernelUnit U, class Method, int N, class S>
       if constexpr (ScanStore<S>) {
         for (std::size_t block = first; block < end; block += lane_count<F>) {
           Candidate<F> unused;
-          if (any(Method::intersect(prepared_wide, prims.template load<F>(block), wide.tmax,
+          if (any(Method::intersect(prepared, prims.template load<F>(block), F(ray.tmax),
                                     first_lanes<F>(end - block), unused))) {
             return true;
           }
         }
       } else {
-        const auto prepared = Method::prepare(ray);
         for (std::size_t p = first; p < end; ++p) {
           Candidate<float> unused;
           if (Method::intersect(prepared, prims.template broadcast<float>(p), ray.tmax, true, unused)) return true;
