@@ -21,6 +21,11 @@
 //   the paper's scaled t xor sign(det), so (tmin, tmax) is exact and the
 //   stream orders agree bit for bit; the division still waits until some
 //   lane passes the edge tests.
+//   Axes: when every lane shares kz and the swap (always for one ray, for a
+//   scan's broadcast ray and for most coherent packets) the permutation is
+//   fixed per packet at compile time (AxesFixed) instead of 18 per-lane
+//   selects per test (AxesPerLane). Both pick the same floats, so the bits
+//   are the same either way.
 //
 // Both: hit iff active, inside (edges and vertices included), det != 0,
 // tmin < t < tmax and ng != 0 (a triangle whose computed ng is exactly zero,
@@ -100,7 +105,45 @@ struct WatertightRay {
   F sx, sy, sz;
   F tmin;
   Mask<F> valid;  // direction not zero
+  // kz * 2 + swap when every lane shares them, else kMixedAxes.
+  int shared_axes;
 };
+
+inline constexpr int kMixedAxes = -1;
+
+namespace triangle_detail {
+
+// The sheared frame's axes chosen per lane by the ray's masks.
+struct AxesPerLane {
+  template <class F>
+  static F x(const Vec3<F>& a, const WatertightRay<F>& r) { return component(a, r.kx_is_x, r.kx_is_y); }
+  template <class F>
+  static F y(const Vec3<F>& a, const WatertightRay<F>& r) { return component(a, r.ky_is_x, r.ky_is_y); }
+  template <class F>
+  static F z(const Vec3<F>& a, const WatertightRay<F>& r) { return component(a, r.kz_is_x, r.kz_is_y); }
+};
+
+// The same axes fixed for the packet: kz = KZ (0 x, 1 y, 2 z), kx and ky
+// cyclic after it and swapped when Swap.
+template <int KZ, bool Swap>
+struct AxesFixed {
+  static constexpr int kx = Swap ? (KZ + 2) % 3 : (KZ + 1) % 3;
+  static constexpr int ky = Swap ? (KZ + 1) % 3 : (KZ + 2) % 3;
+  template <int K, class F>
+  static const F& axis(const Vec3<F>& a) {
+    if constexpr (K == 0) return a.x;
+    else if constexpr (K == 1) return a.y;
+    else return a.z;
+  }
+  template <class F>
+  static F x(const Vec3<F>& a, const WatertightRay<F>&) { return axis<kx>(a); }
+  template <class F>
+  static F y(const Vec3<F>& a, const WatertightRay<F>&) { return axis<ky>(a); }
+  template <class F>
+  static F z(const Vec3<F>& a, const WatertightRay<F>&) { return axis<KZ>(a); }
+};
+
+}  // namespace triangle_detail
 
 struct TriangleWatertight {
   template <class F>
@@ -133,6 +176,11 @@ struct TriangleWatertight {
     r.sy = component(d, r.ky_is_x, r.ky_is_y) / safe_dz;
     r.sz = F(1.f) / safe_dz;
     r.tmin = ray.tmin;
+    r.shared_axes = kMixedAxes;
+    const bool one_swap = all(swap) || none(swap);
+    if (one_swap && all(kz_is_x)) r.shared_axes = 0 * 2 + (all(swap) ? 1 : 0);
+    if (one_swap && all(kz_is_y)) r.shared_axes = 1 * 2 + (all(swap) ? 1 : 0);
+    if (one_swap && all(z_is_z)) r.shared_axes = 2 * 2 + (all(swap) ? 1 : 0);
     return r;
   }
 
@@ -140,19 +188,35 @@ struct TriangleWatertight {
   static Mask<F> intersect(const WatertightRay<F>& ray, const TriangleLanes<F>& tri, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
     using namespace triangle_detail;
+    switch (ray.shared_axes) {
+      case 0: return intersect_in<AxesFixed<0, false>>(ray, tri, tmax, active, out);
+      case 1: return intersect_in<AxesFixed<0, true>>(ray, tri, tmax, active, out);
+      case 2: return intersect_in<AxesFixed<1, false>>(ray, tri, tmax, active, out);
+      case 3: return intersect_in<AxesFixed<1, true>>(ray, tri, tmax, active, out);
+      case 4: return intersect_in<AxesFixed<2, false>>(ray, tri, tmax, active, out);
+      case 5: return intersect_in<AxesFixed<2, true>>(ray, tri, tmax, active, out);
+      default: return intersect_in<AxesPerLane>(ray, tri, tmax, active, out);
+    }
+  }
+
+  // The test in the frame Axes picks (see AxesPerLane, AxesFixed).
+  template <class Axes, class F>
+  static Mask<F> intersect_in(const WatertightRay<F>& ray, const TriangleLanes<F>& tri, const F& tmax,
+                              const Mask<F>& active, Candidate<F>& out) {
+    using namespace triangle_detail;
     // Vertices relative to the origin, permuted so the ray runs along kz.
     const Vec3<F> a = tri.v0 - ray.origin, b = tri.v1 - ray.origin, c = tri.v2 - ray.origin;
-    const F az = component(a, ray.kz_is_x, ray.kz_is_y);
-    const F bz = component(b, ray.kz_is_x, ray.kz_is_y);
-    const F cz = component(c, ray.kz_is_x, ray.kz_is_y);
+    const F az = Axes::z(a, ray);
+    const F bz = Axes::z(b, ray);
+    const F cz = Axes::z(c, ray);
     // Shear x, y so the ray is the z axis of the 2D edge tests (fused: one
     // rounding per coordinate; the paper's unfused form missed more far away).
-    const F ax = fma(-ray.sx, az, component(a, ray.kx_is_x, ray.kx_is_y));
-    const F ay = fma(-ray.sy, az, component(a, ray.ky_is_x, ray.ky_is_y));
-    const F bx = fma(-ray.sx, bz, component(b, ray.kx_is_x, ray.kx_is_y));
-    const F by = fma(-ray.sy, bz, component(b, ray.ky_is_x, ray.ky_is_y));
-    const F cx = fma(-ray.sx, cz, component(c, ray.kx_is_x, ray.kx_is_y));
-    const F cy = fma(-ray.sy, cz, component(c, ray.ky_is_x, ray.ky_is_y));
+    const F ax = fma(-ray.sx, az, Axes::x(a, ray));
+    const F ay = fma(-ray.sy, az, Axes::y(a, ray));
+    const F bx = fma(-ray.sx, bz, Axes::x(b, ray));
+    const F by = fma(-ray.sy, bz, Axes::y(b, ray));
+    const F cx = fma(-ray.sx, cz, Axes::x(c, ray));
+    const F cy = fma(-ray.sy, cz, Axes::y(c, ray));
     // Edge functions, unfused so a shared edge gives exactly opposite values.
     F w0 = cx * by - cy * bx;
     F w1 = ax * cy - ay * cx;

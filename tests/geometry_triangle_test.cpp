@@ -417,6 +417,18 @@ std::vector<Ray<float>> triangle_rays(RaySampler& s, const TriangleSoA& tris) {
     const float u = s.uniform(0.f, 1.f), v = s.uniform(0.f, 1.f - u);
     rays.push_back({on_triangle(p, u, v), s.unit_direction(), 0.f, kInf});
   }
+  // Coherent bundles of 16 (so every width gets whole packets of them): one
+  // dominant axis and sign, so the watertight test takes its fixed-axes path.
+  for (int bundle = 0; bundle < 1'500; ++bundle) {
+    const auto p = random_triangle();
+    Vec3<float> base{s.uniform(-0.4f, 0.4f), s.uniform(-0.4f, 0.4f), s.uniform(-0.4f, 0.4f)};
+    base[s.uniform_int(0, 2)] = s.uniform(0.f, 1.f) < 0.5f ? -1.f : 1.f;
+    for (int i = 0; i < 16; ++i) {
+      const Vec3<float> d = base + Vec3<float>{s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f)};
+      const Vec3<float> target = on_triangle(p, s.uniform(-0.2f, 1.f), s.uniform(-0.2f, 1.f));
+      rays.push_back({target - d * s.uniform(2.f, 9.f), d, 0.f, kInf});
+    }
+  }
   return rays;
 }
 
