@@ -103,13 +103,25 @@ inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
   return xsimd::select(m, a, b);
 }
 
+// The float mask's register reinterpreted as an int mask (xsimd's
+// bitwise_cast of a batch_bool is a select, not a reinterpretation).
+#if defined(__SSE4_2__) && defined(__FMA__)
+inline xsimd::batch_bool<std::int32_t, xsimd::sse4_2> int_mask(const xsimd::batch_bool<float, xsimd::sse4_2>& m) {
+  return _mm_castps_si128(m);
+}
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+inline xsimd::batch_bool<std::int32_t, xsimd::fma3<xsimd::avx2>> int_mask(
+    const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& m) {
+  return _mm256_castps_si256(m);
+}
+#endif
+
 template <class A>
 inline xsimd::batch<std::int32_t, A> select(const xsimd::batch_bool<float, A>& m,
                                             const xsimd::batch<std::int32_t, A>& a,
                                             const xsimd::batch<std::int32_t, A>& b) {
-  // Reinterpret the float mask's all-ones lanes as an int mask.
-  const auto bits = xsimd::bitwise_cast<xsimd::batch<std::int32_t, A>>(xsimd::bitwise_cast(m));
-  return xsimd::select(bits != std::int32_t(0), a, b);
+  return xsimd::select(int_mask(m), a, b);
 }
 
 template <class A>
@@ -251,12 +263,12 @@ inline F load_lanes_unaligned(const float* p) {
 inline unsigned lane_bits(bool m) { return m ? 1u : 0u; }
 #if defined(__SSE4_2__) && defined(__FMA__)
 inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::sse4_2>& m) {
-  return static_cast<unsigned>(_mm_movemask_ps(xsimd::bitwise_cast(m)));
+  return static_cast<unsigned>(_mm_movemask_ps(m));  // the mask register itself
 }
 #endif
 #if XSIMD_WITH_FMA3_AVX2
 inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& m) {
-  return static_cast<unsigned>(_mm256_movemask_ps(xsimd::bitwise_cast(m)));
+  return static_cast<unsigned>(_mm256_movemask_ps(m));  // the mask register itself
 }
 #endif
 
