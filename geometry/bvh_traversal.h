@@ -168,22 +168,24 @@ concept ScanStore = requires(const S& s) { s.template load<float>(0); };
 template <class Method, class F, int N, class S>
 [[gnu::always_inline]] inline void closest_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
                                                       const Mask<F>& active, Hit<F>& hit) {
-  struct Entry {
-    std::int32_t node;
-    F near;  // +inf in lanes that do not enter
-  };
-  std::array<Entry, bvh_stack_size(N)> stack;
+  // Nodes and their lanes' entry distances (+inf in lanes that do not
+  // enter), in two arrays: an entry copied as one struct is stored in 16-byte
+  // halves and reloaded whole, which defeats store forwarding.
+  std::array<std::int32_t, bvh_stack_size(N)> stack_node;
+  std::array<F, bvh_stack_size(N)> stack_near;
   const auto prepared = Method::prepare(ray);
   const PacketSlab<F, N> slab(ray, active);
   const F inf(std::numeric_limits<float>::infinity());
   std::size_t top = 0;
-  stack[top++] = {0, select(active, ray.tmin, inf)};
+  stack_node[top] = 0;
+  stack_near[top++] = select(active, ray.tmin, inf);
   while (top > 0) {
-    const Entry entry = stack[--top];
-    const Mask<F> lanes = entry.near <= hit.t * F(1.f + kSlabSlack);
+    --top;
+    const std::int32_t entry_node = stack_node[top];
+    const Mask<F> lanes = stack_near[top] <= hit.t * F(1.f + kSlabSlack);
     if (none(lanes)) continue;
-    if (is_leaf(entry.node)) {
-      const std::int32_t first = leaf_first(entry.node), end = first + leaf_count(entry.node);
+    if (is_leaf(entry_node)) {
+      const std::int32_t first = leaf_first(entry_node), end = first + leaf_count(entry_node);
       for (std::int32_t p = first; p < end; ++p) {
         Candidate<F> c;
         const Mask<F> hits_p = Method::intersect(prepared, prims.template broadcast<F>(static_cast<std::size_t>(p)),
@@ -197,7 +199,7 @@ template <class Method, class F, int N, class S>
     // Children that some lane enters, pushed farthest first (insertion into the stack top).
     std::array<float, bvh_stack_size(N)> key;
     const std::size_t base = top;
-    const std::size_t node = static_cast<std::size_t>(entry.node);
+    const std::size_t node = static_cast<std::size_t>(entry_node);
     for (int c = 0; c < N; ++c) {
       const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
@@ -209,10 +211,12 @@ template <class Method, class F, int N, class S>
       std::size_t at = top++;
       for (; at > base && key[at - 1] < k; --at) {
         key[at] = key[at - 1];
-        stack[at] = stack[at - 1];
+        stack_node[at] = stack_node[at - 1];
+        stack_near[at] = stack_near[at - 1];
       }
       key[at] = k;
-      stack[at] = {child, lane_near};
+      stack_node[at] = child;
+      stack_near[at] = lane_near;
     }
   }
 }
@@ -220,24 +224,25 @@ template <class Method, class F, int N, class S>
 template <class Method, class F, int N, class S>
 [[gnu::always_inline]] inline Mask<F> occluded_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
                                                           Mask<F> occluded, const Mask<F>& valid) {
-  struct Entry {
-    std::int32_t node;
-    Mask<F> lanes;  // that entered it
-  };
-  std::array<Entry, bvh_stack_size(N)> stack;
+  // Nodes and the lanes that entered them, in two arrays (see closest_bvh_packet).
+  std::array<std::int32_t, bvh_stack_size(N)> stack_node;
+  std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
   const auto prepared = Method::prepare(ray);
   const PacketSlab<F, N> slab(ray, valid && !occluded);
   std::size_t top = 0;
-  stack[top++] = {0, valid};
+  stack_node[top] = 0;
+  stack_lanes[top++] = valid;
   while (top > 0) {
     if (none(valid && !occluded)) break;
-    const Entry entry = stack[--top];
-    const Mask<F> active = entry.lanes && !occluded;
+    --top;
+    const std::int32_t entry_node = stack_node[top];
+    const Mask<F> entry_lanes = stack_lanes[top];
+    const Mask<F> active = entry_lanes && !occluded;
     if (none(active)) continue;
-    if (is_leaf(entry.node)) {
-      const std::int32_t first = leaf_first(entry.node), end = first + leaf_count(entry.node);
+    if (is_leaf(entry_node)) {
+      const std::int32_t first = leaf_first(entry_node), end = first + leaf_count(entry_node);
       for (std::int32_t p = first; p < end; ++p) {
-        const Mask<F> open = entry.lanes && !occluded;
+        const Mask<F> open = entry_lanes && !occluded;
         if (none(open)) break;
         Candidate<F> unused;
         occluded = occluded || Method::intersect(prepared, prims.template broadcast<F>(static_cast<std::size_t>(p)),
@@ -245,13 +250,16 @@ template <class Method, class F, int N, class S>
       }
       continue;
     }
-    const std::size_t node = static_cast<std::size_t>(entry.node);
+    const std::size_t node = static_cast<std::size_t>(entry_node);
     for (int c = N - 1; c >= 0; --c) {
       const std::int32_t child = bvh.child(node, c);
       if (is_leaf(child) && leaf_count(child) == 0) continue;
       F near;
       const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, ray.tmax, near) && active;
-      if (any(enters)) stack[top++] = {child, enters};
+      if (any(enters)) {
+        stack_node[top] = child;
+        stack_lanes[top++] = enters;
+      }
     }
   }
   return occluded;
@@ -317,9 +325,13 @@ template <KernelUnit U, int N>
   return bits;
 }
 
+// Out of line and flattened on its own: inlined into the packet stream it
+// shared that function's registers and spilled its loop state.
+// The walk descends into the nearest entered child directly and pushes the
+// others, farthest first; a popped entry is culled against the current hit.
 template <KernelUnit U, class Method, int N, class S>
-[[gnu::always_inline]] inline void closest_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray,
-                                                      Hit<float>& hit) {
+[[gnu::noinline, gnu::flatten]] void closest_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray,
+                                                        Hit<float>& hit) {
   using F = UnitLanes<U>;
   struct Entry {
     std::int32_t node;
@@ -329,13 +341,11 @@ template <KernelUnit U, class Method, int N, class S>
   const NodeRay<U, N> node_ray(ray);
   const auto prepared = prepare_for_leaves<U, Method, S>(ray);
   std::size_t top = 0;
-  stack[top++] = {0, ray.tmin};
-  while (top > 0) {
-    const Entry entry = stack[--top];
-    if (!(entry.near <= hit.t * (1.f + kSlabSlack))) continue;
-    if (is_leaf(entry.node)) {
-      const std::size_t first = static_cast<std::size_t>(leaf_first(entry.node));
-      const std::size_t end = first + static_cast<std::size_t>(leaf_count(entry.node));
+  std::int32_t current = 0;
+  for (;;) {
+    if (is_leaf(current)) {
+      const std::size_t first = static_cast<std::size_t>(leaf_first(current));
+      const std::size_t end = first + static_cast<std::size_t>(leaf_count(current));
       if constexpr (ScanStore<S>) {
         for (std::size_t block = first; block < end; block += lane_count<F>) {
           Candidate<F> c;
@@ -356,26 +366,47 @@ template <KernelUnit U, class Method, int N, class S>
           if (wins_over(hits_p, c.t, id, hit)) hit.commit(true, c, id);
         }
       }
-      continue;
+    } else {
+      std::array<float, N> near;
+      const std::size_t node = static_cast<std::size_t>(current);
+      unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, hit.t, near);
+      // Empty slots have empty boxes, which no ray enters.
+      if (bits != 0) {
+        int c = __builtin_ctz(bits);
+        bits &= bits - 1;
+        if (bits == 0) {  // one child: no stack traffic
+          current = bvh.child(node, c);
+          continue;
+        }
+        // Several: push all, farthest first (insertion into the stack top), then take the nearest.
+        const std::size_t base = top;
+        for (;;) {
+          std::size_t at = top++;
+          for (; at > base && stack[at - 1].near < near[c]; --at) stack[at] = stack[at - 1];
+          stack[at] = {bvh.child(node, c), near[c]};
+          if (bits == 0) break;
+          c = __builtin_ctz(bits);
+          bits &= bits - 1;
+        }
+        current = stack[--top].node;
+        continue;
+      }
     }
-    std::array<float, N> near;
-    const std::size_t node = static_cast<std::size_t>(entry.node);
-    unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, hit.t, near);
-    // Pushed farthest first (insertion into the stack top), so the nearest child is popped next.
-    const std::size_t base = top;
-    for (; bits != 0; bits &= bits - 1) {
-      const int c = __builtin_ctz(bits);
-      const std::int32_t child = bvh.child(node, c);
-      if (is_leaf(child) && leaf_count(child) == 0) continue;
-      std::size_t at = top++;
-      for (; at > base && stack[at - 1].near < near[c]; --at) stack[at] = stack[at - 1];
-      stack[at] = {child, near[c]};
+    // Next: the nearest pending entry the current hit does not cull.
+    for (;;) {
+      if (top == 0) return;
+      const Entry entry = stack[--top];
+      if (entry.near <= hit.t * (1.f + kSlabSlack)) {
+        current = entry.node;
+        break;
+      }
     }
   }
 }
 
+// Out of line and flattened on its own, as closest_bvh_single.
 template <KernelUnit U, class Method, int N, class S>
-[[gnu::always_inline]] inline bool occluded_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray) {
+[[gnu::noinline, gnu::flatten]] bool occluded_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray) {
   using F = UnitLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
   const NodeRay<U, N> node_ray(ray);
