@@ -10,9 +10,8 @@
 //           W primitives at a time (the scan kernels), or one at a time for
 //           kinds without a scan orientation.
 // The stream decides per packet: packets travel together, except that
-// triangle packets traverse lane by lane for any-hit queries, and for
-// closest hits when their active lanes' directions span several octants
-// (incoherent) (measured, bench/README.md).
+// triangle packets whose active lanes' directions span several octants
+// (incoherent) traverse lane by lane (measured, bench/README.md).
 //
 // Slab test: Williams, Barrus, Morley, Shirley, "An efficient and robust
 // ray-box intersection algorithm" (2005): near/far planes chosen by the sign
@@ -459,22 +458,25 @@ inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
 }
 
 // Stores whose incoherent rays traverse faster one by one (scan leaves):
-// triangles. Sphere and polygon packets were faster together on every ray
-// set measured (bench/README.md); cones are assumed to follow spheres.
+// triangles. Polygon packets were faster together on every ray set
+// measured (bench/README.md). Spheres stay together too: the octant rule
+// gained 15% on balls-s4's diffuse rays but lost 7% on its reflection rays,
+// and reflections are what a Whitted renderer traces. Cones follow spheres.
 template <class S>
 concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
 
-enum class BvhQuery { closest, any_hit };
-
-// Whether the packet's active lanes walk the tree together. Triangles:
-// closest-hit packets only within one octant, any-hit never (one by one,
-// each ray stops at its own first hit: +9% on the bunny's shadow rays).
+// Whether the packet's active lanes walk the tree together. Triangles: only
+// within one octant. (Any-hit triangle packets one by one won 9% on the
+// bunny's shadow rays and lost 38% on teapot-s12's, so they follow the same
+// rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
+// (Benthin et al. 2012) gained at most 3% (bunny primary rays) and lost up
+// to 23% (gears-s4 shadow rays), so it is not used.)
 template <class S, class F>
-inline bool travels_together(BvhTraversal traversal, BvhQuery query, const Ray<F>& ray, const Mask<F>& active) {
+inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
   if (traversal != BvhTraversal::automatic) return traversal == BvhTraversal::packets;
   if (lane_count<F> == 1) return false;
   if constexpr (IncoherentRaysTraverseAlone<S>) {
-    return query == BvhQuery::closest && same_octant(ray, active);
+    return same_octant(ray, active);
   } else {
     return true;
   }
@@ -488,7 +490,7 @@ template <KernelUnit U, class Method, class S, int N>
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
-    if (travels_together<S>(traversal, BvhQuery::closest, ray, active)) {
+    if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
       closest_bvh_packet<Method, F, N>(prims, bvh, ray, active, hit);
       hits.store(first, hit);
@@ -513,7 +515,7 @@ template <KernelUnit U, class Method, class S, int N>
     const Ray<F> ray = rays.load<F>(first);
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     if (none(valid && !occluded)) continue;
-    if (travels_together<S>(traversal, BvhQuery::any_hit, ray, valid && !occluded)) {
+    if (travels_together<S>(traversal, ray, valid && !occluded)) {
       const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(prims, bvh, ray, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;
