@@ -131,7 +131,7 @@ struct PacketSlab {
   PacketSlab(const Ray<F>& r, const Mask<F>& active) : ray(r) {
     for (int a = 0; a < 3; ++a) {
       const bool some_negative = any(ray.negative[a] && active);
-      same_planes = same_planes && !(some_negative && any(!ray.negative[a] && active));
+      same_planes = same_planes && !(some_negative && any(and_not(active, ray.negative[a])));
       near_plane[a] = (some_negative ? 3 + a : a) * N;
       far_plane[a] = (some_negative ? a : 3 + a) * N;
     }
@@ -228,21 +228,21 @@ template <class Method, class F, int N, class S>
   std::array<std::int32_t, bvh_stack_size(N)> stack_node;
   std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
   const auto prepared = Method::prepare(ray);
-  const PacketSlab<F, N> slab(ray, valid && !occluded);
+  const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
   std::size_t top = 0;
   stack_node[top] = 0;
   stack_lanes[top++] = valid;
   while (top > 0) {
-    if (none(valid && !occluded)) break;
+    if (none(and_not(valid, occluded))) break;
     --top;
     const std::int32_t entry_node = stack_node[top];
     const Mask<F> entry_lanes = stack_lanes[top];
-    const Mask<F> active = entry_lanes && !occluded;
+    const Mask<F> active = and_not(entry_lanes, occluded);
     if (none(active)) continue;
     if (is_leaf(entry_node)) {
       const std::int32_t first = leaf_first(entry_node), end = first + leaf_count(entry_node);
       for (std::int32_t p = first; p < end; ++p) {
-        const Mask<F> open = entry_lanes && !occluded;
+        const Mask<F> open = and_not(entry_lanes, occluded);
         if (none(open)) break;
         Candidate<F> unused;
         occluded = occluded || Method::intersect(prepared, prims.template broadcast<F>(static_cast<std::size_t>(p)),
@@ -452,7 +452,7 @@ template <class F>
 inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
   for (int a = 0; a < 3; ++a) {
     const Mask<F> negative = ray.direction[a] < F(0.f);
-    if (any(negative && active) && any(!negative && active)) return false;
+    if (any(negative && active) && any(and_not(active, negative))) return false;
   }
   return true;
 }
@@ -514,8 +514,8 @@ template <KernelUnit U, class Method, class S, int N>
     const Mask<F> valid = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
-    if (none(valid && !occluded)) continue;
-    if (travels_together<S>(traversal, ray, valid && !occluded)) {
+    if (none(and_not(valid, occluded))) continue;
+    if (travels_together<S>(traversal, ray, and_not(valid, occluded))) {
       const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(prims, bvh, ray, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;

@@ -114,7 +114,7 @@ struct ConeQuadric {
     const Mask<F> ok2 = real && has_t2 && t0 + t2 > ray.tmin && s2 >= F(0.f) && s2 <= cone.height &&
                         fma(k, s2, cone.radius0) >= F(0.f);
     // Nearest valid root.
-    const Mask<F> take1 = ok1 && !(ok2 && t2 < t1);
+    const Mask<F> take1 = and_not(ok1, ok2 && t2 < t1);
     const F t_local = select(take1, t1, t2);
     const F s = select(take1, s1, s2);
     out.t = t0 + t_local;

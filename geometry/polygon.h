@@ -71,7 +71,7 @@ struct PolygonCrossing : RayAsIs {
       if (any(straddles)) {
         // > 0 iff the point is left of a->b (its crossing is on the +u side when b is above).
         const F side = difference_of_products(v - F(av), F(bu - au), u - F(au), F(bv - av));
-        inside = masks_differ(inside, straddles && !masks_differ(side > F(0.f), b_above));
+        inside = masks_differ(inside, and_not(straddles, masks_differ(side > F(0.f), b_above)));
       }
       au = bu;
       av = bv;

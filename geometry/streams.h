@@ -89,7 +89,7 @@ template <KernelUnit U, class Method, class S>
     const Mask<F> valid = first_lanes<F>(rays.count - first);
     Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     for (std::size_t p = 0; p < prims.size(); ++p) {
-      const Mask<F> active = valid && !occluded;
+      const Mask<F> active = and_not(valid, occluded);
       if (none(active)) break;
       Candidate<F> unused;
       occluded = occluded || Method::intersect(prepared, prims.template broadcast<F>(p), ray.tmax, active, unused);

@@ -56,7 +56,7 @@ inline Mask<F> nonzero(const Vec3<F>& a) {
 // (a && m) || (b && !m) for masks.
 template <class F>
 inline Mask<F> choose(const Mask<F>& m, const Mask<F>& a, const Mask<F>& b) {
-  return (m && a) || (!m && b);
+  return (m && a) || and_not(b, m);
 }
 
 // The component of a named per lane by two masks: x, else y, else z.

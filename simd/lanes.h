@@ -117,6 +117,22 @@ inline xsimd::batch_bool<std::int32_t, xsimd::fma3<xsimd::avx2>> int_mask(
 }
 #endif
 
+// a && !b. (xsimd 8.1 negates an AVX float mask by comparing each 128-bit
+// half with false, four instructions; andnot is one.)
+#if defined(__SSE4_2__) && defined(__FMA__)
+inline xsimd::batch_bool<float, xsimd::sse4_2> and_not(const xsimd::batch_bool<float, xsimd::sse4_2>& a,
+                                                       const xsimd::batch_bool<float, xsimd::sse4_2>& b) {
+  return _mm_andnot_ps(b, a);
+}
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+inline xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>> and_not(
+    const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& a,
+    const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& b) {
+  return _mm256_andnot_ps(b, a);
+}
+#endif
+
 template <class A>
 inline xsimd::batch<std::int32_t, A> select(const xsimd::batch_bool<float, A>& m,
                                             const xsimd::batch<std::int32_t, A>& a,
@@ -186,6 +202,7 @@ inline xsimd::batch_bool<float, A> int_less(const xsimd::batch<std::int32_t, A>&
 // a != b for masks. Never write != or == between masks: xsimd 8.1's SSE
 // batch_bool comparison treats the all-ones lanes as floats (NaNs), so
 // true != true there; xor is right at every width.
+inline bool and_not(bool a, bool b) { return a && !b; }
 inline bool masks_differ(bool a, bool b) { return a != b; }
 template <class A>
 inline xsimd::batch_bool<float, A> masks_differ(const xsimd::batch_bool<float, A>& a,
