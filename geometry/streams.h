@@ -132,12 +132,17 @@ template <KernelUnit U, class Method, class S>
     const auto prepared = Method::prepare(ray);
     const Hit<float> before = hits.get(r);
     Hit<F> best = Hit<F>::none(F(before.t));
+    bool committed = false;  // the lane reduction only for rays that hit
     for (std::size_t first = 0; first < prims.size(); first += W) {
       Candidate<F> c;
       const Mask<F> active = first_lanes<F>(prims.size() - first);
       const Mask<F> closer = Method::intersect(prepared, prims.template load<F>(first), best.t, active, c);
-      if (any(closer)) best.commit(closer, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(first)) + lane_index<F>());
+      if (any(closer)) {
+        best.commit(closer, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(first)) + lane_index<F>());
+        committed = true;
+      }
     }
+    if (!committed) continue;
     const Hit<float> found = closest_lane(best, before.t);
     if (found.id != kNoHit) hits.set(r, found);
   }
