@@ -67,7 +67,7 @@ struct TextureDesc {
 // the ambient term only.
 struct MaterialDesc {
   Vec3<float> color{1.f, 1.f, 1.f};
-  std::optional<std::size_t> texture;  // index into SceneDesc::textures
+  std::optional<std::size_t> texture{};  // index into SceneDesc::textures
   float ka = 0.1f, kd = 0.9f, ks = 0.f, shininess = 32.f, kr = 0.f, kt = 0.f, ior = 1.f;
   bool two_sided = true;
 };
