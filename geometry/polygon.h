@@ -16,6 +16,11 @@
 //      edge is inside or outside depending on that edge's direction.
 // All lanes share the polygon, so the edge loop is the same for every lane;
 // an edge no lane straddles is skipped (it could toggle no lane).
+// Edge bands (polygons of many vertices, see PolygonSoA): the v range is cut
+// into bands, each listing the edges whose v range meets it; a lane reads
+// only its own band's edges. band_of is non-decreasing in v, so every edge
+// that straddles a lane's v is in the lane's band: the toggles, and so the
+// bits, are those of the full loop.
 // t-range: hit iff tmin < t < tmax. A ray parallel to the plane (n.dir == 0)
 // misses, even in the plane; its division is fed 1 (no NaN, no division by 0).
 // Masks: only active lanes can hit.
@@ -24,6 +29,9 @@
 // 2D coordinates relative to the first vertex, (P - V0)[(k+1)%3] and
 // (P - V0)[(k+2)%3] (not normalised; for k = 2 they are x and y).
 #pragma once
+
+#include <cstddef>
+#include <cstdint>
 
 #include "geometry/hit.h"
 #include "geometry/plane.h"
@@ -41,7 +49,73 @@ struct PolygonLanes {
   const float* pu;         // vertex_count projected vertices relative to the first
   const float* pv;
   int vertex_count;
+  // Edge bands: band_count 0 (none) or >= 2 bands over [band_vmin, vmax];
+  // band b lists band_edges[band_first[b] .. band_first[b + 1]), edge k
+  // joining vertex k - 1 (cyclic) to vertex k.
+  int band_count;
+  float band_vmin, band_scale;
+  const std::size_t* band_first;
+  const std::uint32_t* band_edges;
 };
+
+namespace polygon_detail {
+
+// The band of v (vmin <= v, relative coordinates as stored): non-decreasing
+// in v, so an edge whose v range is [v0, v1] meets exactly the bands
+// band_of(v0) .. band_of(v1). The builder and the kernel both call it.
+inline int band_of(float v, float vmin, float scale, int count) {
+  const float x = (v - vmin) * scale;
+  return x < static_cast<float>(count - 1) ? static_cast<int>(x) : count - 1;
+}
+
+// Lanes of `straddles` whose +u ray from (u, v) crosses edge a -> b: the
+// crossing lies on the +u side iff the point is left of a -> b when b is
+// above, right of it when b is below.
+template <class F>
+inline Mask<F> crossings(const F& u, const F& v, float au, float av, float bu, float bv, const Mask<F>& straddles,
+                         const Mask<F>& b_above) {
+  // > 0 iff the point is left of a->b.
+  const F side = difference_of_products(v - F(av), F(bu - au), u - F(au), F(bv - av));
+  return and_not(straddles, masks_differ(side > F(0.f), b_above));
+}
+
+// The even-odd parity of the lanes in `lanes` over the edges of one band.
+template <class F>
+inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, const F& v, const Mask<F>& lanes) {
+  const int n = poly.vertex_count;
+  Mask<F> inside(false);
+  for (std::size_t e = poly.band_first[band]; e < poly.band_first[band + 1]; ++e) {
+    const int k = static_cast<int>(poly.band_edges[e]);
+    const int j = k == 0 ? n - 1 : k - 1;
+    const Mask<F> b_above = F(poly.pv[k]) > v;
+    const Mask<F> straddles = masks_differ(F(poly.pv[j]) > v, b_above) && lanes;
+    if (any(straddles)) {
+      inside = masks_differ(inside, crossings(u, v, poly.pu[j], poly.pv[j], poly.pu[k], poly.pv[k], straddles, b_above));
+    }
+  }
+  return inside;
+}
+
+// Parity over bands: the candidate lanes grouped by band, each group over its band's edges.
+template <class F>
+inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
+  alignas(64) float v_lane[kMaxLanes];
+  store_lanes(v, v_lane);
+  const auto band_of_lane = [&](int lane) { return band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count); };
+  Mask<F> inside(false);
+  for (unsigned pending = lane_bits(candidate); pending != 0;) {
+    const int band = band_of_lane(__builtin_ctz(pending));
+    unsigned members = 0;
+    for (unsigned b = pending; b != 0; b &= b - 1) {
+      if (band_of_lane(__builtin_ctz(b)) == band) members |= b & (~b + 1u);
+    }
+    pending &= ~members;
+    inside = inside || band_parity(poly, band, u, v, mask_from_bits<F>(members));
+  }
+  return inside;
+}
+
+}  // namespace polygon_detail
 
 struct PolygonCrossing : RayAsIs {
   template <class F>
@@ -59,6 +133,7 @@ struct PolygonCrossing : RayAsIs {
     // Bounding rectangle.
     const Mask<F> candidate = in_range && u >= poly.umin && u <= poly.umax && v >= poly.vmin && v <= poly.vmax;
     if (none(candidate)) return candidate;
+    if (poly.band_count > 0) return candidate && polygon_detail::banded_parity(poly, u, v, candidate);
     // Crossing test over edges (a, b) = (vertex j, vertex i), j = i - 1 cyclic.
     const int n = poly.vertex_count;
     Mask<F> inside(false);
@@ -68,11 +143,7 @@ struct PolygonCrossing : RayAsIs {
       const float bu = poly.pu[i], bv = poly.pv[i];
       const Mask<F> b_above = F(bv) > v;
       const Mask<F> straddles = masks_differ(a_above, b_above);
-      if (any(straddles)) {
-        // > 0 iff the point is left of a->b (its crossing is on the +u side when b is above).
-        const F side = difference_of_products(v - F(av), F(bu - au), u - F(au), F(bv - av));
-        inside = masks_differ(inside, and_not(straddles, masks_differ(side > F(0.f), b_above)));
-      }
+      if (any(straddles)) inside = masks_differ(inside, polygon_detail::crossings(u, v, au, av, bu, bv, straddles, b_above));
       au = bu;
       av = bv;
       a_above = b_above;

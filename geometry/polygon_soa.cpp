@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace quiver {
 
@@ -90,6 +91,50 @@ Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
 
 }  // namespace
 
+namespace {
+
+// Appends the next polygon's edge bands (or none) for its projected
+// vertices vs, whose range is [vmin, vmax].
+void add_edge_bands(PolygonSoA& soa, const std::vector<float>& vs, float vmin, float vmax) {
+  const std::size_t n = vs.size();
+  soa.band_start.push_back(soa.band_first.size());
+  int count = n >= kMinBandedVertices ? static_cast<int>(std::min(kMaxEdgeBands, n / kEdgesPerBand)) : 0;
+  for (; count >= 2; count /= 2) {
+    const float scale = static_cast<float>(count / (static_cast<double>(vmax) - static_cast<double>(vmin)));
+    if (!(std::isfinite(scale) && scale > 0.f)) break;
+    // Band range of edge k (vertex k - 1 to k), and how many edges each band lists.
+    const auto bands_of_edge = [&](std::size_t k) {
+      const float a = vs[k == 0 ? n - 1 : k - 1], b = vs[k];
+      return std::pair{polygon_detail::band_of(std::min(a, b), vmin, scale, count),
+                       polygon_detail::band_of(std::max(a, b), vmin, scale, count)};
+    };
+    std::vector<std::size_t> offset(static_cast<std::size_t>(count) + 1, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto [first, last] = bands_of_edge(k);
+      for (int band = first; band <= last; ++band) ++offset[static_cast<std::size_t>(band) + 1];
+    }
+    for (int band = 0; band < count; ++band) offset[band + 1] += offset[band];
+    if (offset.back() > kMaxBandRefsPerEdge * n) continue;  // too many long edges for this many bands
+    const std::size_t base = soa.band_edges.size();
+    soa.band_edges.resize(base + offset.back());
+    std::vector<std::size_t> cursor(offset.begin(), offset.end() - 1);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto [first, last] = bands_of_edge(k);
+      for (int band = first; band <= last; ++band) {
+        soa.band_edges[base + cursor[static_cast<std::size_t>(band)]++] = static_cast<std::uint32_t>(k);
+      }
+    }
+    for (std::size_t o : offset) soa.band_first.push_back(base + o);
+    soa.band_count.push_back(count);
+    soa.band_scale.push_back(scale);
+    return;
+  }
+  soa.band_count.push_back(0);
+  soa.band_scale.push_back(0.f);
+}
+
+}  // namespace
+
 PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report) {
   PolygonSoA soa;
   for (const PolygonDesc& desc : polygons) {
@@ -149,16 +194,31 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
     soa.first_vertex.push_back(soa.pu.size());
     soa.pu.insert(soa.pu.end(), us.begin(), us.end());
     soa.pv.insert(soa.pv.end(), vs.begin(), vs.end());
+    add_edge_bands(soa, vs, soa.vmin.back(), soa.vmax.back());
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
   for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
-                           &soa.vmin, &soa.vmax}) {
+                           &soa.vmin, &soa.vmax, &soa.band_scale}) {
     pad_column(*c, soa.count);
   }
-  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count}) pad_column(*c, soa.count);
+  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count, &soa.band_count}) pad_column(*c, soa.count);
   soa.first_vertex.resize(padded_size(soa.count), soa.first_vertex.empty() ? 0 : soa.first_vertex.back());
+  soa.band_start.resize(padded_size(soa.count), soa.band_first.size());
   return soa;
+}
+
+std::size_t PolygonSoA::memory_bytes() const {
+  std::size_t bytes = 0;
+  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &pu, &pv,
+                                 &band_scale}) {
+    bytes += c->capacity() * sizeof(float);
+  }
+  for (const AlignedInts* c : {&axis_u, &axis_v, &vertex_count, &band_count}) bytes += c->capacity() * sizeof(std::int32_t);
+  for (const std::vector<std::size_t>* c : {&first_vertex, &band_start, &band_first}) {
+    bytes += c->capacity() * sizeof(std::size_t);
+  }
+  return bytes + band_edges.capacity() * sizeof(std::uint32_t) + source.capacity() * sizeof(std::uint32_t);
 }
 
 namespace {

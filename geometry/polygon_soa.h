@@ -6,6 +6,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -27,6 +29,13 @@ inline constexpr std::size_t kMaxPolygonVertices = 1'000'000;
 inline constexpr double kPolygonPlanarityTolerance = 1e-4;
 // Zero area: |Newell normal| (twice the area) at most this times extent^2.
 inline constexpr double kPolygonMinAreaRatio = 1e-10;
+// Edge bands (geometry/polygon.h): polygons of at least this many vertices
+// get min(kMaxEdgeBands, vertices / kEdgesPerBand) bands, halved while the
+// band lists would hold more than kMaxBandRefsPerEdge entries per edge.
+inline constexpr std::size_t kMinBandedVertices = 32;
+inline constexpr std::size_t kEdgesPerBand = 8;
+inline constexpr std::size_t kMaxEdgeBands = 64;
+inline constexpr std::size_t kMaxBandRefsPerEdge = 4;
 
 struct PolygonSoA {
   // Per polygon, padded to kMaxLanes like every SoA column.
@@ -37,6 +46,14 @@ struct PolygonSoA {
   std::vector<std::size_t> first_vertex;
   // Per vertex, all polygons back to back.
   AlignedFloats pu, pv;
+  // Edge bands, per polygon: band_count (0: none), the scale of band_of
+  // (geometry/polygon.h), and where its band_count + 1 offsets into
+  // band_edges start in band_first.
+  AlignedInts band_count;
+  AlignedFloats band_scale;
+  std::vector<std::size_t> band_start;
+  std::vector<std::size_t> band_first;
+  std::vector<std::uint32_t> band_edges;
   std::size_t count = 0;
   // Input index of each kept primitive (builders drop some), and the id of
   // primitive 0 in hits (a scene numbers its stores consecutively).
@@ -58,8 +75,15 @@ struct PolygonSoA {
             F(vmax[i]),
             pu.data() + first_vertex[i],
             pv.data() + first_vertex[i],
-            vertex_count[i]};
+            vertex_count[i],
+            band_count[i],
+            vmin[i],
+            band_scale[i],
+            band_first.data() + band_start[i],
+            band_edges.data()};
   }
+  // Bytes of every column and list.
+  std::size_t memory_bytes() const;
 };
 
 // Drops (with counts): a non-finite coordinate (also one whose projection

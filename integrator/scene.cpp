@@ -90,17 +90,13 @@ std::size_t bytes_of(const Vec& v) {
 std::size_t GeometryLayer::memory_bytes() const {
   std::size_t bytes = 0;
   for (const AlignedFloats* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r2, &spheres.inv_r, &planes.nx,
-                                 &planes.ny, &planes.nz, &planes.d, &polygons.nx, &polygons.ny, &polygons.nz,
-                                 &polygons.d, &polygons.origin_u, &polygons.origin_v, &polygons.umin,
-                                 &polygons.umax, &polygons.vmin, &polygons.vmax, &polygons.pu, &polygons.pv,
-                                 &cones.bx, &cones.by, &cones.bz, &cones.ax, &cones.ay, &cones.az, &cones.height,
-                                 &cones.radius0, &cones.slope, &cones.facing}) {
+                                 &planes.ny, &planes.nz, &planes.d, &cones.bx, &cones.by, &cones.bz, &cones.ax,
+                                 &cones.ay, &cones.az, &cones.height, &cones.radius0, &cones.slope, &cones.facing}) {
     bytes += bytes_of(*c);
   }
   for (AlignedFloats* c : const_cast<TriangleSoA&>(triangles).columns()) bytes += bytes_of(*c);
-  for (const AlignedInts* c : {&polygons.axis_u, &polygons.axis_v, &polygons.vertex_count}) bytes += bytes_of(*c);
-  bytes += bytes_of(polygons.first_vertex);
-  for (const auto* s : {&spheres.source, &planes.source, &triangles.source, &polygons.source, &cones.source}) {
+  bytes += polygons.memory_bytes();  // with its source list
+  for (const auto* s : {&spheres.source, &planes.source, &triangles.source, &cones.source}) {
     bytes += bytes_of(*s);
   }
   for (const auto* o : {&sphere_origin, &plane_origin, &triangle_origin, &polygon_origin, &cone_origin}) {

@@ -254,8 +254,7 @@ std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& g) {
   for (const AlignedFloats* c : const_cast<TriangleSoA&>(g.triangles).columns()) bytes[2] += bytes_of(*c);
   bytes[2] += sum_bytes(g.triangles.source, g.triangle_origin);
   const PolygonSoA& q = g.polygons;
-  bytes[3] = sum_bytes(q.nx, q.ny, q.nz, q.d, q.origin_u, q.origin_v, q.umin, q.umax, q.vmin, q.vmax, q.pu, q.pv,
-                       q.axis_u, q.axis_v, q.vertex_count, q.first_vertex, q.source, g.polygon_origin);
+  bytes[3] = q.memory_bytes() + bytes_of(g.polygon_origin);
   const ConeSoA& c = g.cones;
   bytes[4] = sum_bytes(c.bx, c.by, c.bz, c.ax, c.ay, c.az, c.height, c.radius0, c.slope, c.facing, c.source,
                        g.cone_origin);

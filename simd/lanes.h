@@ -92,6 +92,7 @@ inline float abs(float a) { return std::fabs(a); }
 inline bool any(bool m) { return m; }
 inline bool all(bool m) { return m; }
 inline bool none(bool m) { return !m; }
+inline bool and_not(bool a, bool b) { return a && !b; }
 inline bool isfinite_lanes(float a) { return std::isfinite(a); }
 
 // ---- batch forms --------------------------------------------------------
@@ -202,7 +203,6 @@ inline xsimd::batch_bool<float, A> int_less(const xsimd::batch<std::int32_t, A>&
 // a != b for masks. Never write != or == between masks: xsimd 8.1's SSE
 // batch_bool comparison treats the all-ones lanes as floats (NaNs), so
 // true != true there; xor is right at every width.
-inline bool and_not(bool a, bool b) { return a && !b; }
 inline bool masks_differ(bool a, bool b) { return a != b; }
 template <class A>
 inline xsimd::batch_bool<float, A> masks_differ(const xsimd::batch_bool<float, A>& a,
@@ -288,6 +288,18 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2
   return static_cast<unsigned>(_mm256_movemask_ps(m));  // the mask register itself
 }
 #endif
+
+// The mask whose lane k is bit k of `bits` (the inverse of lane_bits).
+template <class F>
+inline Mask<F> mask_from_bits(unsigned bits) {
+  if constexpr (lane_count<F> == 1) {
+    return (bits & 1u) != 0;
+  } else {
+    alignas(64) std::int32_t lanes[kMaxLanes];
+    for (int k = 0; k < lane_count<F>; ++k) lanes[k] = static_cast<std::int32_t>((bits >> k) & 1u);
+    return nonzero_lanes(load_int_lanes<F>(lanes));
+  }
+}
 
 // The smallest float greater than t (t itself for +inf and NaN): with it as
 // a kernel's exclusive tmax, a hit at exactly t is still reported.

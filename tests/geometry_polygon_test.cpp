@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -369,7 +370,8 @@ TEST(PolygonTriangulate, CoversConcavePolygonsExactlyOnce) {
 
 // Random star-shaped polygons (5..40 vertices, mostly concave) in random
 // planes around the origin, and one far from it.
-std::vector<PolygonDesc> random_polygon_descs(RaySampler& s, std::size_t n) {
+std::vector<PolygonDesc> random_polygon_descs(RaySampler& s, std::size_t n, int min_vertices = 5,
+                                              int max_vertices = 40) {
   std::vector<PolygonDesc> descs;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3<float> normal = s.unit_direction();
@@ -378,7 +380,7 @@ std::vector<PolygonDesc> random_polygon_descs(RaySampler& s, std::size_t n) {
     const Vec3<float> center = k == 0 ? Vec3<float>{300, -200, 100} : s.in_box({-4, -4, -4}, {4, 4, 4});
     const float radius = s.uniform(0.5f, 2.f);
     const bool convex = k % 4 == 1;
-    const int count = s.uniform_int(5, 40);
+    const int count = s.uniform_int(min_vertices, max_vertices);
     PolygonDesc d;
     for (int i = 0; i < count; ++i) {
       const float a = 6.2831853f * float(i) / float(count);
@@ -530,6 +532,67 @@ TEST(PolygonStability, AgreesWithWatertightTriangulation) {
   EXPECT_LT(worst_t_far, 5e-4);
 }
 
+// ---- edge bands ---------------------------------------------------------------
+
+// A gear of 36 teeth (144 vertices, like SPD gears' faces) in the z = 0.5 plane.
+std::vector<Point2> gear() {
+  std::vector<Point2> p;
+  for (int tooth = 0; tooth < 36; ++tooth) {
+    const double a = tooth * std::numbers::pi / 18;
+    for (const auto& [r, da] : {std::pair{1.6, 0.0}, {2.0, 0.02}, {2.0, 0.06}, {1.6, 0.08}}) {
+      p.push_back({double(float(r * std::cos(a + da))), double(float(r * std::sin(a + da)))});
+    }
+  }
+  return p;
+}
+
+// Polygons with edge bands: the comb (horizontal edges sharing scan lines),
+// the gear, and random concave polygons of 32 to 300 vertices.
+std::vector<PolygonDesc> banded_polygon_descs(RaySampler& s) {
+  std::vector<PolygonDesc> descs{in_plane(comb(), 1.f, 0.01f, 0.02f), in_plane(gear(), 0.5f)};
+  for (PolygonDesc& d : random_polygon_descs(s, 9, 32, 300)) descs.push_back(std::move(d));
+  return descs;
+}
+
+TEST(PolygonBuild, EdgeBandsListEveryEdgeTheirRangeMeets) {
+  RaySampler s(29);
+  std::vector<PolygonDesc> descs = banded_polygon_descs(s);
+  // Every edge spans the whole v range: the band count must shrink to bound the lists.
+  PolygonDesc zigzag;
+  for (int i = 0; i < 64; ++i) zigzag.vertices.push_back({float(i) * 0.1f, i % 2 ? 1.f : 0.f, 0.f});
+  zigzag.vertices.push_back({6.3f, -1.f, 0.f});
+  zigzag.vertices.push_back({0.f, -1.f, 0.f});
+  descs.push_back(zigzag);
+  descs.push_back(in_plane(star()));  // 10 vertices: no bands
+  const PolygonSoA soa = polygons_of(descs);
+  ASSERT_EQ(soa.size(), descs.size());
+  for (std::size_t i = 0; i < soa.size(); ++i) {
+    SCOPED_TRACE(i);
+    const std::size_t n = std::size_t(soa.vertex_count[i]);
+    const int bands = soa.band_count[i];
+    if (n < kMinBandedVertices) {
+      EXPECT_EQ(bands, 0);
+      continue;
+    }
+    ASSERT_GE(bands, 2);
+    EXPECT_LE(std::size_t(bands), std::min(kMaxEdgeBands, n / kEdgesPerBand));
+    const std::size_t* first = soa.band_first.data() + soa.band_start[i];
+    EXPECT_LE(first[bands] - first[0], kMaxBandRefsPerEdge * n);
+    const float* pv = soa.pv.data() + soa.first_vertex[i];
+    for (int band = 0; band < bands; ++band) {
+      std::vector<bool> listed(n, false);
+      for (std::size_t e = first[band]; e < first[band + 1]; ++e) listed[soa.band_edges[e]] = true;
+      for (std::size_t k = 0; k < n; ++k) {
+        const float a = pv[k == 0 ? n - 1 : k - 1], b = pv[k];
+        const int lo = polygon_detail::band_of(std::min(a, b), soa.vmin[i], soa.band_scale[i], bands);
+        const int hi = polygon_detail::band_of(std::max(a, b), soa.vmin[i], soa.band_scale[i], bands);
+        EXPECT_EQ(listed[k], lo <= band && band <= hi) << "band " << band << " edge " << k;
+      }
+    }
+  }
+  EXPECT_LE(soa.band_count[descs.size() - 2], 4);  // the zigzag: at most 4 bands of 64 edges each
+}
+
 template <class W>
 class PolygonWidths : public testing::UnitTest<W> {};
 TYPED_TEST_SUITE(PolygonWidths, testing::KernelUnits);
@@ -561,6 +624,42 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
                                                         polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing),
                                                         soa, polygons);
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
+}
+
+// Each lane reads only its band's edges, yet every result equals the full
+// edge loop's bit for bit, at every width, in both orientations.
+TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
+  RaySampler s(23);
+  const std::vector<PolygonDesc> descs = banded_polygon_descs(s);
+  const PolygonSoA banded = polygons_of(descs);
+  ASSERT_EQ(banded.size(), descs.size());
+  for (std::size_t i = 0; i < banded.size(); ++i) ASSERT_GE(banded.band_count[i], 2) << i;
+  PolygonSoA plain = banded;
+  std::fill(plain.band_count.begin(), plain.band_count.end(), 0);
+  std::vector<Ray<float>> rays = testing::adversarial_rays(s, 20'003, {0, 0, 0}, 4.f);
+  for (int i = 0; i < 60'000; ++i) {
+    const PolygonDesc& d = descs[std::size_t(s.uniform_int(0, int(descs.size()) - 1))];
+    rays.push_back(s.toward(s.in_box({-9, -9, -9}, {9, 9, 9}) + Vec3<float>{50, 3, 0}, polygon_point(d, s)));
+  }
+  for (int i = 0; i < 20'000; ++i) {  // through vertices (their scan lines), edge midpoints, and grazing
+    const PolygonDesc& d = descs[std::size_t(s.uniform_int(0, int(descs.size()) - 1))];
+    const std::size_t k = std::size_t(s.uniform_int(0, int(d.vertices.size()) - 1));
+    const Vec3<float> a = d.vertices[k], b = d.vertices[(k + 1) % d.vertices.size()];
+    const Vec3<float> target = i % 3 == 1 ? (a + b) * 0.5f : a;
+    Ray<float> r = s.toward(target + s.unit_direction() * 5.f, target);
+    if (i % 3 == 2) r = {target - (b - a), (b - a) + s.unit_direction() * s.uniform(-1e-6f, 1e-6f), 0.f, kInf};
+    rays.push_back(r);
+  }
+  for (int i = 0; i < 4'000; ++i) {  // straight down on the comb's grid of scan lines through its vertices
+    rays.push_back({{0.5f * float(s.uniform_int(-2, 200)), 0.5f * float(s.uniform_int(-1, 12)), 100.f}, {0, 0, -1}, 0.f, kInf});
+  }
+  RaySoA soa = testing::to_soa(rays);
+  testing::poison_padding(soa);
+  const testing::StreamResults ref =
+      testing::run_streams(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), soa, plain);
+  testing::expect_results_match_scalar(
+      ref, testing::run_streams(polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing), soa, banded));
+  EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 4);  // the test exercises hits
 }
 
 }  // namespace
