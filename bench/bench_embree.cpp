@@ -396,8 +396,12 @@ int main(int argc, char** argv) {
       "(rtcIntersect1 and rtcIntersect8) on 1 thread and on all, and print Mrays/s, the ratios, the hit "
       "agreement, build times and bytes per primitive (bench/README.md, \"Against Embree\")",
       "quiver_bench_embree"};
-  app.add_option("--width", options.width, "Image width of the ray sets")->check(CLI::Range(1, 16384))->capture_default_str();
-  app.add_option("--height", options.height, "Image height of the ray sets")->check(CLI::Range(1, 16384))->capture_default_str();
+  app.add_option("--width", options.width, "Image width of the ray sets")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  app.add_option("--height", options.height, "Image height of the ray sets")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
   app.add_option("--repeat", options.repeat, "Timed passes per tracer; the tables give medians")
       ->check(CLI::Range(1, 10000))->capture_default_str();
   app.add_option("--scenes", options.scenes,

@@ -90,7 +90,8 @@ inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, co
     const Mask<F> b_above = F(poly.pv[k]) > v;
     const Mask<F> straddles = masks_differ(F(poly.pv[j]) > v, b_above) && lanes;
     if (any(straddles)) {
-      inside = masks_differ(inside, crossings(u, v, poly.pu[j], poly.pv[j], poly.pu[k], poly.pv[k], straddles, b_above));
+      const Mask<F> crossed = crossings(u, v, poly.pu[j], poly.pv[j], poly.pu[k], poly.pv[k], straddles, b_above);
+      inside = masks_differ(inside, crossed);
     }
   }
   return inside;
@@ -101,7 +102,9 @@ template <class F>
 inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
   alignas(64) float v_lane[kMaxLanes];
   store_lanes(v, v_lane);
-  const auto band_of_lane = [&](int lane) { return band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count); };
+  const auto band_of_lane = [&](int lane) {
+    return band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count);
+  };
   Mask<F> inside(false);
   for (unsigned pending = lane_bits(candidate); pending != 0;) {
     const int band = band_of_lane(__builtin_ctz(pending));
@@ -143,7 +146,9 @@ struct PolygonCrossing : RayAsIs {
       const float bu = poly.pu[i], bv = poly.pv[i];
       const Mask<F> b_above = F(bv) > v;
       const Mask<F> straddles = masks_differ(a_above, b_above);
-      if (any(straddles)) inside = masks_differ(inside, polygon_detail::crossings(u, v, au, av, bu, bv, straddles, b_above));
+      if (any(straddles)) {
+        inside = masks_differ(inside, polygon_detail::crossings(u, v, au, av, bu, bv, straddles, b_above));
+      }
       au = bu;
       av = bv;
       a_above = b_above;

@@ -214,7 +214,9 @@ std::size_t PolygonSoA::memory_bytes() const {
                                  &band_scale}) {
     bytes += c->capacity() * sizeof(float);
   }
-  for (const AlignedInts* c : {&axis_u, &axis_v, &vertex_count, &band_count}) bytes += c->capacity() * sizeof(std::int32_t);
+  for (const AlignedInts* c : {&axis_u, &axis_v, &vertex_count, &band_count}) {
+    bytes += c->capacity() * sizeof(std::int32_t);
+  }
   for (const std::vector<std::size_t>* c : {&first_vertex, &band_start, &band_first}) {
     bytes += c->capacity() * sizeof(std::size_t);
   }

@@ -651,7 +651,8 @@ TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
     rays.push_back(r);
   }
   for (int i = 0; i < 4'000; ++i) {  // straight down on the comb's grid of scan lines through its vertices
-    rays.push_back({{0.5f * float(s.uniform_int(-2, 200)), 0.5f * float(s.uniform_int(-1, 12)), 100.f}, {0, 0, -1}, 0.f, kInf});
+    const Vec3<float> origin{0.5f * float(s.uniform_int(-2, 200)), 0.5f * float(s.uniform_int(-1, 12)), 100.f};
+    rays.push_back({origin, {0, 0, -1}, 0.f, kInf});
   }
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);

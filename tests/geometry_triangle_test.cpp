@@ -424,7 +424,8 @@ std::vector<Ray<float>> triangle_rays(RaySampler& s, const TriangleSoA& tris) {
     Vec3<float> base{s.uniform(-0.4f, 0.4f), s.uniform(-0.4f, 0.4f), s.uniform(-0.4f, 0.4f)};
     base[s.uniform_int(0, 2)] = s.uniform(0.f, 1.f) < 0.5f ? -1.f : 1.f;
     for (int i = 0; i < 16; ++i) {
-      const Vec3<float> d = base + Vec3<float>{s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f)};
+      const Vec3<float> jitter{s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f), s.uniform(-0.05f, 0.05f)};
+      const Vec3<float> d = base + jitter;
       const Vec3<float> target = on_triangle(p, s.uniform(-0.2f, 1.f), s.uniform(-0.2f, 1.f));
       rays.push_back({target - d * s.uniform(2.f, 9.f), d, 0.f, kInf});
     }
