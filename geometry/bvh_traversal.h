@@ -370,7 +370,7 @@ template <KernelUnit U, class Method, int N, class S>
       std::array<float, N> near;
       const std::size_t node = static_cast<std::size_t>(current);
       unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, hit.t, near);
-      // Empty slots have empty boxes, which no ray enters.
+      // Empty slots have empty boxes, which no ray enters (and hold no primitive).
       if (bits != 0) {
         int c = __builtin_ctz(bits);
         bits &= bits - 1;
@@ -438,6 +438,8 @@ template <KernelUnit U, class Method, int N, class S>
     const std::size_t node = static_cast<std::size_t>(entry);
     for (unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, ray.tmax, near); bits != 0;
          bits &= bits - 1) {
+      // Never an empty slot (empty boxes are never entered), yet dropping
+      // this test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
       const std::int32_t child = bvh.child(node, __builtin_ctz(bits));
       if (!(is_leaf(child) && leaf_count(child) == 0)) stack[top++] = child;
     }

@@ -89,10 +89,6 @@ Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
   return Verdict::ok;
 }
 
-}  // namespace
-
-namespace {
-
 // Appends the next polygon's edge bands (or none) for its projected
 // vertices vs, whose range is [vmin, vmax].
 void add_edge_bands(PolygonSoA& soa, const std::vector<float>& vs, float vmin, float vmax) {

@@ -176,11 +176,9 @@ struct TriangleWatertight {
     r.sy = component(d, r.ky_is_x, r.ky_is_y) / safe_dz;
     r.sz = F(1.f) / safe_dz;
     r.tmin = ray.tmin;
-    r.shared_axes = kMixedAxes;
-    const bool one_swap = all(swap) || none(swap);
-    if (one_swap && all(kz_is_x)) r.shared_axes = 0 * 2 + (all(swap) ? 1 : 0);
-    if (one_swap && all(kz_is_y)) r.shared_axes = 1 * 2 + (all(swap) ? 1 : 0);
-    if (one_swap && all(z_is_z)) r.shared_axes = 2 * 2 + (all(swap) ? 1 : 0);
+    const int shared_kz = all(kz_is_x) ? 0 : all(kz_is_y) ? 1 : all(z_is_z) ? 2 : -1;
+    const bool shared_swap = all(swap) || none(swap);
+    r.shared_axes = shared_kz >= 0 && shared_swap ? shared_kz * 2 + (all(swap) ? 1 : 0) : kMixedAxes;
     return r;
   }
 
