@@ -16,7 +16,7 @@
 // polygons, which Embree sees ear-clipped) and closest-hit distances
 // differing by more than a relative 1e-4.
 // Usage: quiver_bench_embree [--width W] [--height H] [--repeat R]
-//   [--scenes a,b,...] [--robust] [--json FILE] (--help lists them). Scenes
+//   [--scenes a,b,...] [--robust] [--embree-isa native|avx2|sse4.2] [--json FILE] (--help lists them). Scenes
 //   are names in $QUIVER_SHARED_DIR/meshes (.obj) or scenes/spd (.nff), or paths.
 #include <algorithm>
 #include <chrono>
@@ -61,6 +61,7 @@ struct Options {
   int width = 512, height = 512, repeat = 5;
   std::vector<std::string> scenes{"stanford-bunny", "balls-s4", "gears-s4"};
   bool robust = false;
+  std::string embree_isa = "native";  // or a max_isa Embree accepts
   std::string json_path;
 };
 
@@ -330,6 +331,8 @@ nlohmann::ordered_json run_scene(const std::string& name, const Options& options
   result["embree_spheres"] = embree.spheres;
   result["embree_triangles"] = embree.triangles;
   result["embree_robust"] = options.robust;
+  result["embree_max_isa"] = options.embree_isa;
+  result["embree_avx512"] = device.avx512();
   result["quiver_build_ms"] = median(quiver_build_ms);
   result["embree_build_ms"] = median(embree_build_ms);
   result["embree_commit_ms"] = median(embree_commit_ms);
@@ -408,6 +411,10 @@ int main(int argc, char** argv) {
                  "Comma-separated scene names in $QUIVER_SHARED_DIR/meshes (.obj) or scenes/spd (.nff), or paths")
       ->delimiter(',')->capture_default_str();
   app.add_flag("--robust", options.robust, "Build the Embree scene with RTC_SCENE_FLAG_ROBUST");
+  app.add_option("--embree-isa", options.embree_isa,
+                 "Embree's widest ISA: native (its own choice, AVX-512 where the CPU has it), avx2 (quiver's "
+                 "widest), sse4.2")
+      ->check(CLI::IsMember({"native", "avx2", "sse4.2"}))->capture_default_str();
   app.add_option("--json", options.json_path, "Also write every measurement to this JSON file");
   try {
     app.parse(argc, argv);
@@ -415,7 +422,9 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? 0 : 2;
   }
   try {
-    const EmbreeDevice device;
+    const EmbreeDevice device(options.embree_isa == "native" ? "" : options.embree_isa);
+    std::printf("Embree ISA: %s (%s)\n", options.embree_isa.c_str(),
+                device.avx512() ? "AVX-512 kernels, 16-wide" : "no AVX-512 kernels");
     nlohmann::ordered_json results = nlohmann::ordered_json::array();
     for (const std::string& name : options.scenes) results.push_back(run_scene(name, options, device));
     print_tables(results);

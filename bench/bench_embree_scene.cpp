@@ -24,13 +24,16 @@ void check(RTCDevice device, const char* what) {
 
 }  // namespace
 
-EmbreeDevice::EmbreeDevice() : device_(rtcNewDevice(nullptr)) {
-  if (!device_) throw std::runtime_error("embree: rtcNewDevice failed");
+EmbreeDevice::EmbreeDevice(const std::string& max_isa)
+    : device_(rtcNewDevice(max_isa.empty() ? nullptr : ("max_isa=" + max_isa).c_str())) {
+  if (!device_) throw std::runtime_error("embree: rtcNewDevice failed (max_isa '" + max_isa + "')");
   rtcSetDeviceErrorFunction(device_, report_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(device_, monitor, this);
 }
 
 EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
+
+bool EmbreeDevice::avx512() const { return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0; }
 
 bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
   static_cast<EmbreeDevice*>(user)->bytes_ += std::int64_t(bytes);  // negative on release

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include <embree3/rtcore.h>
 
@@ -23,9 +24,10 @@
 namespace quiver::bench {
 
 // An Embree device whose memory monitor adds every allocation and release.
+// max_isa caps Embree's run-time ISA choice ("" = its own, the widest the CPU has).
 class EmbreeDevice {
  public:
-  EmbreeDevice();
+  explicit EmbreeDevice(const std::string& max_isa = "");
   ~EmbreeDevice();
   EmbreeDevice(const EmbreeDevice&) = delete;
   EmbreeDevice& operator=(const EmbreeDevice&) = delete;
@@ -33,6 +35,8 @@ class EmbreeDevice {
   RTCDevice get() const { return device_; }
   // Bytes Embree holds now, as its memory monitor counted them.
   std::int64_t monitored_bytes() const { return bytes_.load(); }
+  // Whether Embree runs its 16-wide (AVX-512) kernels on this CPU.
+  bool avx512() const;
 
  private:
   static bool monitor(void* user, ssize_t bytes, bool post);
