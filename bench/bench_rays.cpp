@@ -31,9 +31,8 @@ SceneRays make_scene_rays(const Scene& scene, int width, int height, std::uint32
   const Camera camera(scene.camera, width, height);
   std::vector<Ray<float>> primary;
   for (const PixelTile& tile : pixel_tiles(width, height, kTile)) {
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) primary.push_back(camera.ray(x + 0.5, y + 0.5));
-    }
+    for_each_pixel_in_groups(tile.x0, tile.y0, tile.x0 + tile.width, tile.y0 + tile.height,
+                             [&](int x, int y) { primary.push_back(camera.ray(x + 0.5, y + 0.5)); });
   }
   SceneRays out;
   out.primary = to_soa(primary);

@@ -73,30 +73,27 @@ class TileRenderer {
   void render_supersampled(const PixelTile& tile, Worker& w) const {
     const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
     const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
+    const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
     w.samples.clear();
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
-        const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
-        for (int j = 0; j < n * n; ++j) {
-          double ox = (j % n + 0.5) / n, oy = (j / n + 0.5) / n;
-          if (jitter) {
-            ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
-            oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
-          }
-          w.samples.push_back(sample_at(x + ox, y + oy));
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
+      const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
+      for (int j = 0; j < n * n; ++j) {
+        double ox = (j % n + 0.5) / n, oy = (j / n + 0.5) / n;
+        if (jitter) {
+          ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
+          oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
         }
+        w.samples.push_back(sample_at(x + ox, y + oy));
       }
-    }
+    });
     trace(w);
     const float inv = 1.f / float(n * n);
     std::size_t k = 0;
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
-        Vec3<float> sum{0.f, 0.f, 0.f};
-        for (int j = 0; j < n * n; ++j) sum = sum + w.colors[k++];
-        set_pixel(x, y, sum * inv);
-      }
-    }
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
+      Vec3<float> sum{0.f, 0.f, 0.f};
+      for (int j = 0; j < n * n; ++j) sum = sum + w.colors[k++];
+      set_pixel(x, y, sum * inv);
+    });
   }
 
   // The SPD rule, part one: the rays at the corners this tile owns (its
@@ -106,14 +103,12 @@ class TileRenderer {
     const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
     const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
     w.samples.clear();
-    for (int y = tile.y0; y < y1; ++y) {
-      for (int x = tile.x0; x < x1; ++x) w.samples.push_back(sample_at(x, y));
-    }
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.samples.push_back(sample_at(x, y)); });
     trace(w);
     std::size_t k = 0;
-    for (int y = tile.y0; y < y1; ++y) {
-      for (int x = tile.x0; x < x1; ++x) (*corners_)[std::size_t(y) * (image_.width + 1) + x] = w.colors[k++];
-    }
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
+      (*corners_)[std::size_t(y) * (image_.width + 1) + x] = w.colors[k++];
+    });
   }
 
   // Adaptive: corners on a lattice of 2^depth points per pixel side; level by

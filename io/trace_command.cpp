@@ -46,17 +46,9 @@ std::pair<int, int> trace_image_size(const TraceOptions& options, const std::opt
 }
 
 void tile_primary_rays(const Camera& camera, const PixelTile& tile, RaySoA& rays) {
-  constexpr int kGroupWidth = 4, kGroupHeight = 2;
   rays.clear();
-  for (int gy = 0; gy < tile.height; gy += kGroupHeight) {
-    for (int gx = 0; gx < tile.width; gx += kGroupWidth) {
-      for (int y = gy; y < std::min(gy + kGroupHeight, tile.height); ++y) {
-        for (int x = gx; x < std::min(gx + kGroupWidth, tile.width); ++x) {
-          rays.push(camera.ray(tile.x0 + x + 0.5, tile.y0 + y + 0.5));
-        }
-      }
-    }
-  }
+  for_each_pixel_in_groups(tile.x0, tile.y0, tile.x0 + tile.width, tile.y0 + tile.height,
+                           [&](int x, int y) { rays.push(camera.ray(x + 0.5, y + 0.5)); });
   rays.pad();
 }
 

@@ -2,9 +2,11 @@
 // count gives the same bits; depth 0/1/2 differ where, and only where,
 // mirrors are; transparent shadows attenuate by kt times colour per surface;
 // no acne when the scene is scaled by 1e-4 or 1e6; lane statistics add up.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -76,6 +78,30 @@ void expect_same_image(const Framebuffer& a, const Framebuffer& b, const std::st
   EXPECT_TRUE(same_bits(a.normal, b.normal)) << what << ": normal";
   EXPECT_EQ(a.kind, b.kind) << what << ": kind";
   EXPECT_EQ(a.id, b.id) << what << ": id";
+}
+
+TEST(Render, PixelGroupsVisitEveryPixelOnceInFourByTwoGroups) {
+  // A 17 x 5 region at (3, 7): full groups, then a 1-wide column and a 1-high row.
+  const int x0 = 3, y0 = 7, x1 = 20, y1 = 12;
+  std::vector<std::pair<int, int>> order;
+  for_each_pixel_in_groups(x0, y0, x1, y1, [&](int x, int y) { order.emplace_back(x, y); });
+  ASSERT_EQ(order.size(), std::size_t((x1 - x0) * (y1 - y0)));
+  std::vector<int> visits(order.size(), 0);
+  for (const auto& [x, y] : order) {
+    ASSERT_TRUE(x >= x0 && x < x1 && y >= y0 && y < y1) << x << ", " << y;
+    ++visits[std::size_t((y - y0) * (x1 - x0) + (x - x0))];
+  }
+  EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+  // The first packet is a 4 x 2 footprint, the second the group to its right.
+  for (int k = 0; k < 16; ++k) {
+    EXPECT_EQ(order[std::size_t(k)], std::make_pair(x0 + 4 * (k / 8) + k % 4, y0 + (k % 8) / 4)) << k;
+  }
+  // The first group row ends with the 1-wide column (x = 19, rows 7 and 8),
+  // and the last group row is 1 high.
+  EXPECT_EQ(order[32], std::make_pair(19, 7));
+  EXPECT_EQ(order[33], std::make_pair(19, 8));
+  EXPECT_EQ(order.back(), std::make_pair(19, 11));
+  EXPECT_EQ(order[order.size() - 2], std::make_pair(18, 11));
 }
 
 TEST(Render, EveryUnitGivesTheSameBits) {
