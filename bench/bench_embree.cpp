@@ -16,8 +16,9 @@
 // polygons, which Embree sees ear-clipped) and closest-hit distances
 // differing by more than a relative 1e-4.
 // Usage: quiver_bench_embree [--width W] [--height H] [--repeat R]
-//   [--scenes a,b,...] [--robust] [--embree-isa native|avx2|sse4.2] [--json FILE] (--help lists them). Scenes
-//   are names in $QUIVER_SHARED_DIR/meshes (.obj) or scenes/spd (.nff), or paths.
+//   [--scenes a,b,...] [--robust] [--embree-isa native|avx2|sse4.2] [--json FILE]
+//   (--help lists them). Scenes are names in $QUIVER_SHARED_DIR/meshes (.obj)
+//   or scenes/spd (.nff), or paths.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

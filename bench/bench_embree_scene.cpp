@@ -33,7 +33,9 @@ EmbreeDevice::EmbreeDevice(const std::string& max_isa)
 
 EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 
-bool EmbreeDevice::avx512() const { return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0; }
+bool EmbreeDevice::avx512() const {
+  return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+}
 
 bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
   static_cast<EmbreeDevice*>(user)->bytes_ += std::int64_t(bytes);  // negative on release
