@@ -153,17 +153,15 @@ class TileRenderer {
       return false;
     };
 
-    for (int Y = 0; Y < lh; Y += scale) {
-      for (int X = 0; X < lw; X += scale) request(X, Y);
-    }
+    for_each_pixel_in_groups(0, 0, tile.width + 1, tile.height + 1,
+                             [&](int x, int y) { request(x * scale, y * scale); });
     run_batch();
     struct Square {
       int X, Y, size;
     };
     std::vector<Square> level, next;
-    for (int y = 0; y < tile.height; ++y) {
-      for (int x = 0; x < tile.width; ++x) level.push_back({x * scale, y * scale, scale});
-    }
+    for_each_pixel_in_groups(0, 0, tile.width, tile.height,
+                             [&](int x, int y) { level.push_back({x * scale, y * scale, scale}); });
     while (!level.empty()) {
       next.clear();
       for (const Square& s : level) {
