@@ -108,7 +108,7 @@ void register_scene(const std::string& name, const std::filesystem::path& path) 
       [=] { return make_scene_rays(default_scene->get(), kImageSide, kImageSide, 7); });
   const char* kinds[] = {"primary", "reflection", "diffuse", "shadow"};
   for (KernelUnit unit : bench_units()) {
-    std::string w = "w";
+    std::string w = "w";  // appended, not "w" + to_string(...): g++ 12 warns -Wrestrict on that
     w += std::to_string(lane_width(unit));
     for (int width : {2, 4, 8}) {
       for (int leaf : {4, 8}) {

@@ -102,15 +102,19 @@ template <class F>
 inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
   alignas(64) float v_lane[kMaxLanes];
   store_lanes(v, v_lane);
-  const auto band_of_lane = [&](int lane) {
-    return band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count);
-  };
+  // Each candidate lane's band, once.
+  int lane_band[kMaxLanes];
+  const unsigned candidates = lane_bits(candidate);
+  for (unsigned b = candidates; b != 0; b &= b - 1) {
+    const int lane = __builtin_ctz(b);
+    lane_band[lane] = band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count);
+  }
   Mask<F> inside(false);
-  for (unsigned pending = lane_bits(candidate); pending != 0;) {
-    const int band = band_of_lane(__builtin_ctz(pending));
+  for (unsigned pending = candidates; pending != 0;) {
+    const int band = lane_band[__builtin_ctz(pending)];
     unsigned members = 0;
     for (unsigned b = pending; b != 0; b &= b - 1) {
-      if (band_of_lane(__builtin_ctz(b)) == band) members |= b & (~b + 1u);
+      if (lane_band[__builtin_ctz(b)] == band) members |= b & (~b + 1u);
     }
     pending &= ~members;
     inside = inside || band_parity(poly, band, u, v, mask_from_bits<F>(members));
