@@ -25,9 +25,13 @@ inline void grow(Box& b, const Vec3<float>& p) {
   }
 }
 
+// The union: lo with lo, hi with hi, so an empty `other` leaves b as it is
+// (growing by its corners would take its +inf hi and -inf lo).
 inline void grow(Box& b, const Box& other) {
-  grow(b, other.lo);
-  grow(b, other.hi);
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min(b.lo[a], other.lo[a]);
+    b.hi[a] = std::max(b.hi[a], other.hi[a]);
+  }
 }
 
 inline bool is_empty(const Box& b) { return !(b.lo.x <= b.hi.x); }

@@ -119,6 +119,41 @@ TEST(BvhBuild, ExponentiallySpacedBoxesStayWithinTheDepthLimit) {
   expect_valid_bvh(boxes, options);
 }
 
+TEST(BvhBuild, GrowingByAnEmptyBoxChangesNothing) {
+  const Box box{{1, 2, 3}, {4, 5, 6}};
+  Box grown = box;
+  grow(grown, empty_box());
+  Box from_empty = empty_box();
+  grow(from_empty, box);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(grown.lo[a], box.lo[a]);
+    EXPECT_EQ(grown.hi[a], box.hi[a]);
+    EXPECT_EQ(from_empty.lo[a], box.lo[a]);
+    EXPECT_EQ(from_empty.hi[a], box.hi[a]);
+  }
+}
+
+// Two clusters far apart along x leave empty SAH bins between them on that
+// axis; the root split must still separate them there. (A bin sweep that
+// lets an empty bin's inverted box into its running union gets infinite
+// areas on that axis and splits along y, where the clusters interleave.)
+TEST(BvhBuild, SahSplitsAcrossEmptyBins) {
+  std::vector<Box> boxes;
+  for (int i = 0; i < 16; ++i) {
+    const float x = i < 4 ? 0.f : 100.f;
+    const float y = static_cast<float>((i * 5) % 16) / 16.f;
+    boxes.push_back({{x, y, 0}, {x + 1, y + 0.05f, 1}});
+  }
+  BvhBuildOptions options;
+  options.width = 2;  // the root's children are the first split's sides
+  std::vector<std::uint32_t> order;
+  const Bvh bvh = build_bvh(boxes, options, order);
+  for (int c = 0; c < 2; ++c) {
+    const Box box = child_box(bvh, 0, c);
+    EXPECT_EQ(box.hi.x - box.lo.x, 1.f) << "root child " << c << " spans both clusters";
+  }
+}
+
 TEST(BvhBuild, SameTreeForAnyThreadCount) {
   RaySampler s(5);
   const std::vector<Box> boxes = random_boxes(s, 20000);
