@@ -41,7 +41,7 @@ struct BvhBuildOptions {
   int width = 8;               // children per node: 2, 4 or 8 (8 measured fastest, bench/README.md)
   int max_leaf_size = 8;       // at most kMaxLeafSize
   int bins = 16;               // SAH bins per axis
-  float traversal_cost = 1.f;  // relative to one primitive test
+  float traversal_cost = 4.f;  // relative to one primitive test (3-8 within the noise, bench/README.md)
   std::size_t parallel_threshold = 4096;  // subtrees at least this big build in parallel (oneTBB)
 };
 
