@@ -1,5 +1,6 @@
 // Binned SAH build (Wald 2007) of a binary tree over primitive boxes, split
-// in place over an index array (so leaves are contiguous ranges), subtrees
+// in place over an array of (box, index) records (so leaves are contiguous
+// ranges and every pass reads memory in order), subtrees
 // above a size threshold built in parallel with oneTBB; then the binary tree
 // is collapsed into `width`-ary nodes by opening the child of largest area
 // until the node is full (as Embree's BVH4/8 builders do). The result does
@@ -12,9 +13,13 @@
 #include <atomic>
 #include <bit>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include <oneapi/tbb/parallel_invoke.h>
+#include <xsimd/xsimd.hpp>
+
+#include "simd/lanes.h"
 
 namespace quiver {
 
@@ -22,23 +27,72 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+// No initializers: build_range sets every field of the nodes it allocates,
+// so the node array (up to 2n - 1 nodes) is not written twice.
 struct BinaryNode {
   Box box;
-  std::int32_t left = -1, right = -1;  // -1 for a leaf
-  std::uint32_t first = 0, count = 0;  // leaf range in the index array
+  std::int32_t left, right;    // -1 for a leaf
+  std::uint32_t first, count;  // leaf range in the build order
   bool leaf() const { return left < 0; }
+};
+
+// A primitive's box and input index. The build partitions these in place, so
+// every pass over a node's range reads memory in order.
+struct PrimRef {
+  Box box;
+  std::uint32_t id;
+  float centroid(int axis) const { return (box.lo[axis] + box.hi[axis]) * 0.5f; }
+};
+static_assert(offsetof(PrimRef, box.hi) == offsetof(PrimRef, box.lo) + 3 * sizeof(float));
+static_assert(offsetof(PrimRef, id) == offsetof(PrimRef, box.hi) + 3 * sizeof(float));
+
+// x, y, z and one lane that is never read (SSE2 is baseline x86-64).
+using Lanes4 = xsimd::batch<float, xsimd::sse2>;
+
+// A PrimRef's corners in 4 lanes: lane 3 of lo is hi.x, of hi the id's bits
+// (at most 2^26: a finite float, never NaN).
+inline Lanes4 lo_lanes(const PrimRef& r) { return Lanes4::load_unaligned(&r.box.lo.x); }
+inline Lanes4 hi_lanes(const PrimRef& r) { return Lanes4::load_unaligned(&r.box.hi.x); }
+
+// A SAH bin: its primitives' box, as lanes (min and max as in grow()). No
+// initializers: best_split sets up only the bins it uses.
+struct BinBox {
+  Lanes4 lo, hi;
+  static BinBox empty() { return {Lanes4(kInf), Lanes4(-kInf)}; }
+  void grow(const Lanes4& box_lo, const Lanes4& box_hi) {
+    lo = min(lo, box_lo);
+    hi = max(hi, box_hi);
+  }
+  Box box() const {
+    alignas(16) float l[4], h[4];
+    lo.store_aligned(l);
+    hi.store_aligned(h);
+    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+  }
+};
+
+// The box of a range and the box of its centroids.
+struct RangeBounds {
+  Box box = empty_box(), centroids = empty_box();
 };
 
 class BinaryBuilder {
  public:
-  BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& ids)
-      : boxes_(boxes), options_(options), ids_(ids), nodes_(2 * boxes.size()) {
-    centroids_.reserve(boxes.size());
-    for (const Box& b : boxes) centroids_.push_back(centroid(b));
+  BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options)
+      : options_(options), nodes_(new BinaryNode[2 * boxes.size()]) {
+    refs_.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) refs_.push_back({boxes[i], static_cast<std::uint32_t>(i)});
   }
 
-  std::int32_t build() { return build_range(0, static_cast<std::uint32_t>(ids_.size()), 1); }
-  const std::vector<BinaryNode>& nodes() const { return nodes_; }
+  std::int32_t build() {
+    const auto n = static_cast<std::uint32_t>(refs_.size());
+    return build_range(0, n, 1, bounds_of(0, n));
+  }
+  const BinaryNode* nodes() const { return nodes_.get(); }
+  // order[k]: the input index of the primitive at leaf position k.
+  void write_order(std::vector<std::uint32_t>& order) const {
+    for (std::size_t k = 0; k < refs_.size(); ++k) order[k] = refs_[k].id;
+  }
 
  private:
   struct Split {
@@ -49,40 +103,45 @@ class BinaryBuilder {
 
   std::int32_t allocate() { return next_node_.fetch_add(1, std::memory_order_relaxed); }
 
-  std::int32_t build_range(std::uint32_t begin, std::uint32_t end, int depth) {
+  RangeBounds bounds_of(std::uint32_t begin, std::uint32_t end) const {
+    RangeBounds bounds;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const PrimRef& r = refs_[i];
+      grow(bounds.box, r.box);
+      grow(bounds.centroids, Vec3<float>{r.centroid(0), r.centroid(1), r.centroid(2)});
+    }
+    return bounds;
+  }
+
+  std::int32_t build_range(std::uint32_t begin, std::uint32_t end, int depth, const RangeBounds& bounds) {
     const std::int32_t index = allocate();
     BinaryNode& node = nodes_[index];
-    Box box = empty_box(), centroid_box = empty_box();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      grow(box, boxes_[ids_[i]]);
-      grow(centroid_box, centroids_[ids_[i]]);
-    }
-    node.box = box;
+    node = {bounds.box, -1, -1, 0, 0};
     const std::uint32_t n = end - begin;
     const float leaf_cost = static_cast<float>(n);
 
     std::uint32_t middle = begin;
     if (depth < kSahDepthLimit) {
-      const Split split = best_split(begin, end, box, centroid_box);
+      const Split split = best_split(begin, end, bounds);
       const bool must_split = n > static_cast<std::uint32_t>(options_.max_leaf_size);
       if (!must_split && (split.axis < 0 || split.cost >= leaf_cost)) return make_leaf(node, begin, n);
       if (split.axis >= 0) {
-        const auto below = [&](std::uint32_t id) { return centroids_[id][split.axis] < split.position; };
-        middle = static_cast<std::uint32_t>(std::partition(ids_.begin() + begin, ids_.begin() + end, below) -
-                                            ids_.begin());
+        const auto below = [&](const PrimRef& r) { return r.centroid(split.axis) < split.position; };
+        middle = static_cast<std::uint32_t>(std::partition(refs_.begin() + begin, refs_.begin() + end, below) -
+                                            refs_.begin());
       }
     } else if (n <= static_cast<std::uint32_t>(options_.max_leaf_size)) {
       return make_leaf(node, begin, n);
     }
-    if (middle == begin || middle == end) middle = median_split(begin, end, centroid_box);
+    if (middle == begin || middle == end) middle = median_split(begin, end, bounds.centroids);
 
     std::int32_t left = -1, right = -1;
     if (n >= options_.parallel_threshold) {
-      oneapi::tbb::parallel_invoke([&] { left = build_range(begin, middle, depth + 1); },
-                                   [&] { right = build_range(middle, end, depth + 1); });
+      oneapi::tbb::parallel_invoke([&] { left = build_range(begin, middle, depth + 1, bounds_of(begin, middle)); },
+                                   [&] { right = build_range(middle, end, depth + 1, bounds_of(middle, end)); });
     } else {
-      left = build_range(begin, middle, depth + 1);
-      right = build_range(middle, end, depth + 1);
+      left = build_range(begin, middle, depth + 1, bounds_of(begin, middle));
+      right = build_range(middle, end, depth + 1, bounds_of(middle, end));
     }
     nodes_[index].left = left;
     nodes_[index].right = right;
@@ -92,7 +151,7 @@ class BinaryBuilder {
   std::int32_t make_leaf(BinaryNode& node, std::uint32_t begin, std::uint32_t n) {
     node.first = begin;
     node.count = n;
-    return static_cast<std::int32_t>(&node - nodes_.data());
+    return static_cast<std::int32_t>(&node - nodes_.get());
   }
 
   // Object median along the widest centroid axis, ties by input index, so
@@ -101,72 +160,88 @@ class BinaryBuilder {
     const Vec3<float> extent = centroid_box.hi - centroid_box.lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::uint32_t middle = begin + (end - begin) / 2;
-    std::nth_element(ids_.begin() + begin, ids_.begin() + middle, ids_.begin() + end,
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       const float ca = centroids_[a][axis], cb = centroids_[b][axis];
-                       return ca < cb || (ca == cb && a < b);
+    std::nth_element(refs_.begin() + begin, refs_.begin() + middle, refs_.begin() + end,
+                     [&](const PrimRef& a, const PrimRef& b) {
+                       const float ca = a.centroid(axis), cb = b.centroid(axis);
+                       return ca < cb || (ca == cb && a.id < b.id);
                      });
     return middle;
   }
 
-  // SAH over `bins` centroid bins per axis: cost = traversal + (A_L n_L + A_R n_R) / A.
-  Split best_split(std::uint32_t begin, std::uint32_t end, const Box& box, const Box& centroid_box) const {
+  // SAH over `bins` centroid bins per axis, all three axes binned in one pass:
+  // cost = traversal + (A_L n_L + A_R n_R) / A.
+  Split best_split(std::uint32_t begin, std::uint32_t end, const RangeBounds& bounds) const {
     constexpr int kMaxBins = 64;
     const int bins = std::clamp(options_.bins, 2, kMaxBins);
-    const float area = half_area(box);
+    const float area = half_area(bounds.box);
     Split best;
     if (!(area > 0.f)) return best;
+    alignas(16) std::array<float, 4> lo{}, scale{};
+    std::array<bool, 3> binned{};
     for (int axis = 0; axis < 3; ++axis) {
-      const float lo = centroid_box.lo[axis], extent = centroid_box.hi[axis] - lo;
-      if (!(extent > 0.f)) continue;
-      const float scale = static_cast<float>(bins) / extent;
-      std::array<Box, kMaxBins> bin_box;
-      std::array<std::uint32_t, kMaxBins> bin_count{};
-      bin_box.fill(empty_box());
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const std::uint32_t id = ids_[i];
-        const int b = std::min(bins - 1, static_cast<int>((centroids_[id][axis] - lo) * scale));
-        grow(bin_box[b], boxes_[id]);
-        ++bin_count[b];
+      lo[axis] = bounds.centroids.lo[axis];
+      const float extent = bounds.centroids.hi[axis] - lo[axis];
+      binned[axis] = extent > 0.f;
+      scale[axis] = binned[axis] ? static_cast<float>(bins) / extent : 0.f;
+    }
+    const Lanes4 lo_lanes4 = Lanes4::load_aligned(lo.data()), scale_lanes4 = Lanes4::load_aligned(scale.data());
+    const auto last_bin = xsimd::batch<std::int32_t, xsimd::sse2>(bins - 1);
+    std::array<std::array<BinBox, kMaxBins>, 3> bin_box;
+    std::array<std::array<std::uint32_t, kMaxBins>, 3> bin_count;
+    for (int axis = 0; axis < 3; ++axis) {
+      std::fill_n(bin_box[axis].begin(), bins, BinBox::empty());
+      std::fill_n(bin_count[axis].begin(), bins, 0u);
+    }
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Lanes4 box_lo = lo_lanes(refs_[i]), box_hi = hi_lanes(refs_[i]);
+      // The bin index on every axis at once, as PrimRef::centroid and the scalar (int) cast give it.
+      const Lanes4 position = ((box_lo + box_hi) * Lanes4(0.5f) - lo_lanes4) * scale_lanes4;
+      alignas(16) std::array<std::int32_t, 4> bin;
+      xsimd::min(xsimd::batch_cast<std::int32_t>(position), last_bin).store_aligned(bin.data());
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!binned[axis]) continue;
+        bin_box[axis][bin[axis]].grow(box_lo, box_hi);
+        ++bin_count[axis][bin[axis]];
       }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!binned[axis]) continue;
       // Sweep from the right: area and count of bins [b, bins).
-      std::array<float, kMaxBins> right_area{};
-      std::array<std::uint32_t, kMaxBins> right_count{};
+      std::array<float, kMaxBins> right_area;  // [1, bins) written below
+      std::array<std::uint32_t, kMaxBins> right_count;
       Box acc = empty_box();
       std::uint32_t count = 0;
       for (int b = bins - 1; b > 0; --b) {
-        grow(acc, bin_box[b]);
-        count += bin_count[b];
+        grow(acc, bin_box[axis][b].box());
+        count += bin_count[axis][b];
         right_area[b] = half_area(acc);
         right_count[b] = count;
       }
       acc = empty_box();
       count = 0;
       for (int b = 1; b < bins; ++b) {
-        grow(acc, bin_box[b - 1]);
-        count += bin_count[b - 1];
+        grow(acc, bin_box[axis][b - 1].box());
+        count += bin_count[axis][b - 1];
         if (count == 0 || right_count[b] == 0) continue;
         const float cost = options_.traversal_cost +
                            (half_area(acc) * static_cast<float>(count) +
                             right_area[b] * static_cast<float>(right_count[b])) / area;
-        if (cost < best.cost) best = {axis, lo + static_cast<float>(b) / scale, cost};
+        if (cost < best.cost) best = {axis, lo[axis] + static_cast<float>(b) / scale[axis], cost};
       }
     }
     return best;
   }
 
-  std::span<const Box> boxes_;
   const BvhBuildOptions& options_;
-  std::vector<std::uint32_t>& ids_;
-  std::vector<Vec3<float>> centroids_;
-  std::vector<BinaryNode> nodes_;
+  std::vector<PrimRef> refs_;
+  std::unique_ptr<BinaryNode[]> nodes_;
   std::atomic<std::int32_t> next_node_{0};
 };
 
 // Writes the wide nodes depth first from the binary tree.
 class Collapser {
  public:
-  Collapser(const std::vector<BinaryNode>& nodes, Bvh& bvh) : nodes_(nodes), bvh_(bvh), width_(bvh.width) {}
+  Collapser(const BinaryNode* nodes, Bvh& bvh) : nodes_(nodes), bvh_(bvh), width_(bvh.width) {}
 
   void collapse_root(std::int32_t root) {
     std::vector<std::int32_t> slots;
@@ -228,7 +303,7 @@ class Collapser {
     return static_cast<std::int32_t>(index);
   }
 
-  const std::vector<BinaryNode>& nodes_;
+  const BinaryNode* nodes_;
   Bvh& bvh_;
   int width_;
 };
@@ -246,13 +321,13 @@ Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::v
     throw std::length_error("a BVH indexes at most 2^26 primitives per store");
   }
   order.resize(boxes.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   Bvh bvh;
   if (boxes.empty()) return bvh;
   bvh.width = options.width;
 
-  BinaryBuilder builder(boxes, options, order);
+  BinaryBuilder builder(boxes, options);
   const std::int32_t root = builder.build();
+  builder.write_order(order);
   bvh.bounds = builder.nodes()[root].box;
   Collapser(builder.nodes(), bvh).collapse_root(root);
   bvh.nodes.shrink_to_fit();
