@@ -1,11 +1,11 @@
 // Binned SAH build (Wald 2007) of a binary tree over primitive boxes, split
 // in place over an array of (box, index) records (so leaves are contiguous
-// ranges and every pass reads memory in order), subtrees
-// above a size threshold built in parallel with oneTBB; then the binary tree
-// is collapsed into `width`-ary nodes by opening the child of largest area
-// until the node is full (as Embree's BVH4/8 builders do). The result does
-// not depend on the thread count: splits depend only on the input, and the
-// wide nodes are laid out by a depth-first walk.
+// ranges and every pass reads memory in order; one pass bins all three
+// axes), subtrees above a size threshold built in parallel with oneTBB; then
+// the binary tree is collapsed into `width`-ary nodes by opening the child
+// of largest area until the node is full (as Embree's BVH4/8 builders do).
+// The result does not depend on the thread count: splits depend only on the
+// input, and the wide nodes are laid out by a depth-first walk.
 #include "geometry/bvh.h"
 
 #include <algorithm>
