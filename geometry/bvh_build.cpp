@@ -12,6 +12,7 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <stdexcept>
