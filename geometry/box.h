@@ -43,6 +43,12 @@ inline float half_area(const Box& b) {
   return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-inline Vec3<float> centroid(const Box& b) { return (b.lo + b.hi) * 0.5f; }
+// (lo + hi) / 2 per coordinate, for a Vec3 or for lanes of coordinates.
+template <class T>
+inline T midpoint_of(const T& lo, const T& hi) {
+  return (lo + hi) * 0.5f;
+}
+
+inline Vec3<float> centroid(const Box& b) { return midpoint_of(b.lo, b.hi); }
 
 }  // namespace quiver

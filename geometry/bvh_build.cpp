@@ -42,7 +42,7 @@ struct BinaryNode {
 struct PrimRef {
   Box box;
   std::uint32_t id;
-  float centroid(int axis) const { return (box.lo[axis] + box.hi[axis]) * 0.5f; }
+  float centroid(int axis) const { return quiver::centroid(box)[axis]; }
 };
 static_assert(offsetof(PrimRef, box.hi) == offsetof(PrimRef, box.lo) + 3 * sizeof(float));
 static_assert(offsetof(PrimRef, id) == offsetof(PrimRef, box.hi) + 3 * sizeof(float));
@@ -109,7 +109,7 @@ class BinaryBuilder {
     for (std::uint32_t i = begin; i < end; ++i) {
       const PrimRef& r = refs_[i];
       grow(bounds.box, r.box);
-      grow(bounds.centroids, Vec3<float>{r.centroid(0), r.centroid(1), r.centroid(2)});
+      grow(bounds.centroids, centroid(r.box));
     }
     return bounds;
   }
@@ -195,8 +195,8 @@ class BinaryBuilder {
     }
     for (std::uint32_t i = begin; i < end; ++i) {
       const Lanes4 box_lo = lo_lanes(refs_[i]), box_hi = hi_lanes(refs_[i]);
-      // The bin index on every axis at once, as PrimRef::centroid and the scalar (int) cast give it.
-      const Lanes4 position = ((box_lo + box_hi) * Lanes4(0.5f) - lo_lanes4) * scale_lanes4;
+      // The bin index on every axis at once, as centroid() and the scalar (int) cast give it.
+      const Lanes4 position = (midpoint_of(box_lo, box_hi) - lo_lanes4) * scale_lanes4;
       alignas(16) std::array<std::int32_t, 4> bin;
       xsimd::min(xsimd::batch_cast<std::int32_t>(position), last_bin).store_aligned(bin.data());
       for (int axis = 0; axis < 3; ++axis) {
