@@ -67,8 +67,7 @@ void trace(benchmark::State& state, const BvhCase& lazy, KernelUnit unit, BvhTra
   for (auto _ : state) {
     if (kind == "shadow") {
       occlusion.reset(rays);
-      intersector.occluded(c.scene->opaque, rays, occlusion);
-      intersector.occluded(c.scene->transmissive, rays, occlusion);
+      intersector.occluded(*c.scene, rays, occlusion, Layers::both);
       benchmark::DoNotOptimize(occlusion.occluded.data());
     } else {
       hits.reset(rays);

@@ -203,8 +203,7 @@ nlohmann::ordered_json run_set(const RaySet& set, const Scene& scene, const Scen
     if (set.any_hit) {
       OcclusionSoA& result = thread_occlusion.local();
       result.reset(rays);
-      intersector.occluded(scene.opaque, rays, result);
-      intersector.occluded(scene.transmissive, rays, result);
+      intersector.occluded(scene, rays, result, Layers::both);
       for (std::size_t i = 0; i < rays.count; ++i) out[i] = result.occluded[i] ? kBlocked : kMiss;
       return;
     }

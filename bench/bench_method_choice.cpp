@@ -89,8 +89,7 @@ void rays_benchmark(benchmark::State& state, std::shared_ptr<const Scene> scene,
       count += set->count;
     }
     occlusion = OcclusionSoA(rays->shadow);
-    intersector.occluded(scene->opaque, rays->shadow, occlusion);
-    intersector.occluded(scene->transmissive, rays->shadow, occlusion);
+    intersector.occluded(*scene, rays->shadow, occlusion, Layers::both);
     count += rays->shadow.count;
   }
   state.counters["rays"] = benchmark::Counter(double(count), benchmark::Counter::kIsRate);

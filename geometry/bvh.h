@@ -8,7 +8,8 @@
 // The build reorders the store: a leaf is a contiguous range of at most
 // max_leaf_size primitives, so the leaf is an SoA block the scan kernels load
 // directly. build_bvh returns that order (order[k] = input index of the
-// primitive that goes to position k).
+// primitive that goes to position k). One tree can index two stores of a
+// kind: each leaf then holds one store's primitives and says which.
 //
 // Boxes are conservative: each primitive's box contains every point the
 // kernel can report on it (see geometry/primitive_bounds.h), and the
@@ -28,13 +29,19 @@
 namespace quiver {
 
 // Child slot of a wide node: >= 0 is an inner node; < 0 a leaf holding
-// primitives [first, first + count) (count 0 is an empty slot).
+// primitives [first, first + count) of store 0 or 1 (a tree can index two
+// stores of one kind, such as a scene's opaque and transmissive layers;
+// count 0 is an empty slot).
 inline constexpr std::int32_t kMaxLeafSize = 15;
-constexpr std::int32_t encode_leaf(std::int32_t first, std::int32_t count) { return -1 - (first * 16 + count); }
+constexpr std::int32_t encode_leaf(std::int32_t first, std::int32_t count, std::int32_t store = 0) {
+  return -1 - ((first * 2 + store) * 16 + count);
+}
 constexpr bool is_leaf(std::int32_t child) { return child < 0; }
-constexpr std::int32_t leaf_first(std::int32_t child) { return (-1 - child) / 16; }
+constexpr std::int32_t leaf_first(std::int32_t child) { return (-1 - child) / 32; }
 constexpr std::int32_t leaf_count(std::int32_t child) { return (-1 - child) % 16; }
-// Largest primitive count a BVH can index (first * 16 must fit an int32).
+constexpr std::int32_t leaf_store(std::int32_t child) { return (-1 - child) / 16 % 2; }
+// Largest primitive count a BVH can index, all stores together ((first * 2 +
+// 1) * 16 + 15 must fit an int32).
 inline constexpr std::size_t kMaxBvhPrimitives = std::size_t(1) << 26;
 
 struct BvhBuildOptions {
@@ -67,10 +74,16 @@ struct Bvh {
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty
 // input gives an empty Bvh. Throws std::length_error past kMaxBvhPrimitives
 // and std::invalid_argument for a bad width or leaf size.
-Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order);
+// `store_of` (empty: every primitive in store 0) puts primitive i in store
+// store_of[i] (0 or 1): each leaf then holds one store's primitives, and its
+// range counts positions in that store's part of `order` (order filtered to
+// the primitives of that store, in order).
+Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order,
+              std::span<const std::uint8_t> store_of = {});
 
 // Deepest tree the build makes: past kSahDepthLimit it splits at the object
-// median, which halves the count per level (kMaxBvhPrimitives = 2^26).
+// median, which halves the count per level (kMaxBvhPrimitives = 2^26: 26
+// levels), then once by store.
 inline constexpr int kSahDepthLimit = 32;
 inline constexpr int kMaxBvhDepth = kSahDepthLimit + 27;
 // A traversal stack never holds more entries than this: each level leaves at

@@ -5,7 +5,8 @@
 // the binary tree is collapsed into `width`-ary nodes by opening the child
 // of largest area until the node is full (as Embree's BVH4/8 builders do).
 // The result does not depend on the thread count: splits depend only on the
-// input, and the wide nodes are laid out by a depth-first walk.
+// input, and the wide nodes are laid out by a depth-first walk. With two
+// stores, a range that would become a leaf but holds both is split by store.
 #include "geometry/bvh.h"
 
 #include <algorithm>
@@ -34,6 +35,7 @@ struct BinaryNode {
   Box box;
   std::int32_t left, right;    // -1 for a leaf
   std::uint32_t first, count;  // leaf range in the build order
+  std::int32_t store;          // of a leaf's primitives
   bool leaf() const { return left < 0; }
 };
 
@@ -79,8 +81,8 @@ struct RangeBounds {
 
 class BinaryBuilder {
  public:
-  BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options)
-      : options_(options), nodes_(new BinaryNode[2 * boxes.size()]) {
+  BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options, std::span<const std::uint8_t> store_of)
+      : options_(options), store_of_(store_of), nodes_(new BinaryNode[2 * boxes.size()]) {
     refs_.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) refs_.push_back({boxes[i], static_cast<std::uint32_t>(i)});
   }
@@ -94,6 +96,13 @@ class BinaryBuilder {
   void write_order(std::vector<std::uint32_t>& order) const {
     for (std::size_t k = 0; k < refs_.size(); ++k) order[k] = refs_[k].id;
   }
+  // store_position[k]: leaf position k counted within its store's primitives.
+  std::vector<std::uint32_t> store_positions() const {
+    std::vector<std::uint32_t> position(refs_.size());
+    std::array<std::uint32_t, 2> next{};
+    for (std::size_t k = 0; k < refs_.size(); ++k) position[k] = next[store(refs_[k])]++;
+    return position;
+  }
 
  private:
   struct Split {
@@ -103,6 +112,15 @@ class BinaryBuilder {
   };
 
   std::int32_t allocate() { return next_node_.fetch_add(1, std::memory_order_relaxed); }
+  std::uint8_t store(const PrimRef& r) const { return store_of_.empty() ? 0 : store_of_[r.id]; }
+  // The first position of store 1 after partitioning a range by store, or
+  // `end` when the range holds one store only.
+  std::uint32_t split_by_store(std::uint32_t begin, std::uint32_t end) {
+    if (store_of_.empty()) return end;
+    const auto in_store_0 = [&](const PrimRef& r) { return store(r) == 0; };
+    const auto middle = std::partition(refs_.begin() + begin, refs_.begin() + end, in_store_0) - refs_.begin();
+    return middle == begin ? end : static_cast<std::uint32_t>(middle);
+  }
 
   RangeBounds bounds_of(std::uint32_t begin, std::uint32_t end) const {
     RangeBounds bounds;
@@ -117,22 +135,25 @@ class BinaryBuilder {
   std::int32_t build_range(std::uint32_t begin, std::uint32_t end, int depth, const RangeBounds& bounds) {
     const std::int32_t index = allocate();
     BinaryNode& node = nodes_[index];
-    node = {bounds.box, -1, -1, 0, 0};
+    node = {bounds.box, -1, -1, 0, 0, 0};
     const std::uint32_t n = end - begin;
     const float leaf_cost = static_cast<float>(n);
 
     std::uint32_t middle = begin;
+    const bool fits_leaf = n <= static_cast<std::uint32_t>(options_.max_leaf_size);
     if (depth < kSahDepthLimit) {
       const Split split = best_split(begin, end, bounds);
-      const bool must_split = n > static_cast<std::uint32_t>(options_.max_leaf_size);
-      if (!must_split && (split.axis < 0 || split.cost >= leaf_cost)) return make_leaf(node, begin, n);
-      if (split.axis >= 0) {
+      if (fits_leaf && (split.axis < 0 || split.cost >= leaf_cost)) {
+        middle = split_by_store(begin, end);
+        if (middle == end) return make_leaf(node, begin, n);
+      } else if (split.axis >= 0) {
         const auto below = [&](const PrimRef& r) { return r.centroid(split.axis) < split.position; };
         middle = static_cast<std::uint32_t>(std::partition(refs_.begin() + begin, refs_.begin() + end, below) -
                                             refs_.begin());
       }
-    } else if (n <= static_cast<std::uint32_t>(options_.max_leaf_size)) {
-      return make_leaf(node, begin, n);
+    } else if (fits_leaf) {
+      middle = split_by_store(begin, end);
+      if (middle == end) return make_leaf(node, begin, n);
     }
     if (middle == begin || middle == end) middle = median_split(begin, end, bounds.centroids);
 
@@ -152,6 +173,7 @@ class BinaryBuilder {
   std::int32_t make_leaf(BinaryNode& node, std::uint32_t begin, std::uint32_t n) {
     node.first = begin;
     node.count = n;
+    node.store = store(refs_[begin]);
     return static_cast<std::int32_t>(&node - nodes_.get());
   }
 
@@ -234,6 +256,7 @@ class BinaryBuilder {
   }
 
   const BvhBuildOptions& options_;
+  std::span<const std::uint8_t> store_of_;
   std::vector<PrimRef> refs_;
   std::unique_ptr<BinaryNode[]> nodes_;
   std::atomic<std::int32_t> next_node_{0};
@@ -242,7 +265,8 @@ class BinaryBuilder {
 // Writes the wide nodes depth first from the binary tree.
 class Collapser {
  public:
-  Collapser(const BinaryNode* nodes, Bvh& bvh) : nodes_(nodes), bvh_(bvh), width_(bvh.width) {}
+  Collapser(const BinaryNode* nodes, std::vector<std::uint32_t> store_position, Bvh& bvh)
+      : nodes_(nodes), store_position_(std::move(store_position)), bvh_(bvh), width_(bvh.width) {}
 
   void collapse_root(std::int32_t root) {
     std::vector<std::int32_t> slots;
@@ -288,7 +312,10 @@ class Collapser {
       if (s < slots.size()) {
         const BinaryNode& n = nodes_[slots[s]];
         box = n.box;
-        if (n.leaf()) child = encode_leaf(static_cast<std::int32_t>(n.first), static_cast<std::int32_t>(n.count));
+        if (n.leaf()) {
+          child = encode_leaf(static_cast<std::int32_t>(store_position_[n.first]), static_cast<std::int32_t>(n.count),
+                              n.store);
+        }
       }
       for (int a = 0; a < 3; ++a) {
         block[static_cast<std::size_t>(a) * w + s] = box.lo[a];
@@ -305,13 +332,15 @@ class Collapser {
   }
 
   const BinaryNode* nodes_;
+  std::vector<std::uint32_t> store_position_;
   Bvh& bvh_;
   int width_;
 };
 
 }  // namespace
 
-Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order) {
+Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order,
+              std::span<const std::uint8_t> store_of) {
   if (options.width != 2 && options.width != 4 && options.width != 8) {
     throw std::invalid_argument("BVH width must be 2, 4 or 8");
   }
@@ -319,18 +348,24 @@ Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::v
     throw std::invalid_argument("BVH leaf size must be 1 to " + std::to_string(kMaxLeafSize));
   }
   if (boxes.size() > kMaxBvhPrimitives) {
-    throw std::length_error("a BVH indexes at most 2^26 primitives per store");
+    throw std::length_error("a BVH indexes at most 2^26 primitives");
+  }
+  if (!store_of.empty() && store_of.size() != boxes.size()) {
+    throw std::invalid_argument("BVH store list and box list differ in length");
+  }
+  if (std::any_of(store_of.begin(), store_of.end(), [](std::uint8_t s) { return s > 1; })) {
+    throw std::invalid_argument("a BVH indexes stores 0 and 1 only");
   }
   order.resize(boxes.size());
   Bvh bvh;
   if (boxes.empty()) return bvh;
   bvh.width = options.width;
 
-  BinaryBuilder builder(boxes, options);
+  BinaryBuilder builder(boxes, options, store_of);
   const std::int32_t root = builder.build();
   builder.write_order(order);
   bvh.bounds = builder.nodes()[root].box;
-  Collapser(builder.nodes(), bvh).collapse_root(root);
+  Collapser(builder.nodes(), builder.store_positions(), bvh).collapse_root(root);
   bvh.nodes.shrink_to_fit();
   return bvh;
 }

@@ -1,9 +1,11 @@
 // A primitive store in BVH leaf order, with its BVH: the store is built, its
 // BVH built over the primitive boxes, and the store built a second time from
 // the input in leaf order (builders are deterministic, so they keep the same
-// primitives). source[k] names the input index of stored primitive k.
+// primitives). source[k] names the input index of stored primitive k. Two
+// stores of one kind can share one BVH, each in the order of its own leaves.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -19,16 +21,47 @@ namespace quiver {
 // BVH, which it returns.
 template <class Store, class Desc, class Builder>
 Bvh reorder_for_bvh(std::span<const Desc> descs, Builder builder, const BvhBuildOptions& options, Store& store) {
+  Store none;
+  return reorder_for_bvh(descs, store, std::span<const Desc>(), none, builder, options);
+}
+
+// Rebuilds two stores of one kind (each built by builder from its descs) in
+// the leaf order of one new BVH over both, which it returns: its leaves
+// index store `first` as store 0 and `second` as store 1.
+template <class Store, class Desc, class Builder>
+Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<const Desc> second_descs,
+                    Store& second, Builder builder, const BvhBuildOptions& options) {
+  std::vector<Box> boxes = primitive_boxes(first);
+  const std::vector<Box> second_boxes = primitive_boxes(second);
+  boxes.insert(boxes.end(), second_boxes.begin(), second_boxes.end());
+  std::vector<std::uint8_t> store_of;
+  if (second.count > 0) {
+    store_of.assign(first.count, 0);
+    store_of.resize(boxes.size(), 1);
+  }
   std::vector<std::uint32_t> order;
-  Bvh bvh = build_bvh(primitive_boxes(store), options, order);
-  std::vector<Desc> in_leaf_order;
-  in_leaf_order.reserve(order.size());
-  for (std::uint32_t k : order) in_leaf_order.push_back(descs[store.source[k]]);
-  BuildReport again;
-  Store reordered = builder(std::span<const Desc>(in_leaf_order), again);
-  if (reordered.count != store.count) throw std::logic_error("a store kept different primitives when reordered");
-  for (std::size_t k = 0; k < order.size(); ++k) reordered.source[k] = store.source[order[k]];
-  store = std::move(reordered);
+  Bvh bvh = build_bvh(boxes, options, order, store_of);
+  const std::array<Store*, 2> stores{&first, &second};
+  const std::array<std::span<const Desc>, 2> descs{first_descs, second_descs};
+  for (std::size_t s = 0; s < 2; ++s) {
+    Store& store = *stores[s];
+    if (store.count == 0) continue;
+    const std::uint32_t base = s == 0 ? 0 : static_cast<std::uint32_t>(first.count);
+    std::vector<std::uint32_t> source;  // store indices in leaf order
+    source.reserve(store.count);
+    for (std::uint32_t k : order) {
+      if (k >= base && k - base < store.count) source.push_back(store.source[k - base]);
+    }
+    std::vector<Desc> in_leaf_order;
+    in_leaf_order.reserve(source.size());
+    for (std::uint32_t i : source) in_leaf_order.push_back(descs[s][i]);
+    BuildReport again;
+    Store reordered = builder(std::span<const Desc>(in_leaf_order), again);
+    if (reordered.count != store.count) throw std::logic_error("a store kept different primitives when reordered");
+    reordered.source = std::move(source);
+    reordered.id_base = store.id_base;
+    store = std::move(reordered);
+  }
   return bvh;
 }
 

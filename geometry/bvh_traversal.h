@@ -1,4 +1,6 @@
-// BVH traversal for one primitive store, written once for every width:
+// BVH traversal through one primitive store, or through the tested stores of
+// a tree over two (a scene's opaque and transmissive layers, BvhStores),
+// written once for every width:
 //   packet: W rays walk the tree together (Wald, Slusallek, Benthin, Wagner,
 //           "Interactive rendering with coherent ray tracing", 2001); a child
 //           is entered when any active lane's slab interval meets it; a
@@ -163,10 +165,42 @@ inline Mask<F> wins_over(const Mask<F>& hit, const F& t, const IntLanes<F>& id, 
 template <class S>
 concept ScanStore = requires(const S& s) { s.template load<float>(0); };
 
+// The stores a query walks through a BVH and tests. K = 1: the tree's one
+// store, every leaf tested (its store bit is not read). K = 2: the tree
+// indexes two stores (leaf_store picks one, both non-null) and the query
+// tests those in `tested` (bit s for store s); leaves of the others are never
+// entered. One store is a compile-time case: choosing the store per leaf
+// measured 3-9% slower on balls-s4's packets.
+template <class S, int K>
+struct BvhStores;
+
+template <class S>
+struct BvhStores<S, 1> {
+  const S* store;
+
+  static constexpr bool tests(std::int32_t) { return true; }
+  const S& of(std::int32_t) const { return *store; }
+};
+
+template <class S>
+struct BvhStores<S, 2> {
+  std::array<const S*, 2> store;
+  unsigned tested;
+
+  bool tests(std::int32_t leaf) const { return ((tested >> leaf_store(leaf)) & 1u) != 0; }
+  const S& of(std::int32_t leaf) const { return *store[static_cast<std::size_t>(leaf_store(leaf))]; }
+};
+
+// A child slot a walk enters: an inner node, or a non-empty leaf of a tested store.
+template <class S, int K>
+inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
+  return !is_leaf(child) || (leaf_count(child) != 0 && stores.tests(child));
+}
+
 // ---- packet traversal -------------------------------------------------------
 
-template <class Method, class F, int N, class S>
-[[gnu::always_inline]] inline void closest_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
+template <class Method, class F, int N, class S, int K>
+[[gnu::always_inline]] inline void closest_bvh_packet(BvhStores<S, K> stores, const Bvh& bvh, const Ray<F>& ray,
                                                       const Mask<F>& active, Hit<F>& hit) {
   // Nodes and their lanes' entry distances (+inf in lanes that do not
   // enter), in two arrays: an entry copied as one struct is stored in 16-byte
@@ -185,6 +219,7 @@ template <class Method, class F, int N, class S>
     const Mask<F> lanes = stack_near[top] <= hit.t * F(1.f + kSlabSlack);
     if (none(lanes)) continue;
     if (is_leaf(entry_node)) {
+      const S& prims = stores.of(entry_node);
       const std::int32_t first = leaf_first(entry_node), end = first + leaf_count(entry_node);
       for (std::int32_t p = first; p < end; ++p) {
         Candidate<F> c;
@@ -202,7 +237,7 @@ template <class Method, class F, int N, class S>
     const std::size_t node = static_cast<std::size_t>(entry_node);
     for (int c = 0; c < N; ++c) {
       const std::int32_t child = bvh.child(node, c);
-      if (is_leaf(child) && leaf_count(child) == 0) continue;
+      if (!worth_entering(stores, child)) continue;
       F near;
       const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, hit.t, near) && lanes;
       if (none(enters)) continue;
@@ -221,9 +256,9 @@ template <class Method, class F, int N, class S>
   }
 }
 
-template <class Method, class F, int N, class S>
-[[gnu::always_inline]] inline Mask<F> occluded_bvh_packet(const S& prims, const Bvh& bvh, const Ray<F>& ray,
-                                                          Mask<F> occluded, const Mask<F>& valid) {
+template <class Method, class F, int N, class S, int K>
+[[gnu::always_inline]] inline Mask<F> occluded_bvh_packet(BvhStores<S, K> stores, const Bvh& bvh,
+                                                          const Ray<F>& ray, Mask<F> occluded, const Mask<F>& valid) {
   // Nodes and the lanes that entered them, in two arrays (see closest_bvh_packet).
   std::array<std::int32_t, bvh_stack_size(N)> stack_node;
   std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
@@ -240,6 +275,7 @@ template <class Method, class F, int N, class S>
     const Mask<F> active = and_not(entry_lanes, occluded);
     if (none(active)) continue;
     if (is_leaf(entry_node)) {
+      const S& prims = stores.of(entry_node);
       const std::int32_t first = leaf_first(entry_node), end = first + leaf_count(entry_node);
       for (std::int32_t p = first; p < end; ++p) {
         const Mask<F> open = and_not(entry_lanes, occluded);
@@ -253,7 +289,7 @@ template <class Method, class F, int N, class S>
     const std::size_t node = static_cast<std::size_t>(entry_node);
     for (int c = N - 1; c >= 0; --c) {
       const std::int32_t child = bvh.child(node, c);
-      if (is_leaf(child) && leaf_count(child) == 0) continue;
+      if (!worth_entering(stores, child)) continue;
       F near;
       const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, ray.tmax, near) && active;
       if (any(enters)) {
@@ -329,9 +365,9 @@ template <KernelUnit U, int N>
 // shared that function's registers and spilled its loop state.
 // The walk descends into the nearest entered child directly and pushes the
 // others, farthest first; a popped entry is culled against the current hit.
-template <KernelUnit U, class Method, int N, class S>
-[[gnu::noinline, gnu::flatten]] void closest_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray,
-                                                        Hit<float>& hit) {
+template <KernelUnit U, class Method, int N, class S, int K>
+[[gnu::noinline, gnu::flatten]] void closest_bvh_single(BvhStores<S, K> stores, const Bvh& bvh,
+                                                        const Ray<float>& ray, Hit<float>& hit) {
   using F = UnitLanes<U>;
   struct Entry {
     std::int32_t node;
@@ -344,8 +380,10 @@ template <KernelUnit U, class Method, int N, class S>
   std::int32_t current = 0;
   for (;;) {
     if (is_leaf(current)) {
+      const S& prims = stores.of(current);
       const std::size_t first = static_cast<std::size_t>(leaf_first(current));
-      const std::size_t end = first + static_cast<std::size_t>(leaf_count(current));
+      // A leaf of an untested store: an empty range.
+      const std::size_t end = stores.tests(current) ? first + static_cast<std::size_t>(leaf_count(current)) : first;
       if constexpr (ScanStore<S>) {
         for (std::size_t block = first; block < end; block += lane_count<F>) {
           Candidate<F> c;
@@ -405,8 +443,9 @@ template <KernelUnit U, class Method, int N, class S>
 }
 
 // Out of line and flattened on its own, as closest_bvh_single.
-template <KernelUnit U, class Method, int N, class S>
-[[gnu::noinline, gnu::flatten]] bool occluded_bvh_single(const S& prims, const Bvh& bvh, const Ray<float>& ray) {
+template <KernelUnit U, class Method, int N, class S, int K>
+[[gnu::noinline, gnu::flatten]] bool occluded_bvh_single(BvhStores<S, K> stores, const Bvh& bvh,
+                                                        const Ray<float>& ray) {
   using F = UnitLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
   const NodeRay<U, N> node_ray(ray);
@@ -416,6 +455,7 @@ template <KernelUnit U, class Method, int N, class S>
   while (top > 0) {
     const std::int32_t entry = stack[--top];
     if (is_leaf(entry)) {
+      const S& prims = stores.of(entry);
       const std::size_t first = static_cast<std::size_t>(leaf_first(entry));
       const std::size_t end = first + static_cast<std::size_t>(leaf_count(entry));
       if constexpr (ScanStore<S>) {
@@ -439,9 +479,9 @@ template <KernelUnit U, class Method, int N, class S>
     for (unsigned bits = enter_children<U, N>(bvh, node, node_ray, ray.tmin, ray.tmax, near); bits != 0;
          bits &= bits - 1) {
       // Never an empty slot (empty boxes are never entered), yet dropping
-      // this test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
+      // that test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
       const std::int32_t child = bvh.child(node, __builtin_ctz(bits));
-      if (!(is_leaf(child) && leaf_count(child) == 0)) stack[top++] = child;
+      if (worth_entering(stores, child)) stack[top++] = child;
     }
   }
   return false;
@@ -484,8 +524,8 @@ inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Ma
   }
 }
 
-template <KernelUnit U, class Method, class S, int N>
-[[gnu::flatten]] void closest_bvh(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
+template <KernelUnit U, class Method, class S, int N, int K>
+[[gnu::flatten]] void closest_bvh(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, HitSoA& hits,
                                   BvhTraversal traversal) {
   using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
@@ -494,22 +534,22 @@ template <KernelUnit U, class Method, class S, int N>
     const Ray<F> ray = rays.load<F>(first);
     if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
-      closest_bvh_packet<Method, F, N>(prims, bvh, ray, active, hit);
+      closest_bvh_packet<Method, F, N>(stores, bvh, ray, active, hit);
       hits.store(first, hit);
       continue;
     }
     const std::size_t end = first + W < rays.count ? first + W : rays.count;
     for (std::size_t r = first; r < end; ++r) {
       Hit<float> hit = hits.get(r);
-      closest_bvh_single<U, Method, N>(prims, bvh, rays.get(r), hit);
+      closest_bvh_single<U, Method, N>(stores, bvh, rays.get(r), hit);
       hits.set(r, hit);
     }
   }
 }
 
-template <KernelUnit U, class Method, class S, int N>
-[[gnu::flatten]] void occluded_bvh(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
-                                   BvhTraversal traversal) {
+template <KernelUnit U, class Method, class S, int N, int K>
+[[gnu::flatten]] void occluded_bvh(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh,
+                                   OcclusionSoA& result, BvhTraversal traversal) {
   using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
@@ -518,43 +558,61 @@ template <KernelUnit U, class Method, class S, int N>
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     if (none(and_not(valid, occluded))) continue;
     if (travels_together<S>(traversal, ray, and_not(valid, occluded))) {
-      const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(prims, bvh, ray, occluded, valid);
+      const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(stores, bvh, ray, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;
     }
     const std::size_t end = first + W < rays.count ? first + W : rays.count;
     for (std::size_t r = first; r < end; ++r) {
-      if (result.occluded[r] == 0 && occluded_bvh_single<U, Method, N>(prims, bvh, rays.get(r))) {
+      if (result.occluded[r] == 0 && occluded_bvh_single<U, Method, N>(stores, bvh, rays.get(r))) {
         result.occluded[r] = 1;
       }
     }
   }
 }
 
-// The BVH streams of one method for node widths 2, 4 and 8.
+// The BVH streams of one method for node widths 2, 4 and 8, through a tree
+// over one store or through the tested stores of a tree over two.
 template <class S>
 struct BvhStreams {
-  using Closest = void (*)(const RaySoA&, const S&, const Bvh&, HitSoA&, BvhTraversal);
-  using Occluded = void (*)(const RaySoA&, const S&, const Bvh&, OcclusionSoA&, BvhTraversal);
-  std::array<Closest, 3> closest{};
-  std::array<Occluded, 3> occluded{};
+  template <int K>
+  using Closest = void (*)(const RaySoA&, BvhStores<S, K>, const Bvh&, HitSoA&, BvhTraversal);
+  template <int K>
+  using Occluded = void (*)(const RaySoA&, BvhStores<S, K>, const Bvh&, OcclusionSoA&, BvhTraversal);
+  std::array<Closest<1>, 3> closest{};
+  std::array<Occluded<1>, 3> occluded{};
+  std::array<Closest<2>, 3> closest_of_two{};
+  std::array<Occluded<2>, 3> occluded_of_two{};
 
   static constexpr int slot(int width) { return width == 2 ? 0 : (width == 4 ? 1 : 2); }
   void closest_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
                     BvhTraversal traversal = BvhTraversal::automatic) const {
-    closest[slot(bvh.width)](rays, prims, bvh, hits, traversal);
+    closest[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, hits, traversal);
   }
   void any_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
                 BvhTraversal traversal = BvhTraversal::automatic) const {
-    occluded[slot(bvh.width)](rays, prims, bvh, result, traversal);
+    occluded[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, result, traversal);
+  }
+  void closest_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, HitSoA& hits,
+                    BvhTraversal traversal = BvhTraversal::automatic) const {
+    closest_of_two[slot(bvh.width)](rays, stores, bvh, hits, traversal);
+  }
+  void any_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, OcclusionSoA& result,
+                BvhTraversal traversal = BvhTraversal::automatic) const {
+    occluded_of_two[slot(bvh.width)](rays, stores, bvh, result, traversal);
   }
 };
 
 template <KernelUnit U, class Method, class S>
 BvhStreams<S> make_bvh_streams() {
   BvhStreams<S> s;
-  s.closest = {&closest_bvh<U, Method, S, 2>, &closest_bvh<U, Method, S, 4>, &closest_bvh<U, Method, S, 8>};
-  s.occluded = {&occluded_bvh<U, Method, S, 2>, &occluded_bvh<U, Method, S, 4>, &occluded_bvh<U, Method, S, 8>};
+  s.closest = {&closest_bvh<U, Method, S, 2, 1>, &closest_bvh<U, Method, S, 4, 1>, &closest_bvh<U, Method, S, 8, 1>};
+  s.occluded = {&occluded_bvh<U, Method, S, 2, 1>, &occluded_bvh<U, Method, S, 4, 1>,
+                &occluded_bvh<U, Method, S, 8, 1>};
+  s.closest_of_two = {&closest_bvh<U, Method, S, 2, 2>, &closest_bvh<U, Method, S, 4, 2>,
+                      &closest_bvh<U, Method, S, 8, 2>};
+  s.occluded_of_two = {&occluded_bvh<U, Method, S, 2, 2>, &occluded_bvh<U, Method, S, 4, 2>,
+                       &occluded_bvh<U, Method, S, 8, 2>};
   return s;
 }
 

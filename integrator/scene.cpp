@@ -70,14 +70,20 @@ void build_store(const LayerInput<Desc>& input, Builder builder, BuildReport& re
   origins = kept_origins(store.source, input.origins);
 }
 
-// With options.acceleration == bvh and enough primitives, builds the store's
-// BVH and puts the store and its origins in leaf order.
+// With options.acceleration == bvh and enough primitives in both layers
+// together, builds the kind's BVH over both stores and puts each store and
+// its origins in leaf order.
 template <class Store, class Desc, class Builder>
-void index_store(const LayerInput<Desc>& input, Builder builder, const SceneBuildOptions& options, Store& store,
-                 std::vector<PrimitiveOrigin>& origins, Bvh& bvh) {
-  if (options.acceleration != Acceleration::bvh || store.count < options.bvh_min_primitives) return;
-  bvh = reorder_for_bvh(std::span<const Desc>(input.descs), builder, options.bvh, store);
-  origins = kept_origins(store.source, input.origins);
+void index_stores(const KindInput<Desc>& input, Builder builder, const SceneBuildOptions& options, Store& opaque,
+                  std::vector<PrimitiveOrigin>& opaque_origins, Store& transmissive,
+                  std::vector<PrimitiveOrigin>& transmissive_origins, Bvh& bvh) {
+  if (options.acceleration != Acceleration::bvh || opaque.count + transmissive.count < options.bvh_min_primitives) {
+    return;
+  }
+  bvh = reorder_for_bvh(std::span<const Desc>(input.opaque.descs), opaque,
+                        std::span<const Desc>(input.transmissive.descs), transmissive, builder, options.bvh);
+  opaque_origins = kept_origins(opaque.source, input.opaque.origins);
+  transmissive_origins = kept_origins(transmissive.source, input.transmissive.origins);
 }
 
 template <class Vec>
@@ -105,13 +111,9 @@ std::size_t GeometryLayer::memory_bytes() const {
   return bytes;
 }
 
-std::size_t GeometryLayer::acceleration_bytes() const {
+std::size_t Scene::acceleration_bytes() const {
   return sphere_bvh.memory_bytes() + triangle_bvh.memory_bytes() + polygon_bvh.memory_bytes() +
          cone_bvh.memory_bytes();
-}
-
-std::size_t Scene::acceleration_bytes() const {
-  return opaque.acceleration_bytes() + transmissive.acceleration_bytes();
 }
 
 PrimitiveRef Scene::locate(std::int32_t id) const {
@@ -234,19 +236,26 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   for (bool t : {false, true}) {
     GeometryLayer& g = t ? scene.transmissive : scene.opaque;
     build_store(spheres.layer(t), build_spheres, scene.counts.spheres, g.spheres, g.sphere_origin);
-    index_store(spheres.layer(t), build_spheres, options, g.spheres, g.sphere_origin, g.sphere_bvh);
     build_store(planes.layer(t), build_planes, scene.counts.planes, g.planes, g.plane_origin);
     build_store(triangles.layer(t), build_triangles, scene.counts.triangles, g.triangles, g.triangle_origin);
-    index_store(triangles.layer(t), build_triangles, options, g.triangles, g.triangle_origin, g.triangle_bvh);
     build_store(polygons.layer(t), build_polygons, scene.counts.polygons, g.polygons, g.polygon_origin);
-    index_store(polygons.layer(t), build_polygons, options, g.polygons, g.polygon_origin, g.polygon_bvh);
     build_store(cones.layer(t), build_cones, scene.counts.cones, g.cones, g.cone_origin);
-    index_store(cones.layer(t), build_cones, options, g.cones, g.cone_origin, g.cone_bvh);
-    number(g.spheres);
-    number(g.planes);
-    number(g.triangles);
-    number(g.polygons);
-    number(g.cones);
+  }
+  GeometryLayer& o = scene.opaque;
+  GeometryLayer& t = scene.transmissive;
+  index_stores(spheres, build_spheres, options, o.spheres, o.sphere_origin, t.spheres, t.sphere_origin,
+               scene.sphere_bvh);
+  index_stores(triangles, build_triangles, options, o.triangles, o.triangle_origin, t.triangles, t.triangle_origin,
+               scene.triangle_bvh);
+  index_stores(polygons, build_polygons, options, o.polygons, o.polygon_origin, t.polygons, t.polygon_origin,
+               scene.polygon_bvh);
+  index_stores(cones, build_cones, options, o.cones, o.cone_origin, t.cones, t.cone_origin, scene.cone_bvh);
+  for (GeometryLayer* g : {&o, &t}) {
+    number(g->spheres);
+    number(g->planes);
+    number(g->triangles);
+    number(g->polygons);
+    number(g->cones);
   }
 
   Box bounds = empty_box();

@@ -1,7 +1,9 @@
 // The renderable scene: SceneDesc's primitives built into SoA stores (only
 // the kinds the scene has), split into two layers, opaque and transmissive
 // (kt > 0), so shadow rays ask the opaque layer an any-hit question and only
-// walk the transmissive one hit by hit. Every store gets a consecutive range
+// walk the transmissive one hit by hit. Each bounded kind has one BVH over
+// both layers' stores (its leaves hold one layer each), so a closest-hit
+// walk meets both layers front to back. Every store gets a consecutive range
 // of hit ids (id_base), and each primitive remembers its material and where
 // it came from in the SceneDesc.
 #pragma once
@@ -39,15 +41,16 @@ struct GeometryLayer {
   ConeSoA cones;
   // Per built primitive, in store order.
   std::vector<PrimitiveOrigin> sphere_origin, plane_origin, triangle_origin, polygon_origin, cone_origin;
-  // Per bounded kind; empty when the store is scanned (see SceneBuildOptions).
-  Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
 
   std::size_t primitive_count() const {
     return spheres.count + planes.count + triangles.count + polygons.count + cones.count;
   }
-  std::size_t memory_bytes() const;               // stores and origins
-  std::size_t acceleration_bytes() const;         // BVH nodes
+  std::size_t memory_bytes() const;  // stores and origins
 };
+
+// Which layers a query tests: bit 0 opaque, bit 1 transmissive (the BVHs'
+// store numbers).
+enum class Layers : unsigned { opaque = 1, transmissive = 2, both = 3 };
 
 // A hit id resolved: which layer, which store, which primitive in it.
 struct PrimitiveRef {
@@ -60,8 +63,9 @@ enum class Acceleration { none, bvh };
 
 struct SceneBuildOptions {
   bool all_two_sided = false;  // SPD rule: every surface two-sided
-  // bvh: a BVH per bounded store of at least bvh_min_primitives (the order of
-  // its primitives follows the BVH leaves); none: every ray scans every store.
+  // bvh: a BVH per bounded kind of at least bvh_min_primitives in both layers
+  // together (the order of the stores follows its leaves); none: every ray
+  // scans every store.
   Acceleration acceleration = Acceleration::bvh;
   std::size_t bvh_min_primitives = 16;
   BvhBuildOptions bvh;
@@ -79,6 +83,9 @@ struct Scene {
   std::vector<MaterialDesc> materials;
   std::vector<Texture> textures;
   GeometryLayer opaque, transmissive;
+  // Per bounded kind, over both layers' stores (store 0 opaque, store 1
+  // transmissive); empty when the kind is scanned (see SceneBuildOptions).
+  Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
   SceneCounts counts;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
 
@@ -87,7 +94,7 @@ struct Scene {
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
   std::size_t primitive_count() const { return opaque.primitive_count() + transmissive.primitive_count(); }
   std::size_t memory_bytes() const;  // geometry stores and textures
-  std::size_t acceleration_bytes() const;
+  std::size_t acceleration_bytes() const;  // BVH nodes
 };
 
 // Builds the scene; the SceneDesc must have a camera (io/auto_view.h adds

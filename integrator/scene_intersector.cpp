@@ -59,43 +59,85 @@ SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere) : unit_
   });
 }
 
-void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& hits) const {
-  closest(scene.opaque, rays, hits);
-  closest(scene.transmissive, rays, hits);
+namespace {
+
+bool tests(Layers layers, bool transmissive) {
+  return (static_cast<unsigned>(layers) >> (transmissive ? 1 : 0) & 1u) != 0;
 }
 
-void SceneIntersector::closest(const GeometryLayer& g, const RaySoA& rays, HitSoA& hits) const {
-  if (rays.count == 0) return;
-  auto each = [&](const auto& store, const Bvh& bvh, const auto& scan, const auto& tree) {
-    if (store.count == 0) return;
+// One bounded kind's stores in both layers, its BVH and its streams.
+template <class S>
+struct KindQuery {
+  const S& opaque;
+  const S& transmissive;
+  const Bvh& bvh;
+  const KernelStreams<S>& scan;
+  const BvhStreams<S>& tree;
+
+  bool has(Layers layers, bool transmissive_layer) const {
+    return tests(layers, transmissive_layer) && (transmissive_layer ? transmissive : opaque).count > 0;
+  }
+  // Without a BVH, scan(store) for each tested layer's store. With one,
+  // through_tree(stores): both stores when both layers have this kind (the
+  // tree's leaves of untested layers are skipped), else the one store there
+  // is, when its layer is tested.
+  template <class ThroughTree, class Scan>
+  void visit(Layers layers, ThroughTree through_tree, Scan scan_store) const {
     if (bvh.empty()) {
-      scan.closest_packets(rays, store, hits);
-    } else {
-      tree.closest_hits(rays, store, bvh, hits, traversal_);
+      if (has(layers, false)) scan_store(opaque);
+      if (has(layers, true)) scan_store(transmissive);
+    } else if (opaque.count > 0 && transmissive.count > 0) {
+      through_tree(BvhStores<S, 2>{{&opaque, &transmissive}, static_cast<unsigned>(layers)});
+    } else if (has(layers, false)) {
+      through_tree(opaque);
+    } else if (has(layers, true)) {
+      through_tree(transmissive);
     }
-  };
-  each(g.spheres, g.sphere_bvh, spheres_, sphere_bvh_);
-  if (g.planes.count > 0) planes_.closest_packets(rays, g.planes, hits);
-  each(g.triangles, g.triangle_bvh, triangles_, triangle_bvh_);
-  each(g.polygons, g.polygon_bvh, polygons_, polygon_bvh_);
-  each(g.cones, g.cone_bvh, cones_, cone_bvh_);
+  }
+};
+
+template <class S>
+KindQuery<S> kind_query(const S& opaque, const S& transmissive, const Bvh& bvh, const KernelStreams<S>& scan,
+                        const BvhStreams<S>& tree) {
+  return {opaque, transmissive, bvh, scan, tree};
 }
 
-void SceneIntersector::occluded(const GeometryLayer& g, const RaySoA& rays, OcclusionSoA& result) const {
+}  // namespace
+
+template <class Fn>
+void SceneIntersector::for_each_bounded_kind(const Scene& scene, Fn fn) const {
+  const GeometryLayer& o = scene.opaque;
+  const GeometryLayer& t = scene.transmissive;
+  fn(kind_query(o.spheres, t.spheres, scene.sphere_bvh, spheres_, sphere_bvh_));
+  fn(kind_query(o.triangles, t.triangles, scene.triangle_bvh, triangles_, triangle_bvh_));
+  fn(kind_query(o.polygons, t.polygons, scene.polygon_bvh, polygons_, polygon_bvh_));
+  fn(kind_query(o.cones, t.cones, scene.cone_bvh, cones_, cone_bvh_));
+}
+
+void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& hits, Layers layers) const {
   if (rays.count == 0) return;
-  auto each = [&](const auto& store, const Bvh& bvh, const auto& scan, const auto& tree) {
-    if (store.count == 0) return;
-    if (bvh.empty()) {
-      scan.occluded_packets(rays, store, result);
-    } else {
-      tree.any_hits(rays, store, bvh, result, traversal_);
-    }
-  };
-  if (g.planes.count > 0) planes_.occluded_packets(rays, g.planes, result);
-  each(g.spheres, g.sphere_bvh, spheres_, sphere_bvh_);
-  each(g.triangles, g.triangle_bvh, triangles_, triangle_bvh_);
-  each(g.polygons, g.polygon_bvh, polygons_, polygon_bvh_);
-  each(g.cones, g.cone_bvh, cones_, cone_bvh_);
+  for (bool transmissive : {false, true}) {
+    const PlaneSoA& planes = scene.layer(transmissive).planes;
+    if (tests(layers, transmissive) && planes.count > 0) planes_.closest_packets(rays, planes, hits);
+  }
+  for_each_bounded_kind(scene, [&](const auto& kind) {
+    kind.visit(
+        layers, [&](const auto& stores) { kind.tree.closest_hits(rays, stores, kind.bvh, hits, traversal_); },
+        [&](const auto& store) { kind.scan.closest_packets(rays, store, hits); });
+  });
+}
+
+void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const {
+  if (rays.count == 0) return;
+  for (bool transmissive : {false, true}) {
+    const PlaneSoA& planes = scene.layer(transmissive).planes;
+    if (tests(layers, transmissive) && planes.count > 0) planes_.occluded_packets(rays, planes, result);
+  }
+  for_each_bounded_kind(scene, [&](const auto& kind) {
+    kind.visit(
+        layers, [&](const auto& stores) { kind.tree.any_hits(rays, stores, kind.bvh, result, traversal_); },
+        [&](const auto& store) { kind.scan.occluded_packets(rays, store, result); });
+  });
 }
 
 }  // namespace quiver

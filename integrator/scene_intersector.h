@@ -1,6 +1,7 @@
-// The scene's intersection queries for one kernel unit: each layer's stores
-// in turn, through the store's BVH where it has one (geometry/bvh_traversal.h)
-// and otherwise through the packet streams (W rays against one primitive),
+// The scene's intersection queries for one kernel unit: each kind in turn,
+// through the kind's BVH over both layers where it has one (geometry/
+// bvh_traversal.h; its leaves of untested layers are skipped) and otherwise
+// through each tested layer's packet streams (W rays against one primitive),
 // with the watertight triangle, crossing polygon, seed plane and quadric cone
 // methods, and the sphere method chosen per scene: the seed's algebraic test
 // where no ray origin is more than kAlgebraicSphereMaxDistanceRatio radii from
@@ -50,14 +51,16 @@ class SceneIntersector {
   void set_traversal(BvhTraversal traversal) { traversal_ = traversal; }
   int lanes() const { return lane_width(unit_); }
 
-  // Closest hits of both layers (hits.t starts as each ray's tmax).
-  void closest(const Scene& scene, const RaySoA& rays, HitSoA& hits) const;
-  // Closest hits of one layer.
-  void closest(const GeometryLayer& layer, const RaySoA& rays, HitSoA& hits) const;
-  // Any hit of one layer within (tmin, tmax).
-  void occluded(const GeometryLayer& layer, const RaySoA& rays, OcclusionSoA& result) const;
+  // Closest hits in the given layers (hits.t starts as each ray's tmax).
+  void closest(const Scene& scene, const RaySoA& rays, HitSoA& hits, Layers layers = Layers::both) const;
+  // Any hit in the given layers within (tmin, tmax).
+  void occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const;
 
  private:
+  // Calls fn with each bounded kind's stores, BVH and streams.
+  template <class Fn>
+  void for_each_bounded_kind(const Scene& scene, Fn fn) const;
+
   KernelUnit unit_;
   SphereMethod sphere_method_;
   BvhTraversal traversal_ = BvhTraversal::automatic;

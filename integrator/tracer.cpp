@@ -247,7 +247,7 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, TraceStats& stats) {
     stats.shadow.issued_uncompacted += issued;
   }
   occlusion_.reset(shadow_rays_);
-  intersector_.occluded(scene_.opaque, shadow_rays_, occlusion_);
+  intersector_.occluded(scene_, shadow_rays_, occlusion_, Layers::opaque);
 
   transmittance_.assign(n, Vec3<float>(1.f, 1.f, 1.f));
   if (scene_.transmissive.primitive_count() > 0) {
@@ -267,7 +267,7 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, TraceStats& stats) {
       }
       transit_rays_.pad();
       transit_hits_.reset(transit_rays_);
-      intersector_.closest(scene_.transmissive, transit_rays_, transit_hits_);
+      intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive);
       std::size_t kept = 0;
       for (std::size_t j = 0; j < transit_index_.size(); ++j) {
         const std::uint32_t k = transit_index_[j];

@@ -222,22 +222,20 @@ void write_memory(std::ostream& out, const Scene& scene) {
       << "  " << padded("total", 12, false) << scene.memory_bytes() << "\n";
 }
 
-// Per layer and bounded kind: the BVH's width, nodes, depth and bytes.
+// Per bounded kind: the BVH's width, nodes, depth and bytes.
 void write_acceleration(std::ostream& out, const Scene& scene) {
-  out << "acceleration (a BVH per bounded store of " << SceneBuildOptions{}.bvh_min_primitives
-      << " or more primitives; planes and smaller stores are scanned)\n";
+  out << "acceleration (a BVH per bounded kind of " << SceneBuildOptions{}.bvh_min_primitives
+      << " or more primitives, over both layers; planes and smaller kinds are scanned)\n";
   bool any = false;
-  for (bool t : {false, true}) {
-    const GeometryLayer& g = scene.layer(t);
-    const std::pair<const char*, const Bvh*> trees[] = {
-        {"sphere", &g.sphere_bvh}, {"triangle", &g.triangle_bvh}, {"polygon", &g.polygon_bvh}, {"cone", &g.cone_bvh}};
-    for (const auto& [name, bvh] : trees) {
-      if (bvh->empty()) continue;
-      any = true;
-      out << "  " << padded(std::string(t ? "transmissive " : "opaque ") + name, 22, false) << bvh->width
-          << "-wide, " << bvh->node_count << " nodes, depth " << bvh->depth << ", " << bvh->memory_bytes()
-          << " bytes\n";
-    }
+  const std::pair<const char*, const Bvh*> trees[] = {{"sphere", &scene.sphere_bvh},
+                                                      {"triangle", &scene.triangle_bvh},
+                                                      {"polygon", &scene.polygon_bvh},
+                                                      {"cone", &scene.cone_bvh}};
+  for (const auto& [name, bvh] : trees) {
+    if (bvh->empty()) continue;
+    any = true;
+    out << "  " << padded(name, 22, false) << bvh->width << "-wide, " << bvh->node_count << " nodes, depth "
+        << bvh->depth << ", " << bvh->memory_bytes() << " bytes\n";
   }
   if (!any) out << "  none\n";
   out << "  " << padded("total", 12, false) << scene.acceleration_bytes() << "\n";

@@ -3,6 +3,8 @@
 // closest hits equal the scalar unit's scan of the same store bit for bit,
 // and any-hit answers equal too.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -49,37 +51,51 @@ Box child_box(const Bvh& bvh, std::size_t node, int c) {
   return {{b[0 * w], b[1 * w], b[2 * w]}, {b[3 * w], b[4 * w], b[5 * w]}};
 }
 
+// The positions in `order` of each store's primitives, in order: a leaf of
+// store s at local position k holds the primitive at order[positions[s][k]].
+std::array<std::vector<std::uint32_t>, 2> store_positions(const std::vector<std::uint32_t>& order,
+                                                          const std::vector<std::uint8_t>& store_of) {
+  std::array<std::vector<std::uint32_t>, 2> positions;
+  for (std::uint32_t k = 0; k < order.size(); ++k) positions[store_of.empty() ? 0 : store_of[order[k]]].push_back(k);
+  return positions;
+}
+
 // Walks the tree: every child box contains the boxes of the primitives under
-// it; returns how often each stored position is reached and the leaf sizes.
+// it; counts how often each position of `order` is reached.
 void check_subtree(const Bvh& bvh, std::size_t node, const std::vector<Box>& boxes,
-                   const std::vector<std::uint32_t>& order, std::vector<int>& reached, int max_leaf, int depth) {
+                   const std::vector<std::uint32_t>& order, const std::array<std::vector<std::uint32_t>, 2>& positions,
+                   std::vector<int>& reached, int max_leaf, int depth) {
   ASSERT_LE(depth, bvh.depth);
   for (int c = 0; c < bvh.width; ++c) {
     const std::int32_t child = bvh.child(node, c);
     const Box box = child_box(bvh, node, c);
     if (is_leaf(child)) {
       ASSERT_LE(leaf_count(child), max_leaf);
+      const std::vector<std::uint32_t>& in_store = positions[static_cast<std::size_t>(leaf_store(child))];
       for (std::int32_t k = leaf_first(child); k < leaf_first(child) + leaf_count(child); ++k) {
-        ++reached.at(static_cast<std::size_t>(k));
-        EXPECT_TRUE(contains(box, boxes[order[static_cast<std::size_t>(k)]])) << "position " << k;
+        const std::uint32_t position = in_store.at(static_cast<std::size_t>(k));
+        ++reached.at(position);
+        EXPECT_TRUE(contains(box, boxes[order[position]])) << "position " << position;
       }
       continue;
     }
     ASSERT_LT(static_cast<std::size_t>(child), bvh.node_count);
     ASSERT_GT(static_cast<std::size_t>(child), node);  // depth-first layout: no cycles
-    check_subtree(bvh, static_cast<std::size_t>(child), boxes, order, reached, max_leaf, depth + 1);
+    check_subtree(bvh, static_cast<std::size_t>(child), boxes, order, positions, reached, max_leaf, depth + 1);
   }
 }
 
-void expect_valid_bvh(const std::vector<Box>& boxes, const BvhBuildOptions& options) {
+// store_of empty: one store.
+void expect_valid_bvh(const std::vector<Box>& boxes, const BvhBuildOptions& options,
+                      const std::vector<std::uint8_t>& store_of = {}) {
   std::vector<std::uint32_t> order;
-  const Bvh bvh = build_bvh(boxes, options, order);
+  const Bvh bvh = build_bvh(boxes, options, order, store_of);
   ASSERT_EQ(order.size(), boxes.size());
   ASSERT_EQ(bvh.width, options.width);
   ASSERT_LE(bvh.depth, kMaxBvhDepth);
   ASSERT_EQ(bvh.nodes.size(), bvh.node_count * 7 * static_cast<std::size_t>(options.width));
   std::vector<int> reached(boxes.size(), 0);
-  check_subtree(bvh, 0, boxes, order, reached, options.max_leaf_size, 1);
+  check_subtree(bvh, 0, boxes, order, store_positions(order, store_of), reached, options.max_leaf_size, 1);
   for (std::size_t k = 0; k < reached.size(); ++k) ASSERT_EQ(reached[k], 1) << "position " << k;
   std::vector<std::uint32_t> sorted = order;
   std::sort(sorted.begin(), sorted.end());
@@ -97,6 +113,38 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafInsideEveryBoxAboveIt) {
       expect_valid_bvh(random_boxes(s, n), options);
     }
   }
+}
+
+// Leaves hold one store each (a leaf's range is counted in its own store),
+// however the stores interleave, down to identical boxes in both.
+TEST(BvhBuild, TwoStoresLeavesHoldOneStoreEach) {
+  RaySampler s(12);
+  for (int width : {2, 4, 8}) {
+    for (std::size_t n : {2u, 9u, 100u, 5000u}) {
+      SCOPED_TRACE(::testing::Message() << "width " << width << ", " << n << " boxes");
+      BvhBuildOptions options;
+      options.width = width;
+      options.parallel_threshold = 256;
+      std::vector<Box> boxes = random_boxes(s, n);
+      std::vector<std::uint8_t> store_of(n);
+      for (std::size_t i = 0; i < n; ++i) store_of[i] = s.uniform(0.f, 1.f) < 0.3f ? 1 : 0;
+      expect_valid_bvh(boxes, options, store_of);
+      const std::vector<Box> same(n, boxes[0]);
+      expect_valid_bvh(same, options, store_of);
+    }
+  }
+}
+
+TEST(BvhBuild, OneStoreAsTwoGivesTheSameTree) {
+  RaySampler s(14);
+  const std::vector<Box> boxes = random_boxes(s, 3000);
+  std::vector<std::uint32_t> one_order, two_order;
+  const Bvh one = build_bvh(boxes, BvhBuildOptions{}, one_order);
+  const Bvh two = build_bvh(boxes, BvhBuildOptions{}, two_order, std::vector<std::uint8_t>(boxes.size(), 0));
+  EXPECT_EQ(one_order, two_order);
+  ASSERT_EQ(one.nodes.size(), two.nodes.size());
+  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(),
+                         [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }));
 }
 
 TEST(BvhBuild, IdenticalBoxesStillSplitIntoSmallLeaves) {
@@ -181,6 +229,8 @@ TEST(BvhBuild, RejectsBadOptionsAndEmptyInputGivesNoTree) {
   bad_leaf.max_leaf_size = kMaxLeafSize + 1;
   EXPECT_THROW(build_bvh(one, bad_leaf, order), std::invalid_argument);
   EXPECT_TRUE(build_bvh(std::vector<Box>{}, BvhBuildOptions{}, order).empty());
+  EXPECT_THROW(build_bvh(one, BvhBuildOptions{}, order, std::vector<std::uint8_t>{2}), std::invalid_argument);
+  EXPECT_THROW(build_bvh(one, BvhBuildOptions{}, order, std::vector<std::uint8_t>{0, 1}), std::invalid_argument);
 }
 
 // ---- traversal vs brute force ---------------------------------------------------
@@ -328,10 +378,41 @@ void expect_bvh_matches_scan(const KernelStreams<S>& scan, const BvhStreams<S>& 
   }
 }
 
-// Builds the kind's store in BVH order for each node width and compares.
+// One BVH over two stores (ids not overlapping): for each set of tested
+// stores, closest and any hits equal the scans of those stores.
+template <class S>
+void expect_two_store_bvh_matches_scan(const KernelStreams<S>& scan, const BvhStreams<S>& tree, const S& first,
+                                       const S& second, const Bvh& bvh, const RaySoA& rays) {
+  for (unsigned tested : {1u, 2u, 3u}) {
+    SCOPED_TRACE(::testing::Message() << "tested stores " << tested);
+    HitSoA expected(rays);
+    OcclusionSoA expected_occlusion(rays);
+    for (unsigned s = 0; s < 2; ++s) {
+      if (((tested >> s) & 1u) == 0) continue;
+      scan.closest_packets(rays, s == 0 ? first : second, expected);
+      scan.occluded_packets(rays, s == 0 ? first : second, expected_occlusion);
+    }
+    ASSERT_GT(expected.hit_count(), rays.count / 20);
+    const BvhStores<S, 2> stores{{&first, &second}, tested};
+    for (BvhTraversal traversal : {BvhTraversal::automatic, BvhTraversal::packets, BvhTraversal::single}) {
+      SCOPED_TRACE(::testing::Message() << "traversal " << static_cast<int>(traversal));
+      HitSoA hits(rays);
+      OcclusionSoA occlusion(rays);
+      tree.closest_hits(rays, stores, bvh, hits, traversal);
+      tree.any_hits(rays, stores, bvh, occlusion, traversal);
+      EXPECT_TRUE(testing::hits_bit_equal(expected, hits));
+      EXPECT_TRUE(testing::occlusion_equal(expected_occlusion, occlusion));
+    }
+  }
+}
+
+// Builds the kind's store in BVH order for each node width and compares;
+// then the even and odd descs as two stores under one BVH.
 template <KernelUnit U, class Desc, class Builder, class Scan, class Tree>
 void check_kind(const std::vector<Desc>& descs, Builder builder, const Scan& scan, const Tree& tree,
                 const RaySoA& rays) {
+  std::array<std::vector<Desc>, 2> halves;
+  for (std::size_t i = 0; i < descs.size(); ++i) halves[i % 2].push_back(descs[i]);
   for (int width : {2, 4, 8}) {
     SCOPED_TRACE(::testing::Message() << "node width " << width);
     BuildReport report;
@@ -342,6 +423,13 @@ void check_kind(const std::vector<Desc>& descs, Builder builder, const Scan& sca
     const Bvh bvh = reorder_for_bvh(std::span<const Desc>(descs), builder, options, store);
     ASSERT_FALSE(bvh.empty());
     expect_bvh_matches_scan(scan, tree, store, bvh, rays);
+
+    auto first = builder(std::span<const Desc>(halves[0]), report);
+    auto second = builder(std::span<const Desc>(halves[1]), report);
+    const Bvh shared = reorder_for_bvh(std::span<const Desc>(halves[0]), first, std::span<const Desc>(halves[1]),
+                                       second, builder, options);
+    second.id_base = static_cast<std::int32_t>(first.count);
+    expect_two_store_bvh_matches_scan(scan, tree, first, second, shared, rays);
   }
 }
 
