@@ -38,6 +38,9 @@ std::vector<Box> random_boxes(RaySampler& s, std::size_t n) {
   return boxes;
 }
 
+// Equal as stored: node arrays hold child slots as float bits.
+bool same_bits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
+
 bool contains(const Box& outer, const Box& inner) {
   for (int a = 0; a < 3; ++a) {
     if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
@@ -143,8 +146,7 @@ TEST(BvhBuild, OneStoreAsTwoGivesTheSameTree) {
   const Bvh two = build_bvh(boxes, BvhBuildOptions{}, two_order, std::vector<std::uint8_t>(boxes.size(), 0));
   EXPECT_EQ(one_order, two_order);
   ASSERT_EQ(one.nodes.size(), two.nodes.size());
-  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(),
-                         [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }));
+  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(), two.nodes.end(), same_bits));
 }
 
 TEST(BvhBuild, IdenticalBoxesStillSplitIntoSmallLeaves) {
@@ -215,8 +217,7 @@ TEST(BvhBuild, SameTreeForAnyThreadCount) {
   const Bvh one = build_with(1, order1), two = build_with(2, order2);
   EXPECT_EQ(order1, order2);
   EXPECT_EQ(one.node_count, two.node_count);
-  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(), two.nodes.end(),
-                         [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }));
+  EXPECT_TRUE(std::equal(one.nodes.begin(), one.nodes.end(), two.nodes.begin(), two.nodes.end(), same_bits));
 }
 
 TEST(BvhBuild, RejectsBadOptionsAndEmptyInputGivesNoTree) {
