@@ -168,9 +168,11 @@ concept ScanStore = requires(const S& s) { s.template load<float>(0); };
 // The stores a query walks through a BVH and tests. K = 1: the tree's one
 // store, every leaf tested (its store bit is not read). K = 2: the tree
 // indexes two stores (leaf_store picks one, both non-null) and the query
-// tests those in `tested` (bit s for store s); leaves of the others are never
-// entered. One store is a compile-time case: choosing the store per leaf
-// measured 3-9% slower on balls-s4's packets.
+// tests those in `tested` (bit s for store s): the packet walks and the
+// any-hit walk never push a leaf of the others, the closest-hit single-ray
+// walk may reach one and tests nothing in it. One store is a compile-time
+// case: choosing the store per leaf measured 3-9% slower on balls-s4's
+// packets.
 template <class S, int K>
 struct BvhStores;
 

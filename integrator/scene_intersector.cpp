@@ -65,6 +65,15 @@ bool tests(Layers layers, bool transmissive) {
   return (static_cast<unsigned>(layers) >> (transmissive ? 1 : 0) & 1u) != 0;
 }
 
+// Calls fn with the plane store of each tested layer that has planes.
+template <class Fn>
+void for_each_tested_plane_store(const Scene& scene, Layers layers, Fn fn) {
+  for (bool transmissive : {false, true}) {
+    const PlaneSoA& planes = scene.layer(transmissive).planes;
+    if (tests(layers, transmissive) && planes.count > 0) fn(planes);
+  }
+}
+
 // One bounded kind's stores in both layers, its BVH and its streams.
 template <class S>
 struct KindQuery {
@@ -116,10 +125,8 @@ void SceneIntersector::for_each_bounded_kind(const Scene& scene, Fn fn) const {
 
 void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& hits, Layers layers) const {
   if (rays.count == 0) return;
-  for (bool transmissive : {false, true}) {
-    const PlaneSoA& planes = scene.layer(transmissive).planes;
-    if (tests(layers, transmissive) && planes.count > 0) planes_.closest_packets(rays, planes, hits);
-  }
+  for_each_tested_plane_store(scene, layers,
+                              [&](const PlaneSoA& planes) { planes_.closest_packets(rays, planes, hits); });
   for_each_bounded_kind(scene, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.tree.closest_hits(rays, stores, kind.bvh, hits, traversal_); },
@@ -129,10 +136,8 @@ void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& h
 
 void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const {
   if (rays.count == 0) return;
-  for (bool transmissive : {false, true}) {
-    const PlaneSoA& planes = scene.layer(transmissive).planes;
-    if (tests(layers, transmissive) && planes.count > 0) planes_.occluded_packets(rays, planes, result);
-  }
+  for_each_tested_plane_store(scene, layers,
+                              [&](const PlaneSoA& planes) { planes_.occluded_packets(rays, planes, result); });
   for_each_bounded_kind(scene, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.tree.any_hits(rays, stores, kind.bvh, result, traversal_); },
