@@ -360,6 +360,22 @@ RaySoA traversal_rays(RaySampler& s) {
   return soa;
 }
 
+// Closest and any hits through the tree (`stores`: one store, or the
+// tested stores of a tree over two) equal `expected` for every traversal.
+template <class S, class Stores>
+void expect_every_traversal_gives(const BvhStreams<S>& tree, const Stores& stores, const Bvh& bvh,
+                                  const RaySoA& rays, const HitSoA& expected, const OcclusionSoA& expected_occlusion) {
+  for (BvhTraversal traversal : {BvhTraversal::automatic, BvhTraversal::packets, BvhTraversal::single}) {
+    SCOPED_TRACE(::testing::Message() << "traversal " << static_cast<int>(traversal));
+    HitSoA hits(rays);
+    OcclusionSoA occlusion(rays);
+    tree.closest_hits(rays, stores, bvh, hits, traversal);
+    tree.any_hits(rays, stores, bvh, occlusion, traversal);
+    EXPECT_TRUE(testing::hits_bit_equal(expected, hits));
+    EXPECT_TRUE(testing::occlusion_equal(expected_occlusion, occlusion));
+  }
+}
+
 template <class S>
 void expect_bvh_matches_scan(const KernelStreams<S>& scan, const BvhStreams<S>& tree, const S& store, const Bvh& bvh,
                              const RaySoA& rays) {
@@ -368,15 +384,7 @@ void expect_bvh_matches_scan(const KernelStreams<S>& scan, const BvhStreams<S>& 
   scan.closest_packets(rays, store, expected);
   scan.occluded_packets(rays, store, expected_occlusion);
   ASSERT_GT(expected.hit_count(), rays.count / 10);  // the scene is hit
-  for (BvhTraversal traversal : {BvhTraversal::automatic, BvhTraversal::packets, BvhTraversal::single}) {
-    SCOPED_TRACE(::testing::Message() << "traversal " << static_cast<int>(traversal));
-    HitSoA hits(rays);
-    OcclusionSoA occlusion(rays);
-    tree.closest_hits(rays, store, bvh, hits, traversal);
-    tree.any_hits(rays, store, bvh, occlusion, traversal);
-    EXPECT_TRUE(testing::hits_bit_equal(expected, hits));
-    EXPECT_TRUE(testing::occlusion_equal(expected_occlusion, occlusion));
-  }
+  expect_every_traversal_gives(tree, store, bvh, rays, expected, expected_occlusion);
 }
 
 // One BVH over two stores (ids not overlapping): for each set of tested
@@ -395,15 +403,7 @@ void expect_two_store_bvh_matches_scan(const KernelStreams<S>& scan, const BvhSt
     }
     ASSERT_GT(expected.hit_count(), rays.count / 20);
     const BvhStores<S, 2> stores{{&first, &second}, tested};
-    for (BvhTraversal traversal : {BvhTraversal::automatic, BvhTraversal::packets, BvhTraversal::single}) {
-      SCOPED_TRACE(::testing::Message() << "traversal " << static_cast<int>(traversal));
-      HitSoA hits(rays);
-      OcclusionSoA occlusion(rays);
-      tree.closest_hits(rays, stores, bvh, hits, traversal);
-      tree.any_hits(rays, stores, bvh, occlusion, traversal);
-      EXPECT_TRUE(testing::hits_bit_equal(expected, hits));
-      EXPECT_TRUE(testing::occlusion_equal(expected_occlusion, occlusion));
-    }
+    expect_every_traversal_gives(tree, stores, bvh, rays, expected, expected_occlusion);
   }
 }
 
