@@ -71,6 +71,17 @@ struct Bvh {
   std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
+// The nodes of a tree of width N known at compile time (the single-ray
+// walks): a node's block at a constant stride, its child slots after its boxes.
+template <int N>
+struct BvhNodes {
+  const float* data;
+
+  explicit BvhNodes(const Bvh& bvh) : data(bvh.nodes.data()) {}
+  const float* block(std::int32_t node) const { return data + static_cast<std::size_t>(node) * (7 * N); }
+  static std::int32_t child(const float* block, int slot) { return std::bit_cast<std::int32_t>(block[6 * N + slot]); }
+};
+
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty
 // input gives an empty Bvh. Throws std::length_error past kMaxBvhPrimitives
 // and std::invalid_argument for a bad width or leaf size.

@@ -25,7 +25,9 @@
 //   scan's broadcast ray and for most coherent packets) the permutation is
 //   fixed per packet at compile time (AxesFixed) instead of 18 per-lane
 //   selects per test (AxesPerLane). Both pick the same floats, so the bits
-//   are the same either way.
+//   are the same either way. with_fixed_axes prepares one ray once and hands
+//   its frame to the caller as a type, so a walk over many scan blocks (the
+//   single-ray BVH walk) chooses it once per ray.
 //
 // Both: hit iff active, inside (edges and vertices included), det != 0,
 // tmin < t < tmax and ng != 0 (a triangle whose computed ng is exactly zero,
@@ -180,6 +182,38 @@ struct TriangleWatertight {
     const bool shared_swap = all(swap) || none(swap);
     r.shared_axes = shared_kz >= 0 && shared_swap ? shared_kz * 2 + (all(swap) ? 1 : 0) : kMixedAxes;
     return r;
+  }
+
+  // One ray prepared once and broadcast to F's lanes, for a scan over W
+  // triangles at a time: calls visit(prepared, Axes{}) with the ray's frame
+  // as a compile-time AxesFixed, so that a caller testing many blocks
+  // (the single-ray BVH walk) chooses the frame once per ray, not per block.
+  template <class F, class Visit>
+  static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
+    using namespace triangle_detail;
+    const WatertightRay<float> one = prepare(ray);
+    WatertightRay<F> r;
+    r.origin = Vec3<F>(F(one.origin.x), F(one.origin.y), F(one.origin.z));
+    r.kx_is_x = Mask<F>(one.kx_is_x);
+    r.kx_is_y = Mask<F>(one.kx_is_y);
+    r.ky_is_x = Mask<F>(one.ky_is_x);
+    r.ky_is_y = Mask<F>(one.ky_is_y);
+    r.kz_is_x = Mask<F>(one.kz_is_x);
+    r.kz_is_y = Mask<F>(one.kz_is_y);
+    r.sx = F(one.sx);
+    r.sy = F(one.sy);
+    r.sz = F(one.sz);
+    r.tmin = F(one.tmin);
+    r.valid = Mask<F>(one.valid);
+    r.shared_axes = one.shared_axes;  // one ray: never kMixedAxes
+    switch (one.shared_axes) {
+      case 0: return visit(r, AxesFixed<0, false>{});
+      case 1: return visit(r, AxesFixed<0, true>{});
+      case 2: return visit(r, AxesFixed<1, false>{});
+      case 3: return visit(r, AxesFixed<1, true>{});
+      case 4: return visit(r, AxesFixed<2, false>{});
+      default: return visit(r, AxesFixed<2, true>{});
+    }
   }
 
   template <class F>

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <limits>
@@ -466,6 +468,38 @@ TYPED_TEST(TriangleWidths, MatchesScalarBitForBit) {
     testing::expect_results_match_scalar(ref, got);
     EXPECT_GT(ref.closest_packets.hit_count(), c.rays.count * 2 / 5);  // the test exercises hits
   }
+}
+
+// The frame fixed once per ray (with_fixed_axes, the single-ray BVH walk)
+// gives the test's own result bit for bit, in each of the six frames.
+TEST(TriangleKernel, WatertightFrameFixedPerRayGivesTheSameBits) {
+  const WidthCase& c = width_case();
+  std::set<int> frames;
+  std::size_t hits = 0;
+  for (std::size_t r = 0; r < c.rays.count; ++r) {
+    const Ray<float> ray = c.rays.get(r);
+    const WatertightRay<float> own = TriangleWatertight::prepare(ray);
+    frames.insert(own.shared_axes);
+    TriangleWatertight::with_fixed_axes<float>(ray, [&]<class Axes>(const WatertightRay<float>& fixed, Axes) {
+      for (std::size_t i = 0; i < c.tris.size(); ++i) {
+        const TriangleLanes<float> t = c.tris.broadcast<float>(i);
+        Candidate<float> want, got;
+        const bool want_hit = TriangleWatertight::intersect(own, t, ray.tmax, true, want);
+        const bool got_hit = TriangleWatertight::intersect_in<Axes>(fixed, t, ray.tmax, true, got);
+        ASSERT_EQ(got_hit, want_hit) << "ray " << r << ", triangle " << i;
+        if (!want_hit) continue;
+        ++hits;
+        const std::array<float, 6> a{want.t, want.u, want.v, want.ng.x, want.ng.y, want.ng.z};
+        const std::array<float, 6> b{got.t, got.u, got.v, got.ng.x, got.ng.y, got.ng.z};
+        for (std::size_t k = 0; k < a.size(); ++k) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(a[k]), std::bit_cast<std::uint32_t>(b[k]))
+              << "ray " << r << ", triangle " << i << ", value " << k;
+        }
+      }
+    });
+  }
+  EXPECT_EQ(frames, (std::set<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_GT(hits, c.rays.count / 2);
 }
 
 // ---- stability ------------------------------------------------------------------
