@@ -34,8 +34,9 @@
 // e.g. a repeated vertex or exactly proportional edges, never hits).
 // out.u, out.v weigh v1 and v2: hit = (1-u-v) v0 + u v1 + v v2.
 // out.ng = (v1-v0) x (v2-v0), not unit, not flipped toward the ray.
-// Each kernel returns early (no_hit) once no lane passes its inside test;
-// that changes no lane's result.
+// Each kernel returns early (no_hit) once no lane passes its inside test
+// (the watertight test again once none is within (tmin, tmax)); that
+// changes no lane's result.
 #pragma once
 
 #include "geometry/hit.h"
@@ -270,12 +271,14 @@ struct TriangleWatertight {
     const F scaled_t = w0 * (ray.sz * az) + w1 * (ray.sz * bz) + w2 * (ray.sz * cz);
     const F inv_det = F(1.f) / select(crosses, det, F(1.f));
     const F t = scaled_t * inv_det;
+    const Mask<F> in_range = candidate && t > ray.tmin && t < tmax;
+    if (none(in_range)) return no_hit(in_range, out);
     const Vec3<F> ng = cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
     out.t = t;
     out.u = w1 * inv_det;
     out.v = w2 * inv_det;
     out.ng = ng;
-    return candidate && t > ray.tmin && t < tmax && nonzero(ng);
+    return in_range && nonzero(ng);
   }
 };
 
