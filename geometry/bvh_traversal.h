@@ -395,8 +395,6 @@ template <KernelUnit U, int N>
   unsigned bits = 0;
   for (int c = 0; c < N; c += kG) {
     G t0(tmin), t1(tmax);
-    // Unrolled: left as a loop once the walk is instantiated per frame (it measured slower).
-#pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
       narrow_interval(t0, t1, (load_lanes<G>(block + ray.near_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a],
                       (load_lanes<G>(block + ray.far_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a]);
