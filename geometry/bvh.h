@@ -71,7 +71,7 @@ struct Bvh {
   std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
-// The nodes of a tree of width N known at compile time (the single-ray
+// The nodes of a tree of width N known at compile time (the traversal
 // walks): a node's block at a constant stride, its child slots after its boxes.
 template <int N>
 struct BvhNodes {

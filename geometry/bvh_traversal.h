@@ -114,11 +114,11 @@ inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec
   return widened_overlap(t0, t1, near);
 }
 
-template <class F>
-inline Vec3<F> node_box_corner(const Bvh& bvh, std::size_t node, int N, int corner, int child) {
-  const float* b = bvh.boxes(node) + static_cast<std::size_t>(child);
-  const std::size_t n = static_cast<std::size_t>(N);
-  return {F(b[(3 * corner + 0) * n]), F(b[(3 * corner + 1) * n]), F(b[(3 * corner + 2) * n])};
+// Corner 0 (lo) or 1 (hi) of child box `child` in a node block of width N, broadcast.
+template <class F, int N>
+inline Vec3<F> node_box_corner(const float* block, int corner, int child) {
+  const float* b = block + child;
+  return {F(b[(3 * corner + 0) * N]), F(b[(3 * corner + 1) * N]), F(b[(3 * corner + 2) * N])};
 }
 
 // A packet set up for slab tests against a node's children. When every
@@ -140,13 +140,13 @@ struct PacketSlab {
     }
   }
 
-  // Lanes entering child c of the node within [tmin, tmax]; near as in slab_interval.
-  Mask<F> enters(const Bvh& bvh, std::size_t node, int c, const F& tmin, const F& tmax, F& near) const {
+  // Lanes entering child c of a node block within [tmin, tmax]; near as in slab_interval.
+  Mask<F> enters(const float* block, int c, const F& tmin, const F& tmax, F& near) const {
     if (!same_planes) {
-      return slab_interval(ray, node_box_corner<F>(bvh, node, N, 0, c), node_box_corner<F>(bvh, node, N, 1, c), tmin,
-                           tmax, near);
+      return slab_interval(ray, node_box_corner<F, N>(block, 0, c), node_box_corner<F, N>(block, 1, c), tmin, tmax,
+                           near);
     }
-    const float* box = bvh.boxes(node) + c;
+    const float* box = block + c;
     F t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; ++a) {
       narrow_interval(t0, t1, (F(box[near_plane[a]]) - ray.origin[a]) * ray.inv_dir[a],
@@ -210,6 +210,7 @@ template <class Method, class F, int N, class S, int K>
   // halves and reloaded whole, which defeats store forwarding.
   std::array<std::int32_t, bvh_stack_size(N)> stack_node;
   std::array<F, bvh_stack_size(N)> stack_near;
+  const BvhNodes<N> nodes(bvh);
   const auto prepared = Method::prepare(ray);
   const PacketSlab<F, N> slab(ray, active);
   const F inf(std::numeric_limits<float>::infinity());
@@ -237,15 +238,15 @@ template <class Method, class F, int N, class S, int K>
     // Children that some lane enters, pushed farthest first (insertion into the stack top).
     std::array<float, bvh_stack_size(N)> key;
     const std::size_t base = top;
-    const std::size_t node = static_cast<std::size_t>(entry_node);
+    const float* block = nodes.block(entry_node);
     for (int c = 0; c < N; ++c) {
-      const std::int32_t child = bvh.child(node, c);
+      const std::int32_t child = BvhNodes<N>::child(block, c);
       // One store: no check, an empty slot's empty box lets no lane in (measured faster on balls-s4).
       if constexpr (K == 2) {
         if (!worth_entering(stores, child)) continue;
       }
       F near;
-      const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, hit.t, near) && lanes;
+      const Mask<F> enters = slab.enters(block, c, ray.tmin, hit.t, near) && lanes;
       if (none(enters)) continue;
       const F lane_near = select(enters, near, inf);
       const float k = horizontal_min(lane_near);
@@ -268,6 +269,7 @@ template <class Method, class F, int N, class S, int K>
   // Nodes and the lanes that entered them, in two arrays (see closest_bvh_packet).
   std::array<std::int32_t, bvh_stack_size(N)> stack_node;
   std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
+  const BvhNodes<N> nodes(bvh);
   const auto prepared = Method::prepare(ray);
   const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
   std::size_t top = 0;
@@ -292,14 +294,14 @@ template <class Method, class F, int N, class S, int K>
       }
       continue;
     }
-    const std::size_t node = static_cast<std::size_t>(entry_node);
+    const float* block = nodes.block(entry_node);
     for (int c = N - 1; c >= 0; --c) {
-      const std::int32_t child = bvh.child(node, c);
+      const std::int32_t child = BvhNodes<N>::child(block, c);
       if constexpr (K == 2) {  // as in closest_bvh_packet
         if (!worth_entering(stores, child)) continue;
       }
       F near;
-      const Mask<F> enters = slab.enters(bvh, node, c, ray.tmin, ray.tmax, near) && active;
+      const Mask<F> enters = slab.enters(block, c, ray.tmin, ray.tmax, near) && active;
       if (any(enters)) {
         stack_node[top] = child;
         stack_lanes[top++] = enters;
