@@ -52,6 +52,13 @@ struct BvhBuildOptions {
   std::size_t parallel_threshold = 4096;  // subtrees at least this big build in parallel (oneTBB)
 };
 
+// The node layout, for nodes of `width` children: node n's block starts at
+// float n * node_floats(width); child slot c follows the boxes at
+// child_slot(width, c) within it. Written once here for the builder, the
+// walks (compile-time width) and code that reads any width.
+constexpr std::size_t node_floats(std::size_t width) { return 7 * width; }
+constexpr std::size_t child_slot(std::size_t width, int slot) { return 6 * width + static_cast<std::size_t>(slot); }
+
 struct Bvh {
   int width = 0;  // 0: no BVH
   // Per node, 7 * width floats: the boxes (lo x, lo y, lo z, hi x, hi y,
@@ -62,24 +69,25 @@ struct Bvh {
   Box bounds{};   // of the whole store
 
   bool empty() const { return width == 0; }
-  std::size_t node_floats() const { return 7 * static_cast<std::size_t>(width); }
+  std::size_t node_floats() const { return quiver::node_floats(static_cast<std::size_t>(width)); }
   const float* boxes(std::size_t node) const { return nodes.data() + node * node_floats(); }
   std::int32_t child(std::size_t node, int slot) const {
-    return std::bit_cast<std::int32_t>(nodes[node * node_floats() + 6 * static_cast<std::size_t>(width) +
-                                             static_cast<std::size_t>(slot)]);
+    return std::bit_cast<std::int32_t>(boxes(node)[child_slot(static_cast<std::size_t>(width), slot)]);
   }
   std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
 // The nodes of a tree of width N known at compile time (the traversal
-// walks): a node's block at a constant stride, its child slots after its boxes.
+// walks): the same layout at a constant stride.
 template <int N>
 struct BvhNodes {
   const float* data;
 
   explicit BvhNodes(const Bvh& bvh) : data(bvh.nodes.data()) {}
-  const float* block(std::int32_t node) const { return data + static_cast<std::size_t>(node) * (7 * N); }
-  static std::int32_t child(const float* block, int slot) { return std::bit_cast<std::int32_t>(block[6 * N + slot]); }
+  const float* block(std::int32_t node) const { return data + static_cast<std::size_t>(node) * node_floats(N); }
+  static std::int32_t child(const float* block, int slot) {
+    return std::bit_cast<std::int32_t>(block[child_slot(N, slot)]);
+  }
 };
 
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty

@@ -321,12 +321,12 @@ class Collapser {
         block[static_cast<std::size_t>(a) * w + s] = box.lo[a];
         block[static_cast<std::size_t>(3 + a) * w + s] = box.hi[a];
       }
-      block[6 * w + s] = std::bit_cast<float>(child);
+      block[child_slot(w, static_cast<int>(s))] = std::bit_cast<float>(child);
     }
     for (std::size_t s = 0; s < slots.size(); ++s) {
       if (nodes_[slots[s]].leaf()) continue;
       const std::int32_t child = write_node(open_children(slots[s]), depth + 1);
-      bvh_.nodes[index * bvh_.node_floats() + 6 * w + s] = std::bit_cast<float>(child);
+      bvh_.nodes[index * bvh_.node_floats() + child_slot(w, static_cast<int>(s))] = std::bit_cast<float>(child);
     }
     return static_cast<std::int32_t>(index);
   }
