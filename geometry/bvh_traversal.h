@@ -6,7 +6,10 @@
 //           is entered when any active lane's slab interval meets it; a
 //           popped entry keeps only the lanes whose entry distance is still
 //           within their closest hit; leaves test W rays against one
-//           primitive at a time (the packet kernels);
+//           primitive at a time (the packet kernels); when the active lanes
+//           share an octant, an interval frustum around them first tests
+//           all of a node's children at once, and only the children it
+//           enters are tested lane by lane (NodeFrustum);
 //   single: one ray tests all children of a wide node at once (a node's
 //           boxes are SoA), nearest child first; leaves test the ray against
 //           W primitives at a time (the scan kernels), or one at a time for
@@ -129,14 +132,15 @@ template <class F, int N>
 struct PacketSlab {
   SlabRay<F> ray;
   bool same_planes = true;
+  std::array<bool, 3> reversed{};                // some active lane's 1/d < 0
   std::array<int, 3> near_plane{}, far_plane{};  // float offsets in a node block
 
   PacketSlab(const Ray<F>& r, const Mask<F>& active) : ray(r) {
     for (int a = 0; a < 3; ++a) {
-      const bool some_negative = any(ray.negative[a] && active);
-      same_planes = same_planes && !(some_negative && any(and_not(active, ray.negative[a])));
-      near_plane[a] = (some_negative ? 3 + a : a) * N;
-      far_plane[a] = (some_negative ? a : 3 + a) * N;
+      reversed[a] = any(ray.negative[a] && active);
+      same_planes = same_planes && !(reversed[a] && any(and_not(active, ray.negative[a])));
+      near_plane[a] = (reversed[a] ? 3 + a : a) * N;
+      far_plane[a] = (reversed[a] ? a : 3 + a) * N;
     }
   }
 
@@ -200,11 +204,133 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
   return !is_leaf(child) || (leaf_count(child) != 0 && stores.tests(child));
 }
 
+// ---- a node's children in one pass ----------------------------------------------
+
+// One ray set up for a node's children: origin and 1/d in node lanes, and
+// per axis where a node's box block keeps the near and the far plane (lo or
+// hi by the sign of 1/d, chosen once per ray).
+template <KernelUnit U, int N>
+struct NodeRay {
+  using G = typename NodeLanesOf<U, N>::type;
+  std::array<G, 3> origin, inv_dir;
+  std::array<int, 3> near_plane, far_plane;  // float offsets in the block
+
+  explicit NodeRay(const Ray<float>& ray) {
+    for (int a = 0; a < 3; ++a) {
+      const float inv = 1.f / ray.direction[a];
+      origin[a] = G(ray.origin[a]);
+      inv_dir[a] = G(inv);
+      near_plane[a] = (inv < 0.f ? 3 + a : a) * N;
+      far_plane[a] = (inv < 0.f ? a : 3 + a) * N;
+    }
+  }
+  const G& entry_origin(int a) const { return origin[a]; }
+  const G& entry_inv_dir(int a) const { return inv_dir[a]; }
+  const G& exit_origin(int a) const { return origin[a]; }
+  const G& exit_inv_dir(int a) const { return inv_dir[a]; }
+};
+
+// A packet's active rays bounded per axis, origins and 1/d as intervals, so
+// that one pass over a node's children finds those some lane may enter
+// before they are tested lane by lane (the interval frustum of Reshetov,
+// Soupikov, Hurley, "Multi-level ray tracing algorithm", 2005; Embree's
+// coherent packets). Usable when the active lanes share an octant and every
+// tmin >= 0: then an axis' entry distance is smallest for the origin
+// farthest along the direction and the 1/d nearest zero, its exit distance
+// largest for the other two bounds (an entry below zero is cut by tmin);
+// rounding is monotone, so a child's interval contains every lane's. A NaN
+// in an active lane makes it unusable.
+template <KernelUnit U, int N>
+struct NodeFrustum {
+  using G = typename NodeLanesOf<U, N>::type;
+  std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;
+  std::array<int, 3> near_plane, far_plane;
+  float tmin = 0.f;
+  bool usable = false;
+
+  template <class F>
+  NodeFrustum(const PacketSlab<F, N>& slab, const F& tmin_lanes, const Mask<F>& active)
+      : near_plane(slab.near_plane), far_plane(slab.far_plane) {
+    Mask<F> numbers = tmin_lanes >= F(0.f);
+    for (int a = 0; a < 3; ++a) {
+      numbers = numbers && slab.ray.origin[a] == slab.ray.origin[a] && slab.ray.inv_dir[a] == slab.ray.inv_dir[a];
+    }
+    if (!slab.same_planes || !all(numbers || !active)) return;
+    const F inf(std::numeric_limits<float>::infinity());
+    const auto smallest = [&](const F& v) { return horizontal_min(select(active, v, inf)); };
+    const auto largest = [&](const F& v) { return horizontal_max(select(active, v, -inf)); };
+    for (int a = 0; a < 3; ++a) {
+      const F& o = slab.ray.origin[a];
+      const F& inv = slab.ray.inv_dir[a];
+      const bool rev = slab.reversed[a];
+      origin_at_entry[a] = G(rev ? smallest(o) : largest(o));
+      inv_dir_at_entry[a] = G(rev ? largest(inv) : smallest(inv));
+      origin_at_exit[a] = G(rev ? largest(o) : smallest(o));
+      inv_dir_at_exit[a] = G(rev ? smallest(inv) : largest(inv));
+    }
+    tmin = smallest(tmin_lanes);
+    usable = true;
+  }
+  const G& entry_origin(int a) const { return origin_at_entry[a]; }
+  const G& entry_inv_dir(int a) const { return inv_dir_at_entry[a]; }
+  const G& exit_origin(int a) const { return origin_at_exit[a]; }
+  const G& exit_inv_dir(int a) const { return inv_dir_at_exit[a]; }
+};
+
+// The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]:
+// bit c of the result, near[c] their widened entry distances.
+template <int N, class R>
+[[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmin, float tmax,
+                                                      std::array<float, N>& near) {
+  using G = typename R::G;
+  constexpr int kG = lane_count<G>;
+  unsigned bits = 0;
+  for (int c = 0; c < N; c += kG) {
+    G t0(tmin), t1(tmax);
+    for (int a = 0; a < 3; ++a) {
+      const G entry = (load_lanes<G>(block + ray.near_plane[a] + c) - ray.entry_origin(a)) * ray.entry_inv_dir(a);
+      const G exit = (load_lanes<G>(block + ray.far_plane[a] + c) - ray.exit_origin(a)) * ray.exit_inv_dir(a);
+      narrow_interval(t0, t1, entry, exit);
+    }
+    G lane_near;
+    const Mask<G> enters = widened_overlap(t0, t1, lane_near);
+    if constexpr (kG == 1) {
+      near[c] = lane_near;
+    } else {
+      store_lanes(lane_near, near.data() + c);
+    }
+    bits |= lane_bits(enters) << c;
+  }
+  return bits;
+}
+
 // ---- packet traversal -------------------------------------------------------
 
-template <class Method, class F, int N, class S, int K>
+// Calls visit(c) for the children c of an N-wide node a packet tests, in
+// order (kLastFirst: N-1 down to 0): without a frustum every child, in a
+// counted loop; after one (kSome) the children in `candidates`, bit by bit.
+// (One loop form for both measured slower: bit by bit over all children,
+// gears-s4's diffuse packets -7%; a counted loop skipping non-candidates,
+// the bunny's primary packets -7%.)
+template <int N, bool kSome, bool kLastFirst, class Visit>
+[[gnu::always_inline]] inline void for_each_child(unsigned candidates, const Visit& visit) {
+  if constexpr (!kSome) {
+    for (int i = 0; i < N; ++i) visit(kLastFirst ? N - 1 - i : i);
+  } else {
+    while (candidates != 0) {
+      const int c = kLastFirst ? 31 - __builtin_clz(candidates) : __builtin_ctz(candidates);
+      candidates &= ~(1u << c);
+      visit(c);
+    }
+  }
+}
+
+// kCulls: the frustum is usable and tests each node's children first.
+template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class F = UnitLanes<U>>
 [[gnu::always_inline]] inline void closest_bvh_packet(BvhStores<S, K> stores, const Bvh& bvh, const Ray<F>& ray,
-                                                      const Mask<F>& active, Hit<F>& hit) {
+                                                      const PacketSlab<F, N>& slab,
+                                                      const NodeFrustum<U, N>& frustum, const Mask<F>& active,
+                                                      Hit<F>& hit) {
   // Nodes and their lanes' entry distances (+inf in lanes that do not
   // enter), in two arrays: an entry copied as one struct is stored in 16-byte
   // halves and reloaded whole, which defeats store forwarding.
@@ -212,8 +338,9 @@ template <class Method, class F, int N, class S, int K>
   std::array<F, bvh_stack_size(N)> stack_near;
   const BvhNodes<N> nodes(bvh);
   const auto prepared = Method::prepare(ray);
-  const PacketSlab<F, N> slab(ray, active);
   const F inf(std::numeric_limits<float>::infinity());
+  // The frustum's tmax: the largest active lane's closest hit so far.
+  float frustum_tmax = horizontal_max(select(active, hit.t, -inf));
   std::size_t top = 0;
   stack_node[top] = 0;
   stack_near[top++] = select(active, ray.tmin, inf);
@@ -231,7 +358,10 @@ template <class Method, class F, int N, class S, int K>
                                                  next_float_up(hit.t), lanes, c);
         const IntLanes<F> id(prims.id_base + p);
         const Mask<F> closer = wins_over(hits_p, c.t, id, hit);
-        if (any(closer)) hit.commit(closer, c, id);
+        if (any(closer)) {
+          hit.commit(closer, c, id);
+          if constexpr (kCulls) frustum_tmax = horizontal_max(select(active, hit.t, -inf));
+        }
       }
       continue;
     }
@@ -239,15 +369,20 @@ template <class Method, class F, int N, class S, int K>
     std::array<float, bvh_stack_size(N)> key;
     const std::size_t base = top;
     const float* block = nodes.block(entry_node);
-    for (int c = 0; c < N; ++c) {
+    unsigned candidates = 0;
+    if constexpr (kCulls) {
+      std::array<float, N> unused;
+      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum_tmax, unused);
+    }
+    for_each_child<N, kCulls, false>(candidates, [&](int c) __attribute__((always_inline)) {
       const std::int32_t child = BvhNodes<N>::child(block, c);
       // One store: no check, an empty slot's empty box lets no lane in (measured faster on balls-s4).
       if constexpr (K == 2) {
-        if (!worth_entering(stores, child)) continue;
+        if (!worth_entering(stores, child)) return;
       }
       F near;
       const Mask<F> enters = slab.enters(block, c, ray.tmin, hit.t, near) && lanes;
-      if (none(enters)) continue;
+      if (none(enters)) return;
       const F lane_near = select(enters, near, inf);
       const float k = horizontal_min(lane_near);
       std::size_t at = top++;
@@ -259,19 +394,23 @@ template <class Method, class F, int N, class S, int K>
       key[at] = k;
       stack_node[at] = child;
       stack_near[at] = lane_near;
-    }
+    });
   }
 }
 
-template <class Method, class F, int N, class S, int K>
+// kCulls as in closest_bvh_packet; the slab and the frustum are set up for the lanes open at the start.
+template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class F = UnitLanes<U>>
 [[gnu::always_inline]] inline Mask<F> occluded_bvh_packet(BvhStores<S, K> stores, const Bvh& bvh,
-                                                          const Ray<F>& ray, Mask<F> occluded, const Mask<F>& valid) {
+                                                          const Ray<F>& ray, const PacketSlab<F, N>& slab,
+                                                          const NodeFrustum<U, N>& frustum, Mask<F> occluded,
+                                                          const Mask<F>& valid) {
   // Nodes and the lanes that entered them, in two arrays (see closest_bvh_packet).
   std::array<std::int32_t, bvh_stack_size(N)> stack_node;
   std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
   const BvhNodes<N> nodes(bvh);
   const auto prepared = Method::prepare(ray);
-  const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
+  const float frustum_tmax =
+      horizontal_max(select(and_not(valid, occluded), ray.tmax, F(-std::numeric_limits<float>::infinity())));
   std::size_t top = 0;
   stack_node[top] = 0;
   stack_lanes[top++] = valid;
@@ -295,10 +434,15 @@ template <class Method, class F, int N, class S, int K>
       continue;
     }
     const float* block = nodes.block(entry_node);
-    for (int c = N - 1; c >= 0; --c) {
+    unsigned candidates = 0;
+    if constexpr (kCulls) {
+      std::array<float, N> unused;
+      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum_tmax, unused);
+    }
+    for_each_child<N, kCulls, true>(candidates, [&](int c) __attribute__((always_inline)) {
       const std::int32_t child = BvhNodes<N>::child(block, c);
       if constexpr (K == 2) {  // as in closest_bvh_packet
-        if (!worth_entering(stores, child)) continue;
+        if (!worth_entering(stores, child)) return;
       }
       F near;
       const Mask<F> enters = slab.enters(block, c, ray.tmin, ray.tmax, near) && active;
@@ -306,32 +450,12 @@ template <class Method, class F, int N, class S, int K>
         stack_node[top] = child;
         stack_lanes[top++] = enters;
       }
-    }
+    });
   }
   return occluded;
 }
 
 // ---- single-ray traversal -----------------------------------------------------
-
-// One ray set up for a node's children: origin and 1/d in node lanes, and
-// per axis where a node's box block keeps the near and the far plane (lo or
-// hi by the sign of 1/d, chosen once per ray).
-template <KernelUnit U, int N>
-struct NodeRay {
-  using G = typename NodeLanesOf<U, N>::type;
-  std::array<G, 3> origin, inv_dir;
-  std::array<int, 3> near_plane, far_plane;  // float offsets in the block
-
-  explicit NodeRay(const Ray<float>& ray) {
-    for (int a = 0; a < 3; ++a) {
-      const float inv = 1.f / ray.direction[a];
-      origin[a] = G(ray.origin[a]);
-      inv_dir[a] = G(inv);
-      near_plane[a] = (inv < 0.f ? 3 + a : a) * N;
-      far_plane[a] = (inv < 0.f ? a : 3 + a) * N;
-    }
-  }
-};
 
 // One ray prepared once for its leaf tests: broadcast to the unit's lanes
 // for stores with a scan orientation, as it is otherwise.
@@ -392,32 +516,6 @@ template <KernelUnit U, class Method, class S, class Walk>
   }
 }
 
-// The node's children the ray enters within [tmin, tmax]: bit c of the
-// result, near[c] their widened entry distances.
-template <KernelUnit U, int N>
-[[gnu::always_inline]] inline unsigned enter_children(const float* block, const NodeRay<U, N>& ray, float tmin,
-                                                      float tmax, std::array<float, N>& near) {
-  using G = typename NodeRay<U, N>::G;
-  constexpr int kG = lane_count<G>;
-  unsigned bits = 0;
-  for (int c = 0; c < N; c += kG) {
-    G t0(tmin), t1(tmax);
-    for (int a = 0; a < 3; ++a) {
-      narrow_interval(t0, t1, (load_lanes<G>(block + ray.near_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a],
-                      (load_lanes<G>(block + ray.far_plane[a] + c) - ray.origin[a]) * ray.inv_dir[a]);
-    }
-    G lane_near;
-    const Mask<G> enters = widened_overlap(t0, t1, lane_near);
-    if constexpr (kG == 1) {
-      near[c] = lane_near;
-    } else {
-      store_lanes(lane_near, near.data() + c);
-    }
-    bits |= lane_bits(enters) << c;
-  }
-  return bits;
-}
-
 // The closest-hit walk of one ray: descends into the nearest entered child
 // directly and pushes the others, farthest first; a popped entry is culled
 // against the current hit. The hit is a local copy (stores through a
@@ -462,7 +560,7 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
     } else {
       std::array<float, N> near;
       const float* block = nodes.block(current);
-      unsigned bits = enter_children<U, N>(block, node_ray, tmin, hit.t, near);
+      unsigned bits = enter_children<N>(block, node_ray, tmin, hit.t, near);
       // Empty slots have empty boxes, which no ray enters (and hold no primitive).
       if (bits != 0) {
         int c = __builtin_ctz(bits);
@@ -553,7 +651,7 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
     }
     std::array<float, N> near;
     const float* block = nodes.block(entry);
-    for (unsigned bits = enter_children<U, N>(block, node_ray, tmin, tmax, near); bits != 0; bits &= bits - 1) {
+    for (unsigned bits = enter_children<N>(block, node_ray, tmin, tmax, near); bits != 0; bits &= bits - 1) {
       // Never an empty slot (empty boxes are never entered), yet dropping
       // that test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
       const std::int32_t child = BvhNodes<N>::child(block, __builtin_ctz(bits));
@@ -636,7 +734,13 @@ template <KernelUnit U, class Method, class S, int N, int K>
     const Ray<F> ray = rays.load<F>(first);
     if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
-      closest_bvh_packet<Method, F, N>(stores, bvh, ray, active, hit);
+      const PacketSlab<F, N> slab(ray, active);
+      const NodeFrustum<U, N> frustum(slab, ray.tmin, active);
+      if (frustum.usable) {
+        closest_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, active, hit);
+      } else {
+        closest_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, active, hit);
+      }
       hits.store(first, hit);
       continue;
     }
@@ -660,7 +764,11 @@ template <KernelUnit U, class Method, class S, int N, int K>
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     if (none(and_not(valid, occluded))) continue;
     if (travels_together<S>(traversal, ray, and_not(valid, occluded))) {
-      const Mask<F> blocked = occluded_bvh_packet<Method, F, N>(stores, bvh, ray, occluded, valid);
+      const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
+      const NodeFrustum<U, N> frustum(slab, ray.tmin, and_not(valid, occluded));
+      const Mask<F> blocked =
+          frustum.usable ? occluded_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid)
+                         : occluded_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;
     }

@@ -337,6 +337,12 @@ inline float horizontal_min(const xsimd::batch<float, xsimd::fma3<xsimd::avx2>>&
 }
 #endif
 
+// The largest lane, for lanes without NaN.
+template <class F>
+inline float horizontal_max(const F& v) {
+  return -horizontal_min(-v);
+}
+
 // Lane numbers 0..W-1 as int and float lanes.
 template <class F>
 inline IntLanes<F> lane_index() {

@@ -354,6 +354,22 @@ RaySoA traversal_rays(RaySampler& s) {
     if (i % 3 == 0) r.tmax = s.uniform(0.5f, 10.f);
     rays.push_back(r);
   }
+  // Packets whose lanes share an octant but not an origin (the frustum's
+  // intervals): toward one point outside the scene (shadow rays, t in (0, 1),
+  // some starting inside primitives' boxes), and parallel rays along z with
+  // +0 and -0 in x and y (1/d = +-inf).
+  const Vec3<float> light{30.f, 25.f, -20.f};
+  for (int i = 0; i < 800; ++i) {
+    const Vec3<float> from = s.in_box({-11, -11, -11}, {11, 11, 11});
+    rays.push_back({from, light - from, i % 2 == 0 ? 0.f : s.uniform(0.f, 0.2f), 1.f});
+  }
+  for (int j = 0; j < 40; ++j) {
+    for (int i = 0; i < 40; ++i) {
+      const float zero = j < 20 ? 0.f : -0.f;
+      rays.push_back({{-12.f + 0.6f * static_cast<float>(i), -12.f + 0.6f * static_cast<float>(j), -30.f},
+                      {zero, zero, 1.f}, 0.f, std::numeric_limits<float>::infinity()});
+    }
+  }
   for (const Ray<float>& r : testing::adversarial_rays(s, 500, {0, 0, 0}, 10.f)) rays.push_back(r);
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
