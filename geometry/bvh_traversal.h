@@ -239,19 +239,20 @@ struct NodeRay {
 // farthest along the direction and the 1/d nearest zero, its exit distance
 // largest for the other two bounds (an entry below zero is cut by tmin);
 // rounding is monotone, so a child's interval contains every lane's. A NaN
-// in an active lane makes it unusable.
+// in an active lane (its origin, 1/d, tmin or tmax) makes it unusable: the
+// reductions would drop it, and with it another lane's bound.
 template <KernelUnit U, int N>
 struct NodeFrustum {
   using G = typename NodeLanesOf<U, N>::type;
   std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;
   std::array<int, 3> near_plane, far_plane;
-  float tmin = 0.f;
+  float tmin = 0.f, tmax = 0.f;  // the smallest tmin and the largest tmax of the active lanes
   bool usable = false;
 
   template <class F>
-  NodeFrustum(const PacketSlab<F, N>& slab, const F& tmin_lanes, const Mask<F>& active)
+  NodeFrustum(const PacketSlab<F, N>& slab, const F& tmin_lanes, const F& tmax_lanes, const Mask<F>& active)
       : near_plane(slab.near_plane), far_plane(slab.far_plane) {
-    Mask<F> numbers = tmin_lanes >= F(0.f);
+    Mask<F> numbers = tmin_lanes >= F(0.f) && tmax_lanes == tmax_lanes;
     for (int a = 0; a < 3; ++a) {
       numbers = numbers && slab.ray.origin[a] == slab.ray.origin[a] && slab.ray.inv_dir[a] == slab.ray.inv_dir[a];
     }
@@ -269,6 +270,7 @@ struct NodeFrustum {
       inv_dir_at_exit[a] = G(rev ? smallest(inv) : largest(inv));
     }
     tmin = smallest(tmin_lanes);
+    tmax = largest(tmax_lanes);
     usable = true;
   }
   const G& entry_origin(int a) const { return origin_at_entry[a]; }
@@ -340,7 +342,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
   const auto prepared = Method::prepare(ray);
   const F inf(std::numeric_limits<float>::infinity());
   // The frustum's tmax: the largest active lane's closest hit so far.
-  float frustum_tmax = horizontal_max(select(active, hit.t, -inf));
+  float frustum_tmax = frustum.tmax;
   std::size_t top = 0;
   stack_node[top] = 0;
   stack_near[top++] = select(active, ray.tmin, inf);
@@ -409,8 +411,6 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
   std::array<Mask<F>, bvh_stack_size(N)> stack_lanes;
   const BvhNodes<N> nodes(bvh);
   const auto prepared = Method::prepare(ray);
-  const float frustum_tmax =
-      horizontal_max(select(and_not(valid, occluded), ray.tmax, F(-std::numeric_limits<float>::infinity())));
   std::size_t top = 0;
   stack_node[top] = 0;
   stack_lanes[top++] = valid;
@@ -437,7 +437,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
     unsigned candidates = 0;
     if constexpr (kCulls) {
       std::array<float, N> unused;
-      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum_tmax, unused);
+      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum.tmax, unused);
     }
     for_each_child<N, kCulls, true>(candidates, [&](int c) __attribute__((always_inline)) {
       const std::int32_t child = BvhNodes<N>::child(block, c);
@@ -735,7 +735,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
     if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
       const PacketSlab<F, N> slab(ray, active);
-      const NodeFrustum<U, N> frustum(slab, ray.tmin, active);
+      const NodeFrustum<U, N> frustum(slab, ray.tmin, hit.t, active);
       if (frustum.usable) {
         closest_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, active, hit);
       } else {
@@ -765,7 +765,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
     if (none(and_not(valid, occluded))) continue;
     if (travels_together<S>(traversal, ray, and_not(valid, occluded))) {
       const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
-      const NodeFrustum<U, N> frustum(slab, ray.tmin, and_not(valid, occluded));
+      const NodeFrustum<U, N> frustum(slab, ray.tmin, ray.tmax, and_not(valid, occluded));
       const Mask<F> blocked =
           frustum.usable ? occluded_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid)
                          : occluded_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid);

@@ -370,6 +370,17 @@ RaySoA traversal_rays(RaySampler& s) {
                       {zero, zero, 1.f}, 0.f, std::numeric_limits<float>::infinity()});
     }
   }
+  // Coherent packets (one origin, one octant) with a NaN tmax beside +inf
+  // and short ones: a NaN lane must not hide another lane's tmax from the
+  // frustum (the pattern defeats a min/max reduction that drops NaN).
+  while (rays.size() % 8 != 0) rays.push_back(s.toward(eye, {0.f, 0.f, 0.f}));
+  const float tmax_pattern[4] = {std::numeric_limits<float>::infinity(), 0.5f,
+                                 std::numeric_limits<float>::quiet_NaN(), 0.5f};
+  for (int i = 0; i < 512; ++i) {
+    Ray<float> r = s.toward(eye, {2.f + 0.5f * static_cast<float>(i % 16), 2.f + 0.25f * static_cast<float>(i / 16), 0.f});
+    r.tmax = tmax_pattern[i % 4];
+    rays.push_back(r);
+  }
   for (const Ray<float>& r : testing::adversarial_rays(s, 500, {0, 0, 0}, 10.f)) rays.push_back(r);
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
