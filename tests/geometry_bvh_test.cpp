@@ -377,7 +377,8 @@ RaySoA traversal_rays(RaySampler& s) {
   const float tmax_pattern[4] = {std::numeric_limits<float>::infinity(), 0.5f,
                                  std::numeric_limits<float>::quiet_NaN(), 0.5f};
   for (int i = 0; i < 512; ++i) {
-    Ray<float> r = s.toward(eye, {2.f + 0.5f * static_cast<float>(i % 16), 2.f + 0.25f * static_cast<float>(i / 16), 0.f});
+    const float x = 2.f + 0.5f * static_cast<float>(i % 16), y = 2.f + 0.25f * static_cast<float>(i / 16);
+    Ray<float> r = s.toward(eye, {x, y, 0.f});
     r.tmax = tmax_pattern[i % 4];
     rays.push_back(r);
   }
