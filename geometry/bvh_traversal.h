@@ -9,7 +9,8 @@
 //           primitive at a time (the packet kernels); when the active lanes
 //           share an octant, an interval frustum around them first tests
 //           all of a node's children at once, and only the children it
-//           enters are tested lane by lane (NodeFrustum);
+//           enters are tested lane by lane (NodeFrustum; any-hit packets:
+//           through a tree over one store);
 //   single: one ray tests all children of a wide node at once (a node's
 //           boxes are SoA), nearest child first; leaves test the ray against
 //           W primitives at a time (the scan kernels), or one at a time for
