@@ -118,6 +118,17 @@ inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec
   return widened_overlap(t0, t1, near);
 }
 
+// Float offsets in a node block of width N of axis a's near and far
+// planes: lo and hi, swapped when 1/d < 0 (reversed).
+template <int N>
+constexpr int near_plane_offset(int a, bool reversed) {
+  return (reversed ? 3 + a : a) * N;
+}
+template <int N>
+constexpr int far_plane_offset(int a, bool reversed) {
+  return (reversed ? a : 3 + a) * N;
+}
+
 // Corner 0 (lo) or 1 (hi) of child box `child` in a node block of width N, broadcast.
 template <class F, int N>
 inline Vec3<F> node_box_corner(const float* block, int corner, int child) {
@@ -140,8 +151,8 @@ struct PacketSlab {
     for (int a = 0; a < 3; ++a) {
       reversed[a] = any(ray.negative[a] && active);
       same_planes = same_planes && !(reversed[a] && any(and_not(active, ray.negative[a])));
-      near_plane[a] = (reversed[a] ? 3 + a : a) * N;
-      far_plane[a] = (reversed[a] ? a : 3 + a) * N;
+      near_plane[a] = near_plane_offset<N>(a, reversed[a]);
+      far_plane[a] = far_plane_offset<N>(a, reversed[a]);
     }
   }
 
@@ -221,8 +232,8 @@ struct NodeRay {
       const float inv = 1.f / ray.direction[a];
       origin[a] = G(ray.origin[a]);
       inv_dir[a] = G(inv);
-      near_plane[a] = (inv < 0.f ? 3 + a : a) * N;
-      far_plane[a] = (inv < 0.f ? a : 3 + a) * N;
+      near_plane[a] = near_plane_offset<N>(a, inv < 0.f);
+      far_plane[a] = far_plane_offset<N>(a, inv < 0.f);
     }
   }
   const G& entry_origin(int a) const { return origin[a]; }
@@ -764,14 +775,15 @@ template <KernelUnit U, class Method, class S, int N, int K>
     const Mask<F> valid = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
-    if (none(and_not(valid, occluded))) continue;
-    if (travels_together<S>(traversal, ray, and_not(valid, occluded))) {
+    const Mask<F> open = and_not(valid, occluded);
+    if (none(open)) continue;
+    if (travels_together<S>(traversal, ray, open)) {
       // No frustum over two stores: the walk skips the untested store's
       // children without a box test, which leaves it little to save
       // (gears-s4: shadow rays -3..-5%, its whole render -5%).
-      const PacketSlab<F, N> slab(ray, and_not(valid, occluded));
+      const PacketSlab<F, N> slab(ray, open);
       const NodeFrustum<U, N> frustum =
-          K == 1 ? NodeFrustum<U, N>(slab, ray.tmin, ray.tmax, and_not(valid, occluded)) : NodeFrustum<U, N>();
+          K == 1 ? NodeFrustum<U, N>(slab, ray.tmin, ray.tmax, open) : NodeFrustum<U, N>();
       const Mask<F> blocked =
           frustum.usable ? occluded_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid)
                          : occluded_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid);

@@ -189,6 +189,8 @@ struct TriangleWatertight {
   // triangles at a time: calls visit(prepared, Axes{}) with the ray's frame
   // as a compile-time AxesFixed, so that a caller testing many blocks
   // (the single-ray BVH walk) chooses the frame once per ray, not per block.
+  // (Preparing the scalar ray and broadcasting its fields measured faster
+  // than prepare(broadcast_ray<F>(ray)): triangle single rays 2-11%.)
   template <class F, class Visit>
   static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
     using namespace triangle_detail;
