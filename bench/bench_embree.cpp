@@ -310,8 +310,7 @@ nlohmann::ordered_json run_scene(const std::string& name, const Options& options
                  name.c_str(), embree.skipped_planes, embree.skipped_cones);
   }
 
-  const KernelUnit unit =
-      kernel_unit_supported(KernelUnit::avx2) ? KernelUnit::avx2 : kernel_unit_for(best_supported_isa());
+  const KernelUnit unit = kernel_unit_for(isa_from_environment());  // QUIVER_SIMD, else the widest
   const SceneIntersector intersector(unit);
   const SceneRays rays = make_scene_rays(scene, options.width, options.height, kRaySeed);
   const RaySet primary = blocks_of("primary", rays.primary, true, false);

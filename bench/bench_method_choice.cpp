@@ -28,14 +28,6 @@ namespace {
 
 const std::filesystem::path kExamplesDir = std::filesystem::path(QUIVER_SOURCE_DIR) / "io" / "examples";
 
-Isa isa_of(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::avx2: return Isa::avx2;
-    case KernelUnit::sse4: return Isa::sse4;
-    default: return Isa::scalar;
-  }
-}
-
 // Eight spheres of radius 1 at (+-1.25, +-1.25, +-1.25), alternately mirror
 // and glass, no floor, the camera 6 units away: every sphere within ~9 radii
 // of every ray origin, and most rays bounce between spheres.

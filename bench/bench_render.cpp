@@ -21,14 +21,6 @@
 namespace quiver::bench {
 namespace {
 
-Isa isa_of(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::avx2: return Isa::avx2;
-    case KernelUnit::sse4: return Isa::sse4;
-    default: return Isa::scalar;
-  }
-}
-
 void render_benchmark(benchmark::State& state, std::shared_ptr<const Scene> scene, KernelUnit unit, int threads,
                       int size, const char* aa) {
   RenderSettings settings;

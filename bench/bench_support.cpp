@@ -17,7 +17,7 @@ std::vector<KernelUnit> bench_units() {
     return {kernel_unit_for(resolve_isa(forced))};  // throws on an unknown or unsupported choice
   }
   std::vector<KernelUnit> units;
-  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+  for (Isa isa : kIsas) {
     if (isa_supported(isa)) units.push_back(kernel_unit_for(isa));
   }
   return units;

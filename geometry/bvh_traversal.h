@@ -76,6 +76,32 @@ struct NodeLanesOf<KernelUnit::avx2, 8> {
   using type = UnitLanes<KernelUnit::avx2>;
 };
 #endif
+#if XSIMD_WITH_AVX512BW  // nodes of 8 as in the avx2 unit
+template <>
+struct NodeLanesOf<KernelUnit::avx512, 4> {
+  using type = xsimd::batch<float, xsimd::sse4_2>;
+};
+template <>
+struct NodeLanesOf<KernelUnit::avx512, 8> {
+  using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
+};
+#endif
+
+// Lanes for one ray against a leaf's primitives (the scan kernels): the
+// unit's own, but 8 in the 16-wide unit, whose leaves (at most 8
+// primitives by default) would leave half of 16 lanes empty.
+template <KernelUnit U>
+struct LeafScanLanesOf {
+  using type = UnitLanes<U>;
+};
+#if XSIMD_WITH_AVX512BW
+template <>
+struct LeafScanLanesOf<KernelUnit::avx512> {
+  using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
+};
+#endif
+template <KernelUnit U>
+using LeafScanLanes = typename LeafScanLanesOf<U>::type;
 
 // A ray prepared for slab tests.
 template <class F>
@@ -475,7 +501,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
 template <KernelUnit U, class Method, class S>
 auto prepare_for_leaves(const Ray<float>& ray) {
   if constexpr (ScanStore<S>) {
-    return Method::prepare(broadcast_ray<UnitLanes<U>>(ray));
+    return Method::prepare(broadcast_ray<LeafScanLanes<U>>(ray));
   } else {
     return Method::prepare(ray);
   }
@@ -520,7 +546,7 @@ struct WalkInFrame {
 // than choosing the frame at every leaf block (bench/README.md).
 template <KernelUnit U, class Method, class S, class Walk>
 [[gnu::always_inline]] inline void with_leaf_ray(const Ray<float>& ray, const Walk& walk) {
-  using F = UnitLanes<U>;
+  using F = LeafScanLanes<U>;
   if constexpr (ScanStore<S> && FixesAxesPerRay<Method, F>) {
     Method::template with_fixed_axes<F>(ray, WalkInFrame<Method, Walk>{walk});
   } else {
@@ -537,7 +563,7 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
 [[gnu::always_inline]] inline Hit<float> closest_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                              const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
                                                              float tmin, Hit<float> hit) {
-  using F = UnitLanes<U>;
+  using F = LeafScanLanes<U>;
   struct Entry {
     std::int32_t node;
     float near;
@@ -637,7 +663,7 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
 [[gnu::always_inline]] inline bool occluded_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                         const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
                                                         float tmin, float tmax) {
-  using F = UnitLanes<U>;
+  using F = LeafScanLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
   std::size_t top = 0;
   stack[top++] = 0;

@@ -19,6 +19,8 @@ template <>
 KernelStreams<ConeSoA> cone_streams<KernelUnit::sse4>(ConeMethod method);
 template <>
 KernelStreams<ConeSoA> cone_streams<KernelUnit::avx2>(ConeMethod method);
+template <>
+KernelStreams<ConeSoA> cone_streams<KernelUnit::avx512>(ConeMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
@@ -31,5 +33,7 @@ template <>
 BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::sse4>(ConeMethod method);
 template <>
 BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::avx2>(ConeMethod method);
+template <>
+BvhStreams<ConeSoA> cone_bvh_streams<KernelUnit::avx512>(ConeMethod method);
 
 }  // namespace quiver

@@ -18,5 +18,7 @@ template <>
 KernelStreams<PlaneSoA> plane_streams<KernelUnit::sse4>(PlaneMethod method);
 template <>
 KernelStreams<PlaneSoA> plane_streams<KernelUnit::avx2>(PlaneMethod method);
+template <>
+KernelStreams<PlaneSoA> plane_streams<KernelUnit::avx512>(PlaneMethod method);
 
 }  // namespace quiver

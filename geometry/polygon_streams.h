@@ -21,6 +21,8 @@ template <>
 KernelStreams<PolygonSoA> polygon_streams<KernelUnit::sse4>(PolygonMethod method);
 template <>
 KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx2>(PolygonMethod method);
+template <>
+KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx512>(PolygonMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
@@ -33,5 +35,7 @@ template <>
 BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::sse4>(PolygonMethod method);
 template <>
 BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::avx2>(PolygonMethod method);
+template <>
+BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::avx512>(PolygonMethod method);
 
 }  // namespace quiver

@@ -19,6 +19,8 @@ template <>
 KernelStreams<SphereSoA> sphere_streams<KernelUnit::sse4>(SphereMethod method);
 template <>
 KernelStreams<SphereSoA> sphere_streams<KernelUnit::avx2>(SphereMethod method);
+template <>
+KernelStreams<SphereSoA> sphere_streams<KernelUnit::avx512>(SphereMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
@@ -31,5 +33,7 @@ template <>
 BvhStreams<SphereSoA> sphere_bvh_streams<KernelUnit::sse4>(SphereMethod method);
 template <>
 BvhStreams<SphereSoA> sphere_bvh_streams<KernelUnit::avx2>(SphereMethod method);
+template <>
+BvhStreams<SphereSoA> sphere_bvh_streams<KernelUnit::avx512>(SphereMethod method);
 
 }  // namespace quiver

@@ -53,6 +53,7 @@ using Unit = std::integral_constant<KernelUnit, U>;
 template <class Fn>
 decltype(auto) with_kernel_unit(KernelUnit unit, Fn&& fn) {
   switch (unit) {
+    case KernelUnit::avx512: return fn(Unit<KernelUnit::avx512>{});
     case KernelUnit::avx2: return fn(Unit<KernelUnit::avx2>{});
     case KernelUnit::sse4: return fn(Unit<KernelUnit::sse4>{});
     case KernelUnit::scalar_fma: return fn(Unit<KernelUnit::scalar_fma>{});

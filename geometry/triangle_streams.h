@@ -19,6 +19,8 @@ template <>
 KernelStreams<TriangleSoA> triangle_streams<KernelUnit::sse4>(TriangleMethod method);
 template <>
 KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx2>(TriangleMethod method);
+template <>
+KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx512>(TriangleMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
@@ -31,5 +33,7 @@ template <>
 BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::sse4>(TriangleMethod method);
 template <>
 BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::avx2>(TriangleMethod method);
+template <>
+BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::avx512>(TriangleMethod method);
 
 }  // namespace quiver

@@ -279,8 +279,8 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
                        std::to_string(quiver::kDefaultTraceRepeat))
       ->type_name("R");
   raw.simd_option = trace.add_option("--simd", raw.simd,
-                                     "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4) or avx2 "
-                                     "(8); every choice finds the same hits. Default: $QUIVER_SIMD, else auto. A "
+                                     "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4), avx2 "
+                                     "(8) or avx512 (16); every choice finds the same hits. Default: $QUIVER_SIMD, else auto. A "
                                      "choice this CPU lacks is an error")
                         ->type_name("ISA");
 }
@@ -323,8 +323,8 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")
       ->type_name("N");
   raw.simd_option = render.add_option("--simd", raw.simd,
-                                      "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4) or "
-                                      "avx2 (8); every choice gives the same image. Default: $QUIVER_SIMD, else "
+                                      "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4), "
+                                      "avx2 (8) or avx512 (16); every choice gives the same image. Default: $QUIVER_SIMD, else "
                                       "auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
   raw.seed_option = render.add_option("--seed", raw.seed,

@@ -11,6 +11,7 @@ int lane_width(Isa isa) {
     case Isa::scalar: return 1;
     case Isa::sse4: return 4;
     case Isa::avx2: return 8;
+    case Isa::avx512: return 16;
   }
   return 1;
 }
@@ -20,12 +21,13 @@ std::string_view isa_name(Isa isa) {
     case Isa::scalar: return "scalar";
     case Isa::sse4: return "sse4";
     case Isa::avx2: return "avx2";
+    case Isa::avx512: return "avx512";
   }
   return "scalar";
 }
 
 std::optional<Isa> parse_isa(std::string_view name) {
-  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+  for (Isa isa : kIsas) {
     if (name == isa_name(isa)) return isa;
   }
   return std::nullopt;
@@ -40,6 +42,11 @@ bool isa_supported(Isa isa) {
     case Isa::sse4:
       return __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
     case Isa::avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    // The 16-wide unit is built with -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl -mfma.
+    case Isa::avx512:
+      return isa_supported(Isa::avx2) && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512vl");
   }
   return false;
 }
@@ -50,6 +57,7 @@ int lane_width(KernelUnit unit) {
     case KernelUnit::scalar_fma: return 1;
     case KernelUnit::sse4: return 4;
     case KernelUnit::avx2: return 8;
+    case KernelUnit::avx512: return 16;
   }
   return 1;
 }
@@ -60,6 +68,7 @@ std::string_view kernel_unit_name(KernelUnit unit) {
     case KernelUnit::scalar_fma: return "scalar_fma";
     case KernelUnit::sse4: return "sse4";
     case KernelUnit::avx2: return "avx2";
+    case KernelUnit::avx512: return "avx512";
   }
   return "scalar";
 }
@@ -71,6 +80,7 @@ bool kernel_unit_supported(KernelUnit unit) {
     case KernelUnit::scalar_fma: return __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
     case KernelUnit::sse4: return isa_supported(Isa::sse4);
     case KernelUnit::avx2: return isa_supported(Isa::avx2);
+    case KernelUnit::avx512: return isa_supported(Isa::avx512);
   }
   return false;
 }
@@ -81,12 +91,24 @@ KernelUnit kernel_unit_for(Isa isa) {
       return kernel_unit_supported(KernelUnit::scalar_fma) ? KernelUnit::scalar_fma : KernelUnit::scalar;
     case Isa::sse4: return KernelUnit::sse4;
     case Isa::avx2: return KernelUnit::avx2;
+    case Isa::avx512: return KernelUnit::avx512;
   }
   return KernelUnit::scalar;
 }
 
+Isa isa_of(KernelUnit unit) {
+  switch (unit) {
+    case KernelUnit::scalar:
+    case KernelUnit::scalar_fma: return Isa::scalar;
+    case KernelUnit::sse4: return Isa::sse4;
+    case KernelUnit::avx2: return Isa::avx2;
+    case KernelUnit::avx512: return Isa::avx512;
+  }
+  return Isa::scalar;
+}
+
 Isa best_supported_isa() {
-  for (Isa isa : {Isa::avx2, Isa::sse4}) {
+  for (Isa isa : {Isa::avx512, Isa::avx2, Isa::sse4}) {
     if (isa_supported(isa)) return isa;
   }
   return Isa::scalar;
@@ -97,7 +119,7 @@ Isa resolve_isa(std::string_view requested) {
   const auto isa = parse_isa(requested);
   if (!isa) {
     throw std::runtime_error("unknown SIMD choice '" + std::string(requested) +
-                             "': expected auto, scalar, sse4 or avx2");
+                             "': expected auto, scalar, sse4, avx2 or avx512");
   }
   if (!isa_supported(*isa)) {
     throw std::runtime_error("SIMD choice '" + std::string(requested) +

@@ -14,6 +14,8 @@
 //   sse4:       xsimd::batch<float, sse4_2>      (-msse4.2 -mfma: FMA3 is required
 //                                                 so that fma is fused as in scalar code)
 //   avx2:       xsimd::batch<float, fma3<avx2>>  (-mavx2 -mfma)
+//   avx512:     xsimd::batch<float, avx512bw>    (-mavx512f/cd/dq/bw/vl -mfma; 16 lanes,
+//                                                 masks are k-registers)
 // The streams (geometry/streams.h) carry the unit as a template argument and
 // are flattened, so no kernel code compiled with one unit's flags is shared
 // through the linker with another unit.
@@ -24,7 +26,13 @@
 #include <cstdint>
 #include <limits>
 
+// GCC 12 reports the deliberately undefined source of AVX-512 intrinsics
+// (_mm512_undefined_ps) as uninitialized (GCC bug 105593, fixed in GCC 13).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <xsimd/xsimd.hpp>
+#pragma GCC diagnostic pop
 
 #include "simd/isa.h"
 
@@ -35,7 +43,7 @@
 namespace quiver {
 
 // Widest lane count any unit uses; SoA arrays are padded to a multiple of it.
-inline constexpr int kMaxLanes = 8;
+inline constexpr int kMaxLanes = 16;
 
 template <class F>
 struct LaneTraits;
@@ -79,6 +87,12 @@ struct UnitLanesOf<KernelUnit::avx2> {
   using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
 };
 #endif
+#if XSIMD_WITH_AVX512BW
+template <>
+struct UnitLanesOf<KernelUnit::avx512> {
+  using type = xsimd::batch<float, xsimd::avx512bw>;
+};
+#endif
 template <KernelUnit U>
 using UnitLanes = typename UnitLanesOf<U>::type;
 
@@ -117,6 +131,11 @@ inline xsimd::batch_bool<std::int32_t, xsimd::fma3<xsimd::avx2>> int_mask(
   return _mm256_castps_si256(m);
 }
 #endif
+#if XSIMD_WITH_AVX512BW
+inline xsimd::batch_bool<std::int32_t, xsimd::avx512bw> int_mask(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
+  return static_cast<__mmask16>(m);
+}
+#endif
 
 // a && !b. (xsimd 8.1 negates an AVX float mask by comparing each 128-bit
 // half with false, four instructions; andnot is one.)
@@ -131,6 +150,12 @@ inline xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>> and_not(
     const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& a,
     const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2>>& b) {
   return _mm256_andnot_ps(b, a);
+}
+#endif
+#if XSIMD_WITH_AVX512BW
+inline xsimd::batch_bool<float, xsimd::avx512bw> and_not(const xsimd::batch_bool<float, xsimd::avx512bw>& a,
+                                                         const xsimd::batch_bool<float, xsimd::avx512bw>& b) {
+  return static_cast<__mmask16>(static_cast<__mmask16>(a) & ~static_cast<__mmask16>(b));
 }
 #endif
 
@@ -153,6 +178,14 @@ inline xsimd::batch<float, xsimd::sse4_2> fma(const xsimd::batch<float, xsimd::s
                                               const xsimd::batch<float, xsimd::sse4_2>& b,
                                               const xsimd::batch<float, xsimd::sse4_2>& c) {
   return _mm_fmadd_ps(a, b, c);
+}
+#endif
+#if XSIMD_WITH_AVX512BW
+// xsimd 8.1 has no AVX-512 fma: its generic one multiplies, then adds.
+inline xsimd::batch<float, xsimd::avx512bw> fma(const xsimd::batch<float, xsimd::avx512bw>& a,
+                                                const xsimd::batch<float, xsimd::avx512bw>& b,
+                                                const xsimd::batch<float, xsimd::avx512bw>& c) {
+  return _mm512_fmadd_ps(a, b, c);
 }
 #endif
 
@@ -209,6 +242,13 @@ inline xsimd::batch_bool<float, A> masks_differ(const xsimd::batch_bool<float, A
                                                 const xsimd::batch_bool<float, A>& b) {
   return a ^ b;
 }
+#if XSIMD_WITH_AVX512BW
+// xsimd 8.1's AVX-512 mask xor is an or (bitwise_xor in xsimd_avx512f.hpp): xor the k-registers.
+inline xsimd::batch_bool<float, xsimd::avx512bw> masks_differ(const xsimd::batch_bool<float, xsimd::avx512bw>& a,
+                                                              const xsimd::batch_bool<float, xsimd::avx512bw>& b) {
+  return static_cast<__mmask16>(static_cast<__mmask16>(a) ^ static_cast<__mmask16>(b));
+}
+#endif
 
 // ---- written once for every width ----------------------------------------
 
@@ -288,6 +328,11 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::fma3<xsimd::avx2
   return static_cast<unsigned>(_mm256_movemask_ps(m));  // the mask register itself
 }
 #endif
+#if XSIMD_WITH_AVX512BW
+inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
+  return static_cast<__mmask16>(m);  // the k-register itself
+}
+#endif
 
 // The mask whose lane k is bit k of `bits` (the inverse of lane_bits).
 template <class F>
@@ -336,6 +381,13 @@ inline float horizontal_min(const xsimd::batch<float, xsimd::fma3<xsimd::avx2>>&
                                                                      _mm256_extractf128_ps(x, 1))));
 }
 #endif
+#if XSIMD_WITH_AVX512BW
+inline float horizontal_min(const xsimd::batch<float, xsimd::avx512bw>& v) {
+  const __m512 x = v;
+  return horizontal_min(xsimd::batch<float, xsimd::fma3<xsimd::avx2>>(
+      _mm256_min_ps(_mm512_castps512_ps256(x), _mm512_extractf32x8_ps(x, 1))));
+}
+#endif
 
 // The largest lane, for lanes without NaN.
 template <class F>
@@ -346,12 +398,12 @@ inline float horizontal_max(const F& v) {
 // Lane numbers 0..W-1 as int and float lanes.
 template <class F>
 inline IntLanes<F> lane_index() {
-  alignas(64) static constexpr std::int32_t kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7};
+  alignas(64) static constexpr std::int32_t kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
   return load_int_lanes<F>(kIndex);
 }
 template <class F>
 inline F lane_index_float() {
-  alignas(64) static constexpr float kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7};
+  alignas(64) static constexpr float kIndex[kMaxLanes] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
   return load_lanes<F>(kIndex);
 }
 

@@ -311,7 +311,7 @@ TEST(SphereStability, NoNaNInReportedHits) {
   const std::vector<Ray<float>>& rays = equivalence_rays();
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
-  for (KernelUnit unit : {KernelUnit::scalar, KernelUnit::scalar_fma, KernelUnit::sse4, KernelUnit::avx2}) {
+  for (KernelUnit unit : kKernelUnits) {
     if (!kernel_unit_supported(unit)) continue;
     for (SphereMethod m : kMethods) {
       const KernelStreams<SphereSoA> streams =

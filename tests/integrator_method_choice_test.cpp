@@ -137,7 +137,7 @@ TEST(MethodChoice, BoundaryRatioTenIsAlgebraicOneFloatStepFartherIsRobust) {
 TEST(MethodChoice, ChosenMethodGivesTheSameBitsAtEveryWidth) {
   const Scene scene = build_scene(compact_scene(), {});
   std::vector<float> first;
-  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+  for (Isa isa : kIsas) {
     if (!isa_supported(isa)) {
       std::printf("[ skipped ] this CPU cannot run width %d\n", lane_width(isa));
       continue;

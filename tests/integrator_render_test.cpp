@@ -18,15 +18,7 @@
 namespace quiver {
 namespace {
 
-constexpr KernelUnit kUnits[] = {KernelUnit::scalar_fma, KernelUnit::sse4, KernelUnit::avx2};
-
-Isa isa_of(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::avx2: return Isa::avx2;
-    case KernelUnit::sse4: return Isa::sse4;
-    default: return Isa::scalar;
-  }
-}
+constexpr KernelUnit kUnits[] = {KernelUnit::scalar_fma, KernelUnit::sse4, KernelUnit::avx2, KernelUnit::avx512};
 
 RenderSettings small_settings(int w, int h, const char* aa = "none") {
   RenderSettings s;

@@ -239,7 +239,7 @@ TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
       {"render", scene, "-o", "out.png", "--width", "twelve"},
       {"render", scene, "-o", "out.png", "--width", "0"},
       {"render", scene, "-o", "out.png", "--seed", "-1"},
-      {"render", scene, "-o", "out.png", "--simd", "avx512"},
+      {"render", scene, "-o", "out.png", "--simd", "avx1024"},
       {"render", scene, "-o", "out.png", "--preset", "spd", "--aa", "grid:2"},
       {"render", scene, "-o", "out.txt"},
       {"render", scene, "-o", "out.png", "--stats", "out.png"},
@@ -292,7 +292,7 @@ TEST_F(Cli, TheOutputIsCheckedBeforeTheSceneIsRead) {
 
 TEST_F(Cli, EverySimdWidthWritesIdenticalPixels) {
   std::vector<std::string> widths{"scalar"};
-  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2}) {
+  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2, quiver::Isa::avx512}) {
     const std::string name(quiver::isa_name(isa));
     if (quiver::isa_supported(isa)) {
       widths.push_back(name);
@@ -385,7 +385,7 @@ TEST_F(Cli, TraceHelpDescribesEveryOption) {
 
 TEST_F(Cli, TracePrintsTheSameHitsForEverySimdWidthAndThreadCount) {
   std::vector<std::string> widths{"scalar"};
-  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2}) {
+  for (quiver::Isa isa : {quiver::Isa::sse4, quiver::Isa::avx2, quiver::Isa::avx512}) {
     if (quiver::isa_supported(isa)) widths.push_back(std::string(quiver::isa_name(isa)));
   }
   std::optional<json> reference;
@@ -438,7 +438,7 @@ TEST_F(Cli, TraceErrorsExitNonZeroAndPrintNoJson) {
       {{"trace", scene, "--threads", "-1"}, 2},
       {{"trace", scene, "--width", "0"}, 2},
       {{"trace", scene, "--width", "5000", "--height", "5000"}, 2},
-      {{"trace", scene, "--simd", "avx512"}, 2},
+      {{"trace", scene, "--simd", "avx1024"}, 2},
       {{"trace", scene, "--bogus"}, 2},
       {{"trace", (io() / "missing.nff").string()}, 1},
   };

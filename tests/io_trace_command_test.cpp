@@ -138,7 +138,7 @@ ReferenceHit reference_hit(const SceneDesc& desc, const Ray<float>& ray) {
 
 std::vector<Isa> supported_isas() {
   std::vector<Isa> isas;
-  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+  for (Isa isa : kIsas) {
     if (isa_supported(isa)) isas.push_back(isa);
   }
   return isas;

@@ -57,7 +57,9 @@ TEST(Isa, ResolveNamesAndRejectsUnknown) {
   EXPECT_EQ(resolve_isa("scalar"), Isa::scalar);
   EXPECT_EQ(resolve_isa("auto"), best_supported_isa());
   EXPECT_EQ(resolve_isa(""), best_supported_isa());
-  EXPECT_THROW(resolve_isa("avx512"), std::runtime_error);
+  EXPECT_THROW(resolve_isa("avx1024"), std::runtime_error);
+  EXPECT_EQ(lane_width(Isa::avx512), 16);
+  EXPECT_EQ(kernel_unit_for(Isa::avx512), KernelUnit::avx512);
   EXPECT_EQ(lane_width(Isa::sse4), 4);
   EXPECT_EQ(lane_width(Isa::avx2), 8);
   EXPECT_EQ(kernel_unit_for(Isa::avx2), KernelUnit::avx2);
@@ -65,6 +67,13 @@ TEST(Isa, ResolveNamesAndRejectsUnknown) {
   EXPECT_EQ(kernel_unit_for(Isa::scalar),
             kernel_unit_supported(KernelUnit::scalar_fma) ? KernelUnit::scalar_fma : KernelUnit::scalar);
   EXPECT_TRUE(isa_supported(Isa::scalar));
+}
+
+TEST(Isa, EveryUnitRunsAChoiceOfItsWidth) {
+  for (KernelUnit unit : kKernelUnits) {
+    EXPECT_EQ(lane_width(isa_of(unit)), lane_width(unit)) << kernel_unit_name(unit);
+    EXPECT_EQ(lane_width(kernel_unit_for(isa_of(unit))), lane_width(unit)) << kernel_unit_name(unit);
+  }
 }
 
 TEST(Isa, EnvironmentForcesChoice) {

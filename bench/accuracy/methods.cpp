@@ -83,7 +83,7 @@ std::vector<Reference> run_oracle(const RaySoA& rays, const Primitives& prims) {
 
 std::vector<KernelUnit> units_by_width() {
   std::vector<KernelUnit> units;
-  for (Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2}) {
+  for (Isa isa : kIsas) {
     if (isa_supported(isa)) units.push_back(kernel_unit_for(isa));
   }
   return units;

@@ -1,5 +1,5 @@
 // Checks shared by every kernel's tests: bit-exact comparison of stream
-// results and the typed fixture over lane widths 1, 4 and 8.
+// results and the typed fixture over lane widths 1, 4, 8 and 16.
 #pragma once
 
 #include <type_traits>
@@ -20,7 +20,7 @@ namespace quiver::testing {
 
 // Every kernel unit; each is compared with the portable scalar unit.
 using KernelUnits = ::testing::Types<Unit<KernelUnit::scalar>, Unit<KernelUnit::scalar_fma>,
-                                     Unit<KernelUnit::sse4>, Unit<KernelUnit::avx2>>;
+                                     Unit<KernelUnit::sse4>, Unit<KernelUnit::avx2>, Unit<KernelUnit::avx512>>;
 
 // Typed fixture: skips, saying why, only when this CPU cannot run the unit.
 template <class U>
