@@ -44,11 +44,12 @@ struct PixelTile {
   int x0, y0, width, height;
 };
 
-// The pixels of [x0, x1) x [y0, y1) in groups of 4 x 2, the groups row by
+// The pixels of [x0, x1) x [y0, y1) in groups of 4 x 4, the groups row by
 // row, partial groups at the right and bottom edges. Traced in this order,
-// eight consecutive samples (one 8-wide packet) cover a 4 x 2 footprint, not
-// a row of 8, and stay closer together through the BVH (bench/README.md).
-inline constexpr int kPixelGroupWidth = 4, kPixelGroupHeight = 2;
+// 16 consecutive samples (one 16-wide packet) cover a 4 x 4 footprint and
+// eight (one 8-wide packet) a 4 x 2 footprint, not a row, and stay closer
+// together through the BVH (bench/README.md).
+inline constexpr int kPixelGroupWidth = 4, kPixelGroupHeight = 4;
 template <class Visit>
 void for_each_pixel_in_groups(int x0, int y0, int x1, int y1, Visit&& visit) {
   for (int gy = y0; gy < y1; gy += kPixelGroupHeight) {

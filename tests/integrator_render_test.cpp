@@ -72,7 +72,7 @@ void expect_same_image(const Framebuffer& a, const Framebuffer& b, const std::st
   EXPECT_EQ(a.id, b.id) << what << ": id";
 }
 
-TEST(Render, PixelGroupsVisitEveryPixelOnceInFourByTwoGroups) {
+TEST(Render, PixelGroupsVisitEveryPixelOnceInFourByFourGroups) {
   // A 17 x 5 region at (3, 7): full groups, then a 1-wide column and a 1-high row.
   const int x0 = 3, y0 = 7, x1 = 20, y1 = 12;
   std::vector<std::pair<int, int>> order;
@@ -84,14 +84,14 @@ TEST(Render, PixelGroupsVisitEveryPixelOnceInFourByTwoGroups) {
     ++visits[std::size_t((y - y0) * (x1 - x0) + (x - x0))];
   }
   EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
-  // The first packet is a 4 x 2 footprint, the second the group to its right.
-  for (int k = 0; k < 16; ++k) {
-    EXPECT_EQ(order[std::size_t(k)], std::make_pair(x0 + 4 * (k / 8) + k % 4, y0 + (k % 8) / 4)) << k;
+  // The first 16 samples are a 4 x 4 footprint (an 8-wide packet: its upper
+  // 4 x 2), the next 16 the group to its right.
+  for (int k = 0; k < 32; ++k) {
+    EXPECT_EQ(order[std::size_t(k)], std::make_pair(x0 + 4 * (k / 16) + k % 4, y0 + (k % 16) / 4)) << k;
   }
-  // The first group row ends with the 1-wide column (x = 19, rows 7 and 8),
+  // The first group row ends with the 1-wide column (x = 19, rows 7 to 10),
   // and the last group row is 1 high.
-  EXPECT_EQ(order[32], std::make_pair(19, 7));
-  EXPECT_EQ(order[33], std::make_pair(19, 8));
+  for (int row = 0; row < 4; ++row) EXPECT_EQ(order[std::size_t(64 + row)], std::make_pair(19, 7 + row)) << row;
   EXPECT_EQ(order.back(), std::make_pair(19, 11));
   EXPECT_EQ(order[order.size() - 2], std::make_pair(18, 11));
 }
