@@ -27,7 +27,7 @@ FLOPS_PER_TEST = {
 def main():
     data = json.load(open(sys.argv[1]))
     rate = {}
-    peak = None
+    peak = {}  # width -> FLOP/s
     for b in data["benchmarks"]:
         if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
             continue
@@ -35,10 +35,11 @@ def main():
         ips = b.get("items_per_second")
         if ips is None:
             continue
-        if name.startswith("peak/fma/w8"):
-            peak = ips
+        pm = re.match(r"^peak/fma/w(\d+)", name)
+        if pm:
+            peak[int(pm.group(1))] = ips
             continue
-        m = re.match(r"^(\w+/\w+)/w(\d)/(\w+)(/\w+)?$", name)
+        m = re.match(r"^(\w+/\w+)/w(\d+)/(\w+)(/\w+)?$", name)
         if not m:
             continue
         kernel, width, mix, variant = m.group(1), int(m.group(2)), m.group(3), (m.group(4) or "")[1:]
@@ -46,22 +47,25 @@ def main():
 
     rows = sorted({(k, mix) for (k, mix, _) in rate})
     lines = [
-        "| kernel/method | rays | w1 Mtests/s | w4 Mtests/s | w8 Mtests/s | w4/w1 | w8/w1 | FLOP/test | w8 % of FMA peak (bound) |",
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
+        "| kernel/method | rays | w1 Mtests/s | w4 Mtests/s | w8 Mtests/s | w16 Mtests/s | w4/w1 | w8/w1 | w16/w1 "
+        "| FLOP/test | w8 % of 8-wide FMA peak | w16 % of 16-wide FMA peak |",
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
     for kernel, mix in rows:
-        r = [rate.get((kernel, mix, w)) for w in (1, 4, 8)]
+        r = [rate.get((kernel, mix, w)) for w in (1, 4, 8, 16)]
         cell = lambda v: f"{v / 1e6:,.0f}" if v else "-"
         ratio = lambda a, b: f"{a / b:.1f}x" if a and b else "-"
         flops = FLOPS_PER_TEST.get(kernel)
-        frac = f"{100 * r[2] * flops / peak:.0f}%" if (flops and r[2] and peak) else "-"
+        frac = lambda v, w: f"{100 * v * flops / peak[w]:.0f}%" if (flops and v and peak.get(w)) else "-"
         lines.append(
-            f"| {kernel} | {mix} | {cell(r[0])} | {cell(r[1])} | {cell(r[2])} | "
-            f"{ratio(r[1], r[0])} | {ratio(r[2], r[0])} | {flops or '-'} | {frac} |"
+            f"| {kernel} | {mix} | {cell(r[0])} | {cell(r[1])} | {cell(r[2])} | {cell(r[3])} | "
+            f"{ratio(r[1], r[0])} | {ratio(r[2], r[0])} | {ratio(r[3], r[0])} | {flops or '-'} | "
+            f"{frac(r[2], 8)} | {frac(r[3], 16)} |"
         )
-    if peak:
+    for w in sorted(peak):
         lines.append("")
-        lines.append(f"Measured 8-wide FMA peak of one core in the same run: {peak / 1e9:.1f} GFLOP/s (`peak/fma/w8`).")
+        lines.append(f"Measured {w}-wide FMA peak of one core in the same run: {peak[w] / 1e9:.1f} GFLOP/s "
+                     f"(`peak/fma/w{w}`).")
     table = "\n".join(lines)
     print(table)
     if len(sys.argv) > 2:

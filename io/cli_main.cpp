@@ -280,8 +280,8 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
       ->type_name("R");
   raw.simd_option = trace.add_option("--simd", raw.simd,
                                      "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4), avx2 "
-                                     "(8) or avx512 (16); every choice finds the same hits. Default: $QUIVER_SIMD, else auto. A "
-                                     "choice this CPU lacks is an error")
+                                     "(8) or avx512 (16); every choice finds the same hits. Default: $QUIVER_SIMD, "
+                                     "else auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
 }
 
@@ -324,8 +324,8 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
       ->type_name("N");
   raw.simd_option = render.add_option("--simd", raw.simd,
                                       "Lane width: auto (the widest this CPU supports), scalar (1), sse4 (4), "
-                                      "avx2 (8) or avx512 (16); every choice gives the same image. Default: $QUIVER_SIMD, else "
-                                      "auto. A choice this CPU lacks is an error")
+                                      "avx2 (8) or avx512 (16); every choice gives the same image. Default: "
+                                      "$QUIVER_SIMD, else auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
   raw.seed_option = render.add_option("--seed", raw.seed,
                     "Seed (unsigned 64-bit) for jittered anti-aliasing and area-light samples. Default: 0")

@@ -27,7 +27,7 @@
 #include <limits>
 
 // GCC 12 reports the deliberately undefined source of AVX-512 intrinsics
-// (_mm512_undefined_ps) as uninitialized (GCC bug 105593, fixed in GCC 13).
+// (_mm512_undefined_ps) as uninitialized (GCC bug 105593).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
