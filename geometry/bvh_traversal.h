@@ -507,17 +507,30 @@ auto prepare_for_leaves(const Ray<float>& ray) {
   }
 }
 
-// One ray's leaf tests in the single-ray walks: the method's prepared ray
-// and, for a method with a per-ray frame (the watertight triangle test), that
-// frame fixed at compile time (Axes; void: the method's own intersect).
-template <class Method, class Prepared, class Axes>
+// Method::intersect for unit U. GCC leaves the one-ray (float) test of a
+// kind without a scan orientation out of line in the single-ray walks; a
+// plain call would then reach one copy, built with one unit's flags, from
+// every unit. Flattened into a function whose name carries U, each unit keeps
+// its own (tests/geometry_streams_unit_symbols_test.cmake). Forcing that
+// test inline instead cost gears-s4's packets 2.5-5%.
+template <KernelUnit U, class Method, class Prepared, class L, class F>
+[[gnu::flatten]] inline Mask<F> intersect_in_unit(const Prepared& prepared, const L& prims, const F& tmax,
+                                                  const Mask<F>& active, Candidate<F>& out) {
+  return Method::intersect(prepared, prims, tmax, active, out);
+}
+
+// One ray's leaf tests in the single-ray walks of unit U: the method's
+// prepared ray and, for a method with a per-ray frame (the watertight
+// triangle test), that frame fixed at compile time (Axes; void: the method's
+// own intersect).
+template <KernelUnit U, class Method, class Prepared, class Axes>
 struct LeafRay {
   Prepared prepared;
 
   template <class L, class F>
   Mask<F> intersect(const L& prims, const F& tmax, const Mask<F>& active, Candidate<F>& out) const {
     if constexpr (std::is_void_v<Axes>) {
-      return Method::intersect(prepared, prims, tmax, active, out);
+      return intersect_in_unit<U, Method>(prepared, prims, tmax, active, out);
     } else {
       return Method::template intersect_in<Axes>(prepared, prims, tmax, active, out);
     }
@@ -531,13 +544,13 @@ concept FixesAxesPerRay = requires(const Ray<float>& ray) {
 
 // Hands a prepared ray and its compile-time frame to walk as a LeafRay.
 // (Named functors, not lambdas: GCC's flatten left lambdas out of line.)
-template <class Method, class Walk>
+template <KernelUnit U, class Method, class Walk>
 struct WalkInFrame {
   const Walk& walk;
 
   template <class Prepared, class Axes>
   [[gnu::always_inline]] void operator()(const Prepared& prepared, Axes) const {
-    walk(LeafRay<Method, Prepared, Axes>{prepared});
+    walk(LeafRay<U, Method, Prepared, Axes>{prepared});
   }
 };
 
@@ -548,10 +561,10 @@ template <KernelUnit U, class Method, class S, class Walk>
 [[gnu::always_inline]] inline void with_leaf_ray(const Ray<float>& ray, const Walk& walk) {
   using F = LeafScanLanes<U>;
   if constexpr (ScanStore<S> && FixesAxesPerRay<Method, F>) {
-    Method::template with_fixed_axes<F>(ray, WalkInFrame<Method, Walk>{walk});
+    Method::template with_fixed_axes<F>(ray, WalkInFrame<U, Method, Walk>{walk});
   } else {
     using Prepared = decltype(prepare_for_leaves<U, Method, S>(ray));
-    walk(LeafRay<Method, Prepared, void>{prepare_for_leaves<U, Method, S>(ray)});
+    walk(LeafRay<U, Method, Prepared, void>{prepare_for_leaves<U, Method, S>(ray)});
   }
 }
 

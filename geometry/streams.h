@@ -101,7 +101,7 @@ template <KernelUnit U, class Method, class S>
 
 // The closest of a lane set's hits; ties go to the smaller id.
 template <class F>
-Hit<float> closest_lane(const Hit<F>& hit, float tmax) {
+[[gnu::always_inline]] inline Hit<float> closest_lane(const Hit<F>& hit, float tmax) {
   if constexpr (lane_count<F> == 1) {
     return hit;
   } else {

@@ -150,7 +150,7 @@ struct AxesFixed {
 
 struct TriangleWatertight {
   template <class F>
-  static WatertightRay<F> prepare(const Ray<F>& ray) {
+  [[gnu::always_inline]] static WatertightRay<F> prepare(const Ray<F>& ray) {
     using namespace triangle_detail;
     const Vec3<F> d = ray.direction;
     const F ax = abs(d.x), ay = abs(d.y), az = abs(d.z);
