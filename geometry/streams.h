@@ -22,7 +22,8 @@
 // Each kind's <kind>_streams.cpp is compiled once per kernel unit and
 // instantiates these loops for it. The unit is a template argument, so the
 // two float units (scalar, scalar_fma) get distinct symbols, and the loops are
-// flattened, so no kernel code leaves them as a shared out-of-line copy.
+// flattened, so no kernel code leaves them as a shared out-of-line copy
+// (tests/geometry_streams_unit_symbols_test.cmake checks the objects).
 #pragma once
 
 #include <cstddef>
