@@ -76,15 +76,9 @@ struct NodeLanesOf<KernelUnit::avx2, 8> {
   using type = UnitLanes<KernelUnit::avx2>;
 };
 #endif
-#if XSIMD_WITH_AVX512BW  // nodes of 8 as in the avx2 unit
-template <>
-struct NodeLanesOf<KernelUnit::avx512, 4> {
-  using type = xsimd::batch<float, xsimd::sse4_2>;
-};
-template <>
-struct NodeLanesOf<KernelUnit::avx512, 8> {
-  using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
-};
+#if XSIMD_WITH_AVX512BW
+template <int N>
+struct NodeLanesOf<KernelUnit::avx512, N> : NodeLanesOf<KernelUnit::avx2, N> {};  // nodes as in the avx2 unit
 #endif
 
 // Lanes for one ray against a leaf's primitives (the scan kernels): the
@@ -97,7 +91,7 @@ struct LeafScanLanesOf {
 #if XSIMD_WITH_AVX512BW
 template <>
 struct LeafScanLanesOf<KernelUnit::avx512> {
-  using type = xsimd::batch<float, xsimd::fma3<xsimd::avx2>>;
+  using type = UnitLanes<KernelUnit::avx2>;
 };
 #endif
 template <KernelUnit U>
@@ -256,10 +250,11 @@ struct NodeRay {
   explicit NodeRay(const Ray<float>& ray) {
     for (int a = 0; a < 3; ++a) {
       const float inv = 1.f / ray.direction[a];
+      const bool reversed = inv < 0.f;
       origin[a] = G(ray.origin[a]);
       inv_dir[a] = G(inv);
-      near_plane[a] = near_plane_offset<N>(a, inv < 0.f);
-      far_plane[a] = far_plane_offset<N>(a, inv < 0.f);
+      near_plane[a] = near_plane_offset<N>(a, reversed);
+      far_plane[a] = far_plane_offset<N>(a, reversed);
     }
   }
   const G& entry_origin(int a) const { return origin[a]; }
