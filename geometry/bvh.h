@@ -28,7 +28,9 @@
 
 namespace quiver {
 
-// Child slot of a wide node: >= 0 is an inner node; < 0 a leaf holding
+// Child slot of a wide node: >= 0 is an inner node, named by the float
+// offset of its block (node index * node_floats), so that a walk reaches
+// it with one add; < 0 a leaf holding
 // primitives [first, first + count) of store 0 or 1 (a tree can index two
 // stores of one kind, such as a scene's opaque and transmissive layers;
 // count 0 is an empty slot).
@@ -74,6 +76,8 @@ struct Bvh {
   std::int32_t child(std::size_t node, int slot) const {
     return std::bit_cast<std::int32_t>(boxes(node)[child_slot(static_cast<std::size_t>(width), slot)]);
   }
+  // The index of an inner child (!is_leaf(child)).
+  std::size_t node_of(std::int32_t child) const { return static_cast<std::size_t>(child) / node_floats(); }
   std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
@@ -84,15 +88,19 @@ struct BvhNodes {
   const float* data;
 
   explicit BvhNodes(const Bvh& bvh) : data(bvh.nodes.data()) {}
-  const float* block(std::int32_t node) const { return data + static_cast<std::size_t>(node) * node_floats(N); }
-  static std::int32_t child(const float* block, int slot) {
-    return std::bit_cast<std::int32_t>(block[child_slot(N, slot)]);
+  // The block of an inner child slot's node; the root's is block(0).
+  const float* block(std::int32_t node) const { return data + node; }
+  static std::int32_t child(const float* block, unsigned slot) {
+    return std::bit_cast<std::int32_t>(block[6 * N + slot]);
   }
+  static_assert(child_slot(N, 0) == 6 * N);
 };
 
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty
 // input gives an empty Bvh. Throws std::length_error past kMaxBvhPrimitives
-// and std::invalid_argument for a bad width or leaf size.
+// (or if the node offsets would pass 2^31 floats, far beyond any tree of
+// that many primitives seen) and std::invalid_argument for a bad width or
+// leaf size.
 // `store_of` (empty: every primitive in store 0) puts primitive i in store
 // store_of[i] (0 or 1): each leaf then holds one store's primitives, and its
 // range counts positions in that store's part of `order` (order filtered to

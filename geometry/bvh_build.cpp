@@ -300,9 +300,13 @@ class Collapser {
     return slots;
   }
 
+  // Returns the node's child-slot value (its block's float offset).
   std::int32_t write_node(const std::vector<std::int32_t>& slots, int depth) {
     const std::size_t index = bvh_.node_count++;
     const std::size_t w = static_cast<std::size_t>(width_);
+    if ((index + 1) * bvh_.node_floats() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+      throw std::length_error("BVH nodes exceed 2^31 floats");
+    }
     bvh_.nodes.resize(bvh_.node_count * bvh_.node_floats());
     float* block = bvh_.nodes.data() + index * bvh_.node_floats();
     bvh_.depth = std::max(bvh_.depth, depth);
@@ -328,7 +332,7 @@ class Collapser {
       const std::int32_t child = write_node(open_children(slots[s]), depth + 1);
       bvh_.nodes[index * bvh_.node_floats() + child_slot(w, static_cast<int>(s))] = std::bit_cast<float>(child);
     }
-    return static_cast<std::int32_t>(index);
+    return static_cast<std::int32_t>(index * bvh_.node_floats());
   }
 
   const BinaryNode* nodes_;

@@ -238,29 +238,47 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
 
 // ---- a node's children in one pass ----------------------------------------------
 
-// One ray set up for a node's children: origin and 1/d in node lanes, and
-// per axis where a node's box block keeps the near and the far plane (lo or
-// hi by the sign of 1/d, chosen once per ray).
+// The ratio by which the single-ray and frustum node tests widen an
+// interval: entry <= exit * kSlabWidening whenever entry * (1 - kSlabSlack)
+// <= exit * (1 + kSlabSlack) in rounded arithmetic (exit >= 0), with 8 ulps
+// to spare for the roundings of exits scaled by it in advance.
+inline constexpr float kSlabWidening = (1.f + kSlabSlack) / (1.f - kSlabSlack) * (1.f + 0x1p-21f);
+
+// One ray set up for a node's children. The entry distance of a plane p on
+// axis a is one fma, p * (1/d) - offset (Embree's form: the path from one
+// node to the next runs through it), offset = o * (1/d) moved by 2^-22
+// |o * (1/d)| toward the conservative side (up for entries, down for
+// exits), which covers the rounding of o * (1/d) and of the offset (each
+// <= 2^-24 of it), so the interval contains the exact (p - o) * (1/d)'s;
+// the fma's own rounding is relative and within the slack. Exits come
+// scaled by kSlabWidening (1/d and the offset scaled per ray), so the test
+// needs no multiply. A zero d is taken as +-2^-80 (sign kept): 1/d stays
+// finite, and an axis-parallel ray tests the slab it lies in, widened by
+// 2^-22 |o|. Per axis the near and far plane (lo or hi by the sign of 1/d)
+// are chosen once per ray.
 template <KernelUnit U, int N>
 struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
-  std::array<G, 3> origin, inv_dir;
+  std::array<G, 3> entry_inv_dir, entry_offset, exit_inv_dir, exit_offset;  // offsets negated
   std::array<int, 3> near_plane, far_plane;  // float offsets in the block
 
   explicit NodeRay(const Ray<float>& ray) {
     for (int a = 0; a < 3; ++a) {
-      const float inv = 1.f / ray.direction[a];
+      const float d = ray.direction[a];
+      const float inv = 1.f / (std::fabs(d) < 0x1p-80f ? std::copysign(0x1p-80f, d) : d);
+      const float offset = ray.origin[a] * inv;
+      const float margin = 0x1p-22f * std::fabs(offset);
       const bool reversed = inv < 0.f;
-      origin[a] = G(ray.origin[a]);
-      inv_dir[a] = G(inv);
+      entry_inv_dir[a] = G(inv);
+      entry_offset[a] = G(-(offset + margin));
+      exit_inv_dir[a] = G(inv * kSlabWidening);
+      exit_offset[a] = G(-((offset - margin) * kSlabWidening));
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
     }
   }
-  const G& entry_origin(int a) const { return origin[a]; }
-  const G& entry_inv_dir(int a) const { return inv_dir[a]; }
-  const G& exit_origin(int a) const { return origin[a]; }
-  const G& exit_inv_dir(int a) const { return inv_dir[a]; }
+  G entry(int a, const G& plane) const { return fma(plane, entry_inv_dir[a], entry_offset[a]); }
+  G widened_exit(int a, const G& plane) const { return fma(plane, exit_inv_dir[a], exit_offset[a]); }
 };
 
 // A packet's active rays bounded per axis, origins and 1/d as intervals, so
@@ -277,7 +295,8 @@ struct NodeRay {
 template <KernelUnit U, int N>
 struct NodeFrustum {
   using G = typename NodeLanesOf<U, N>::type;
-  std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;
+  std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;  // exits' scaled by
+                                                                                         // kSlabWidening
   std::array<int, 3> near_plane, far_plane;
   float tmin = 0.f, tmax = 0.f;  // the smallest tmin and the largest tmax of the active lanes
   bool usable = false;
@@ -301,20 +320,22 @@ struct NodeFrustum {
       origin_at_entry[a] = G(rev ? smallest(o) : largest(o));
       inv_dir_at_entry[a] = G(rev ? largest(inv) : smallest(inv));
       origin_at_exit[a] = G(rev ? largest(o) : smallest(o));
-      inv_dir_at_exit[a] = G(rev ? smallest(inv) : largest(inv));
+      inv_dir_at_exit[a] = G((rev ? smallest(inv) : largest(inv)) * kSlabWidening);
     }
     tmin = smallest(tmin_lanes);
     tmax = largest(tmax_lanes);
     usable = true;
   }
-  const G& entry_origin(int a) const { return origin_at_entry[a]; }
-  const G& entry_inv_dir(int a) const { return inv_dir_at_entry[a]; }
-  const G& exit_origin(int a) const { return origin_at_exit[a]; }
-  const G& exit_inv_dir(int a) const { return inv_dir_at_exit[a]; }
+  G entry(int a, const G& plane) const { return (plane - origin_at_entry[a]) * inv_dir_at_entry[a]; }
+  G widened_exit(int a, const G& plane) const { return (plane - origin_at_exit[a]) * inv_dir_at_exit[a]; }
 };
 
-// The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]:
-// bit c of the result, near[c] their widened entry distances.
+// The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]
+// (widened: exits scaled by kSlabWidening): bit c of the result, near[c]
+// their entry distances times 1 - kSlabSlack (the stack's keys, as the
+// packet walks'). The interval's max and min are two-level trees (a NaN
+// distance drops out, and may take the other plane of its pair with it:
+// never a child less).
 template <int N, class R>
 [[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmin, float tmax,
                                                       std::array<float, N>& near) {
@@ -322,20 +343,20 @@ template <int N, class R>
   constexpr int kG = lane_count<G>;
   unsigned bits = 0;
   for (int c = 0; c < N; c += kG) {
-    G t0(tmin), t1(tmax);
+    std::array<G, 3> entry, exit;
     for (int a = 0; a < 3; ++a) {
-      const G entry = (load_lanes<G>(block + ray.near_plane[a] + c) - ray.entry_origin(a)) * ray.entry_inv_dir(a);
-      const G exit = (load_lanes<G>(block + ray.far_plane[a] + c) - ray.exit_origin(a)) * ray.exit_inv_dir(a);
-      narrow_interval(t0, t1, entry, exit);
+      entry[a] = ray.entry(a, load_lanes<G>(block + ray.near_plane[a] + c));
+      exit[a] = ray.widened_exit(a, load_lanes<G>(block + ray.far_plane[a] + c));
     }
-    G lane_near;
-    const Mask<G> enters = widened_overlap(t0, t1, lane_near);
+    const G t0 = max(max(G(tmin), entry[0]), max(entry[1], entry[2]));
+    const G t1 = min(min(G(tmax * kSlabWidening), exit[0]), min(exit[1], exit[2]));
+    const G lane_near = t0 * G(1.f - kSlabSlack);
     if constexpr (kG == 1) {
       near[c] = lane_near;
     } else {
       store_lanes(lane_near, near.data() + c);
     }
-    bits |= lane_bits(enters) << c;
+    bits |= lane_bits(t0 <= t1) << c;
   }
   return bits;
 }

@@ -82,9 +82,10 @@ void check_subtree(const Bvh& bvh, std::size_t node, const std::vector<Box>& box
       }
       continue;
     }
-    ASSERT_LT(static_cast<std::size_t>(child), bvh.node_count);
-    ASSERT_GT(static_cast<std::size_t>(child), node);  // depth-first layout: no cycles
-    check_subtree(bvh, static_cast<std::size_t>(child), boxes, order, positions, reached, max_leaf, depth + 1);
+    ASSERT_EQ(static_cast<std::size_t>(child) % bvh.node_floats(), 0u);  // a block's offset
+    ASSERT_LT(bvh.node_of(child), bvh.node_count);
+    ASSERT_GT(bvh.node_of(child), node);  // depth-first layout: no cycles
+    check_subtree(bvh, bvh.node_of(child), boxes, order, positions, reached, max_leaf, depth + 1);
   }
 }
 
@@ -482,6 +483,54 @@ TYPED_TEST(BvhTraversalTest, TrianglesMatchTheScanBitForBit) {
     check_kind<kUnit>(random_triangles(s, 400), build_triangles, triangle_streams<KernelUnit::scalar>(m),
                       triangle_bvh_streams<kUnit>(m), rays);
   }
+}
+
+// A bumpy sheet of small triangles far from the world origin (cells of
+// 0.02 at about 8,000), and rays leaving it as secondary rays do: from
+// points just above random triangles, in random directions, so most hit a
+// neighbour at a small t. Box planes then lie near ray origins of large
+// |o|, where a slab test that rounds o * (1/d) without a margin culls
+// children it must enter (NodeRay in geometry/bvh_traversal.h).
+std::vector<TriangleDesc> far_sheet(RaySampler& s, const Vec3<float>& corner, int side, float cell) {
+  std::vector<float> height(static_cast<std::size_t>((side + 1) * (side + 1)));
+  for (float& h : height) h = s.uniform(0.f, 0.6f * cell);
+  const auto at = [&](int i, int j) {
+    const float h = height[static_cast<std::size_t>(j * (side + 1) + i)];
+    return corner + Vec3<float>(static_cast<float>(i) * cell, h, static_cast<float>(j) * cell);
+  };
+  std::vector<TriangleDesc> out;
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      TriangleDesc lower, upper;
+      lower.p = {at(i, j), at(i + 1, j), at(i + 1, j + 1)};
+      upper.p = {at(i, j), at(i + 1, j + 1), at(i, j + 1)};
+      out.push_back(lower);
+      out.push_back(upper);
+    }
+  }
+  return out;
+}
+
+RaySoA rays_leaving(RaySampler& s, const std::vector<TriangleDesc>& sheet, int count) {
+  std::vector<Ray<float>> rays;
+  for (int k = 0; k < count; ++k) {
+    const TriangleDesc& t = sheet[static_cast<std::size_t>(s.uniform(0.f, 0.999f) * static_cast<float>(sheet.size()))];
+    const float u = s.uniform(0.05f, 0.45f), v = s.uniform(0.05f, 0.45f);
+    const Vec3<float> on = t.p[0] + (t.p[1] - t.p[0]) * u + (t.p[2] - t.p[0]) * v;
+    rays.push_back({on + Vec3<float>(0.f, 0.002f, 0.f), s.unit_direction(), 0.f,
+                    std::numeric_limits<float>::infinity()});
+  }
+  RaySoA soa = testing::to_soa(rays);
+  testing::poison_padding(soa);
+  return soa;
+}
+
+TYPED_TEST(BvhTraversalTest, TrianglesFarFromTheOriginMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(25);
+  const std::vector<TriangleDesc> sheet = far_sheet(s, {7000.f, -6000.f, 8000.f}, 24, 0.02f);
+  check_kind<kUnit>(sheet, build_triangles, triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays_leaving(s, sheet, 3000));
 }
 
 TYPED_TEST(BvhTraversalTest, PolygonsMatchTheScanBitForBit) {
