@@ -21,11 +21,13 @@
 //
 // Slab test: Williams, Barrus, Morley, Shirley, "An efficient and robust
 // ray-box intersection algorithm" (2005): near/far planes chosen by the sign
-// of 1/d, so d = +-0 gives +-inf, never 0 * inf for an origin off the slab;
-// a NaN slab value is dropped by the order of the min/max operands. The
-// interval is then widened by kSlabSlack relative (beyond Ize's 2 gamma(3),
-// "Robust BVH ray traversal", JCGT 2013, to cover the kernels' own error in
-// t), so no primitive a brute-force scan reports is culled.
+// of 1/d; each plane's distance one fma, p * (1/d) - o * (1/d), the offset
+// moved by a margin that keeps the interval around the exact one (SlabTerms;
+// a zero d as +-2^-80); a NaN distance is dropped by the order of the
+// min/max operands. The interval is widened by kSlabSlack relative (beyond
+// Ize's 2 gamma(3), "Robust BVH ray traversal", JCGT 2013, to cover the
+// kernels' own error in t), so no primitive a brute-force scan reports is
+// culled.
 //
 // Closest hit: the lexicographic minimum of (t, id) over the store, as the
 // brute-force scan in id order gives it: kernels get tmax = next_float_up(t)
@@ -97,7 +99,7 @@ struct LeafScanLanesOf<KernelUnit::avx512> {
 template <KernelUnit U>
 using LeafScanLanes = typename LeafScanLanesOf<U>::type;
 
-// A ray prepared for slab tests.
+// A packet's origins, 1/d (as SlabTerms computes it) and their signs, for the frustum and the choice of planes.
 template <class F>
 struct SlabRay {
   Vec3<F> origin, inv_dir;
@@ -106,37 +108,7 @@ struct SlabRay {
   SlabRay(const Vec3<F>& o, const Vec3<F>& inv) : origin(o), inv_dir(inv) {
     for (int a = 0; a < 3; ++a) negative[a] = inv_dir[a] < F(0.f);
   }
-  explicit SlabRay(const Ray<F>& ray)
-      : SlabRay(ray.origin, Vec3<F>(F(1.f) / ray.direction.x, F(1.f) / ray.direction.y, F(1.f) / ray.direction.z)) {}
 };
-
-// The slab interval [t0, t1] narrowed by one axis; a NaN `enter` or
-// `leave` (0 * inf) is dropped by the operand order of max and min.
-template <class F>
-inline void narrow_interval(F& t0, F& t1, const F& enter, const F& leave) {
-  t0 = max(t0, enter);
-  t1 = min(t1, leave);
-}
-
-// Lanes whose widened interval is not empty; `near` receives the widened entry.
-template <class F>
-inline Mask<F> widened_overlap(const F& t0, const F& t1, F& near) {
-  near = t0 * F(1.f - kSlabSlack);
-  return near <= t1 * F(1.f + kSlabSlack);
-}
-
-// Lanes whose widened interval [near, far] within [tmin, tmax] is not empty;
-// `near` receives the widened entry distance.
-template <class F>
-inline Mask<F> slab_interval(const SlabRay<F>& ray, const Vec3<F>& lo, const Vec3<F>& hi, const F& tmin,
-                             const F& tmax, F& near) {
-  F t0 = tmin, t1 = tmax;
-  for (int a = 0; a < 3; ++a) {
-    narrow_interval(t0, t1, (select(ray.negative[a], hi[a], lo[a]) - ray.origin[a]) * ray.inv_dir[a],
-                    (select(ray.negative[a], lo[a], hi[a]) - ray.origin[a]) * ray.inv_dir[a]);
-  }
-  return widened_overlap(t0, t1, near);
-}
 
 // Float offsets in a node block of width N of axis a's near and far
 // planes: lo and hi, swapped when 1/d < 0 (reversed).
@@ -149,12 +121,39 @@ constexpr int far_plane_offset(int a, bool reversed) {
   return (reversed ? a : 3 + a) * N;
 }
 
-// Corner 0 (lo) or 1 (hi) of child box `child` in a node block of width N, broadcast.
-template <class F, int N>
-inline Vec3<F> node_box_corner(const float* block, int corner, int child) {
-  const float* b = block + child;
-  return {F(b[(3 * corner + 0) * N]), F(b[(3 * corner + 1) * N]), F(b[(3 * corner + 2) * N])};
-}
+// The ratio by which the node tests widen an interval: entry <= exit *
+// kSlabWidening whenever entry * (1 - kSlabSlack) <= exit * (1 +
+// kSlabSlack) in rounded arithmetic (exit >= 0), with 8 ulps to spare for
+// the roundings of exits scaled by it in advance.
+inline constexpr float kSlabWidening = (1.f + kSlabSlack) / (1.f - kSlabSlack) * (1.f + 0x1p-21f);
+
+// A ray's terms on one axis for the node tests. The entry distance of a
+// plane p is one fma, p * (1/d) - offset (Embree's form: the path from one
+// node to the next runs through it), offset = o * (1/d) moved by 2^-22
+// |o * (1/d)| toward the conservative side (up for entries, down for
+// exits), which covers the rounding of o * (1/d) and of the offset (each
+// <= 2^-24 of it), so the interval contains the exact (p - o) * (1/d)'s;
+// the fma's own rounding is relative and within the slack. Exits come
+// scaled by kSlabWidening (1/d and the offset scaled per ray), so the test
+// needs no multiply. A zero d is taken as +-2^-80 (sign kept): 1/d stays
+// finite, and an axis-parallel ray tests the slab it lies in, widened by
+// 2^-22 |o|.
+template <class F>
+struct SlabTerms {
+  F entry_inv_dir, entry_offset, exit_inv_dir, exit_offset;  // offsets negated
+
+  SlabTerms(const F& origin, const F& direction) {
+    const F tiny(0x1p-80f);
+    entry_inv_dir = F(1.f) / select(abs(direction) < tiny, copysign(tiny, direction), direction);
+    const F offset = origin * entry_inv_dir;
+    const F margin = F(0x1p-22f) * abs(offset);
+    entry_offset = -(offset + margin);
+    exit_inv_dir = entry_inv_dir * F(kSlabWidening);
+    exit_offset = -((offset - margin) * F(kSlabWidening));
+  }
+  F entry(const F& plane) const { return fma(plane, entry_inv_dir, entry_offset); }
+  F widened_exit(const F& plane) const { return fma(plane, exit_inv_dir, exit_offset); }
+};
 
 // A packet set up for slab tests against a node's children. When every
 // active lane's 1/d has the same signs, each axis' near and far planes are
@@ -162,12 +161,16 @@ inline Vec3<F> node_box_corner(const float* block, int corner, int child) {
 // lanes are masked off by the caller.
 template <class F, int N>
 struct PacketSlab {
-  SlabRay<F> ray;
+  std::array<SlabTerms<F>, 3> terms;
+  SlabRay<F> ray;  // 1/d as in terms
   bool same_planes = true;
   std::array<bool, 3> reversed{};                // some active lane's 1/d < 0
   std::array<int, 3> near_plane{}, far_plane{};  // float offsets in a node block
 
-  PacketSlab(const Ray<F>& r, const Mask<F>& active) : ray(r) {
+  PacketSlab(const Ray<F>& r, const Mask<F>& active)
+      : terms{SlabTerms<F>(r.origin.x, r.direction.x), SlabTerms<F>(r.origin.y, r.direction.y),
+              SlabTerms<F>(r.origin.z, r.direction.z)},
+        ray(r.origin, {terms[0].entry_inv_dir, terms[1].entry_inv_dir, terms[2].entry_inv_dir}) {
     for (int a = 0; a < 3; ++a) {
       reversed[a] = any(ray.negative[a] && active);
       same_planes = same_planes && !(reversed[a] && any(and_not(active, ray.negative[a])));
@@ -176,19 +179,25 @@ struct PacketSlab {
     }
   }
 
-  // Lanes entering child c of a node block within [tmin, tmax]; near as in slab_interval.
+  // Lanes entering child c of a node block within [tmin, tmax] (widened as
+  // enter_children does); near receives their entry distances times 1 - kSlabSlack.
   Mask<F> enters(const float* block, int c, const F& tmin, const F& tmax, F& near) const {
-    if (!same_planes) {
-      return slab_interval(ray, node_box_corner<F, N>(block, 0, c), node_box_corner<F, N>(block, 1, c), tmin, tmax,
-                           near);
-    }
+    std::array<F, 3> entry, exit;
     const float* box = block + c;
-    F t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; ++a) {
-      narrow_interval(t0, t1, (F(box[near_plane[a]]) - ray.origin[a]) * ray.inv_dir[a],
-                      (F(box[far_plane[a]]) - ray.origin[a]) * ray.inv_dir[a]);
+      const F near_plane_lanes = same_planes ? F(box[near_plane[a]])
+                                             : select(ray.negative[a], F(box[far_plane_offset<N>(a, false)]),
+                                                      F(box[near_plane_offset<N>(a, false)]));
+      const F far_plane_lanes = same_planes ? F(box[far_plane[a]])
+                                            : select(ray.negative[a], F(box[near_plane_offset<N>(a, false)]),
+                                                     F(box[far_plane_offset<N>(a, false)]));
+      entry[a] = terms[a].entry(near_plane_lanes);
+      exit[a] = terms[a].widened_exit(far_plane_lanes);
     }
-    return widened_overlap(t0, t1, near);
+    const F t0 = max(max(tmin, entry[0]), max(entry[1], entry[2]));
+    const F t1 = min(min(tmax * F(kSlabWidening), exit[0]), min(exit[1], exit[2]));
+    near = t0 * F(1.f - kSlabSlack);
+    return t0 <= t1;
   }
 };
 
@@ -238,24 +247,9 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
 
 // ---- a node's children in one pass ----------------------------------------------
 
-// The ratio by which the single-ray and frustum node tests widen an
-// interval: entry <= exit * kSlabWidening whenever entry * (1 - kSlabSlack)
-// <= exit * (1 + kSlabSlack) in rounded arithmetic (exit >= 0), with 8 ulps
-// to spare for the roundings of exits scaled by it in advance.
-inline constexpr float kSlabWidening = (1.f + kSlabSlack) / (1.f - kSlabSlack) * (1.f + 0x1p-21f);
-
-// One ray set up for a node's children. The entry distance of a plane p on
-// axis a is one fma, p * (1/d) - offset (Embree's form: the path from one
-// node to the next runs through it), offset = o * (1/d) moved by 2^-22
-// |o * (1/d)| toward the conservative side (up for entries, down for
-// exits), which covers the rounding of o * (1/d) and of the offset (each
-// <= 2^-24 of it), so the interval contains the exact (p - o) * (1/d)'s;
-// the fma's own rounding is relative and within the slack. Exits come
-// scaled by kSlabWidening (1/d and the offset scaled per ray), so the test
-// needs no multiply. A zero d is taken as +-2^-80 (sign kept): 1/d stays
-// finite, and an axis-parallel ray tests the slab it lies in, widened by
-// 2^-22 |o|. Per axis the near and far plane (lo or hi by the sign of 1/d)
-// are chosen once per ray.
+// One ray set up for a node's children: its SlabTerms in node lanes, and
+// per axis the near and far plane (lo or hi by the sign of 1/d), chosen
+// once per ray.
 template <KernelUnit U, int N>
 struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
@@ -264,15 +258,12 @@ struct NodeRay {
 
   explicit NodeRay(const Ray<float>& ray) {
     for (int a = 0; a < 3; ++a) {
-      const float d = ray.direction[a];
-      const float inv = 1.f / (std::fabs(d) < 0x1p-80f ? std::copysign(0x1p-80f, d) : d);
-      const float offset = ray.origin[a] * inv;
-      const float margin = 0x1p-22f * std::fabs(offset);
-      const bool reversed = inv < 0.f;
-      entry_inv_dir[a] = G(inv);
-      entry_offset[a] = G(-(offset + margin));
-      exit_inv_dir[a] = G(inv * kSlabWidening);
-      exit_offset[a] = G(-((offset - margin) * kSlabWidening));
+      const SlabTerms<float> terms(ray.origin[a], ray.direction[a]);
+      const bool reversed = terms.entry_inv_dir < 0.f;
+      entry_inv_dir[a] = G(terms.entry_inv_dir);
+      entry_offset[a] = G(terms.entry_offset);
+      exit_inv_dir[a] = G(terms.exit_inv_dir);
+      exit_offset[a] = G(terms.exit_offset);
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
     }

@@ -103,6 +103,7 @@ inline std::int32_t select(bool m, std::int32_t a, std::int32_t b) { return m ? 
 inline float fma(float a, float b, float c) { return std::fma(a, b, c); }
 inline float sqrt(float a) { return std::sqrt(a); }
 inline float abs(float a) { return std::fabs(a); }
+inline float copysign(float magnitude, float sign) { return std::copysign(magnitude, sign); }
 inline bool any(bool m) { return m; }
 inline bool all(bool m) { return m; }
 inline bool none(bool m) { return !m; }
@@ -196,6 +197,10 @@ inline xsimd::batch<float, A> sqrt(const xsimd::batch<float, A>& a) {
 template <class A>
 inline xsimd::batch<float, A> abs(const xsimd::batch<float, A>& a) {
   return xsimd::abs(a);
+}
+template <class A>
+inline xsimd::batch<float, A> copysign(const xsimd::batch<float, A>& magnitude, const xsimd::batch<float, A>& sign) {
+  return xsimd::copysign(magnitude, sign);
 }
 template <class A>
 inline bool any(const xsimd::batch_bool<float, A>& m) {
