@@ -99,17 +99,6 @@ struct LeafScanLanesOf<KernelUnit::avx512> {
 template <KernelUnit U>
 using LeafScanLanes = typename LeafScanLanesOf<U>::type;
 
-// A packet's origins, 1/d (as SlabTerms computes it) and their signs, for the frustum and the choice of planes.
-template <class F>
-struct SlabRay {
-  Vec3<F> origin, inv_dir;
-  std::array<Mask<F>, 3> negative;  // 1/d < 0: the near plane is hi
-
-  SlabRay(const Vec3<F>& o, const Vec3<F>& inv) : origin(o), inv_dir(inv) {
-    for (int a = 0; a < 3; ++a) negative[a] = inv_dir[a] < F(0.f);
-  }
-};
-
 // Float offsets in a node block of width N of axis a's near and far
 // planes: lo and hi, swapped when 1/d < 0 (reversed).
 template <int N>
@@ -161,19 +150,21 @@ struct SlabTerms {
 // lanes are masked off by the caller.
 template <class F, int N>
 struct PacketSlab {
+  Vec3<F> origin;
   std::array<SlabTerms<F>, 3> terms;
-  SlabRay<F> ray;  // 1/d as in terms
+  std::array<Mask<F>, 3> negative;               // 1/d < 0: the near plane is hi
   bool same_planes = true;
   std::array<bool, 3> reversed{};                // some active lane's 1/d < 0
   std::array<int, 3> near_plane{}, far_plane{};  // float offsets in a node block
 
   PacketSlab(const Ray<F>& r, const Mask<F>& active)
-      : terms{SlabTerms<F>(r.origin.x, r.direction.x), SlabTerms<F>(r.origin.y, r.direction.y),
-              SlabTerms<F>(r.origin.z, r.direction.z)},
-        ray(r.origin, {terms[0].entry_inv_dir, terms[1].entry_inv_dir, terms[2].entry_inv_dir}) {
+      : origin(r.origin),
+        terms{SlabTerms<F>(r.origin.x, r.direction.x), SlabTerms<F>(r.origin.y, r.direction.y),
+              SlabTerms<F>(r.origin.z, r.direction.z)} {
     for (int a = 0; a < 3; ++a) {
-      reversed[a] = any(ray.negative[a] && active);
-      same_planes = same_planes && !(reversed[a] && any(and_not(active, ray.negative[a])));
+      negative[a] = terms[a].entry_inv_dir < F(0.f);
+      reversed[a] = any(negative[a] && active);
+      same_planes = same_planes && !(reversed[a] && any(and_not(active, negative[a])));
       near_plane[a] = near_plane_offset<N>(a, reversed[a]);
       far_plane[a] = far_plane_offset<N>(a, reversed[a]);
     }
@@ -186,10 +177,10 @@ struct PacketSlab {
     const float* box = block + c;
     for (int a = 0; a < 3; ++a) {
       const F near_plane_lanes = same_planes ? F(box[near_plane[a]])
-                                             : select(ray.negative[a], F(box[far_plane_offset<N>(a, false)]),
+                                             : select(negative[a], F(box[far_plane_offset<N>(a, false)]),
                                                       F(box[near_plane_offset<N>(a, false)]));
       const F far_plane_lanes = same_planes ? F(box[far_plane[a]])
-                                            : select(ray.negative[a], F(box[near_plane_offset<N>(a, false)]),
+                                            : select(negative[a], F(box[near_plane_offset<N>(a, false)]),
                                                      F(box[far_plane_offset<N>(a, false)]));
       entry[a] = terms[a].entry(near_plane_lanes);
       exit[a] = terms[a].widened_exit(far_plane_lanes);
@@ -298,15 +289,16 @@ struct NodeFrustum {
       : near_plane(slab.near_plane), far_plane(slab.far_plane) {
     Mask<F> numbers = tmin_lanes >= F(0.f) && tmax_lanes == tmax_lanes;
     for (int a = 0; a < 3; ++a) {
-      numbers = numbers && slab.ray.origin[a] == slab.ray.origin[a] && slab.ray.inv_dir[a] == slab.ray.inv_dir[a];
+      numbers = numbers && slab.origin[a] == slab.origin[a] &&
+                slab.terms[a].entry_inv_dir == slab.terms[a].entry_inv_dir;
     }
     if (!slab.same_planes || !all(numbers || !active)) return;
     const F inf(std::numeric_limits<float>::infinity());
     const auto smallest = [&](const F& v) { return horizontal_min(select(active, v, inf)); };
     const auto largest = [&](const F& v) { return horizontal_max(select(active, v, -inf)); };
     for (int a = 0; a < 3; ++a) {
-      const F& o = slab.ray.origin[a];
-      const F& inv = slab.ray.inv_dir[a];
+      const F& o = slab.origin[a];
+      const F& inv = slab.terms[a].entry_inv_dir;
       const bool rev = slab.reversed[a];
       origin_at_entry[a] = G(rev ? smallest(o) : largest(o));
       inv_dir_at_entry[a] = G(rev ? largest(inv) : smallest(inv));
