@@ -91,9 +91,8 @@ struct BvhNodes {
   // The block of an inner child slot's node; the root's is block(0).
   const float* block(std::int32_t node) const { return data + node; }
   static std::int32_t child(const float* block, unsigned slot) {
-    return std::bit_cast<std::int32_t>(block[6 * N + slot]);
+    return std::bit_cast<std::int32_t>(block[child_slot(N, 0) + slot]);
   }
-  static_assert(child_slot(N, 0) == 6 * N);
 };
 
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty

@@ -131,18 +131,35 @@ template <class F>
 struct SlabTerms {
   F entry_inv_dir, entry_offset, exit_inv_dir, exit_offset;  // offsets negated
 
-  SlabTerms(const F& origin, const F& direction) {
+  [[gnu::always_inline]] static SlabTerms of(const F& origin, const F& direction) {
     const F tiny(0x1p-80f);
-    entry_inv_dir = F(1.f) / select(abs(direction) < tiny, copysign(tiny, direction), direction);
-    const F offset = origin * entry_inv_dir;
+    const F inv = F(1.f) / select(abs(direction) < tiny, copysign(tiny, direction), direction);
+    const F offset = origin * inv;
     const F margin = F(0x1p-22f) * abs(offset);
-    entry_offset = -(offset + margin);
-    exit_inv_dir = entry_inv_dir * F(kSlabWidening);
-    exit_offset = -((offset - margin) * F(kSlabWidening));
+    return {inv, -(offset + margin), inv * F(kSlabWidening), -((offset - margin) * F(kSlabWidening))};
+  }
+  // One ray's terms in every lane of G.
+  template <class G>
+  SlabTerms<G> broadcast() const {
+    return {G(entry_inv_dir), G(entry_offset), G(exit_inv_dir), G(exit_offset)};
   }
   F entry(const F& plane) const { return fma(plane, entry_inv_dir, entry_offset); }
   F widened_exit(const F& plane) const { return fma(plane, exit_inv_dir, exit_offset); }
 };
+
+// The interval of a node test from its three entry and (widened) exit
+// distances: max and min as two-level trees (a NaN distance drops out, and
+// may take the other plane of its pair with it: never a child less), tmax
+// widened as the exits are. `near` receives the entry times 1 - kSlabSlack
+// (the walks' stack keys); the result: the interval is not empty.
+template <class F>
+[[gnu::always_inline]] inline Mask<F> widened_interval(const std::array<F, 3>& entry, const std::array<F, 3>& exit,
+                                                       const F& tmin, const F& tmax, F& near) {
+  const F t0 = max(max(tmin, entry[0]), max(entry[1], entry[2]));
+  const F t1 = min(min(tmax * F(kSlabWidening), exit[0]), min(exit[1], exit[2]));
+  near = t0 * F(1.f - kSlabSlack);
+  return t0 <= t1;
+}
 
 // A packet set up for slab tests against a node's children. When every
 // active lane's 1/d has the same signs, each axis' near and far planes are
@@ -159,8 +176,8 @@ struct PacketSlab {
 
   PacketSlab(const Ray<F>& r, const Mask<F>& active)
       : origin(r.origin),
-        terms{SlabTerms<F>(r.origin.x, r.direction.x), SlabTerms<F>(r.origin.y, r.direction.y),
-              SlabTerms<F>(r.origin.z, r.direction.z)} {
+        terms{SlabTerms<F>::of(r.origin.x, r.direction.x), SlabTerms<F>::of(r.origin.y, r.direction.y),
+              SlabTerms<F>::of(r.origin.z, r.direction.z)} {
     for (int a = 0; a < 3; ++a) {
       negative[a] = terms[a].entry_inv_dir < F(0.f);
       reversed[a] = any(negative[a] && active);
@@ -185,10 +202,7 @@ struct PacketSlab {
       entry[a] = terms[a].entry(near_plane_lanes);
       exit[a] = terms[a].widened_exit(far_plane_lanes);
     }
-    const F t0 = max(max(tmin, entry[0]), max(entry[1], entry[2]));
-    const F t1 = min(min(tmax * F(kSlabWidening), exit[0]), min(exit[1], exit[2]));
-    near = t0 * F(1.f - kSlabSlack);
-    return t0 <= t1;
+    return widened_interval(entry, exit, tmin, tmax, near);
   }
 };
 
@@ -244,23 +258,20 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
 template <KernelUnit U, int N>
 struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
-  std::array<G, 3> entry_inv_dir, entry_offset, exit_inv_dir, exit_offset;  // offsets negated
+  std::array<SlabTerms<G>, 3> terms;
   std::array<int, 3> near_plane, far_plane;  // float offsets in the block
 
   explicit NodeRay(const Ray<float>& ray) {
     for (int a = 0; a < 3; ++a) {
-      const SlabTerms<float> terms(ray.origin[a], ray.direction[a]);
-      const bool reversed = terms.entry_inv_dir < 0.f;
-      entry_inv_dir[a] = G(terms.entry_inv_dir);
-      entry_offset[a] = G(terms.entry_offset);
-      exit_inv_dir[a] = G(terms.exit_inv_dir);
-      exit_offset[a] = G(terms.exit_offset);
+      const SlabTerms<float> one = SlabTerms<float>::of(ray.origin[a], ray.direction[a]);
+      const bool reversed = one.entry_inv_dir < 0.f;
+      terms[a] = one.template broadcast<G>();
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
     }
   }
-  G entry(int a, const G& plane) const { return fma(plane, entry_inv_dir[a], entry_offset[a]); }
-  G widened_exit(int a, const G& plane) const { return fma(plane, exit_inv_dir[a], exit_offset[a]); }
+  G entry(int a, const G& plane) const { return terms[a].entry(plane); }
+  G widened_exit(int a, const G& plane) const { return terms[a].widened_exit(plane); }
 };
 
 // A packet's active rays bounded per axis, origins and 1/d as intervals, so
@@ -277,8 +288,8 @@ struct NodeRay {
 template <KernelUnit U, int N>
 struct NodeFrustum {
   using G = typename NodeLanesOf<U, N>::type;
-  std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;  // exits' scaled by
-                                                                                         // kSlabWidening
+  // The exits' 1/d bounds come scaled by kSlabWidening.
+  std::array<G, 3> origin_at_entry, inv_dir_at_entry, origin_at_exit, inv_dir_at_exit;
   std::array<int, 3> near_plane, far_plane;
   float tmin = 0.f, tmax = 0.f;  // the smallest tmin and the largest tmax of the active lanes
   bool usable = false;
@@ -314,11 +325,7 @@ struct NodeFrustum {
 };
 
 // The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]
-// (widened: exits scaled by kSlabWidening): bit c of the result, near[c]
-// their entry distances times 1 - kSlabSlack (the stack's keys, as the
-// packet walks'). The interval's max and min are two-level trees (a NaN
-// distance drops out, and may take the other plane of its pair with it:
-// never a child less).
+// (widened_interval): bit c of the result, near[c] their keys.
 template <int N, class R>
 [[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmin, float tmax,
                                                       std::array<float, N>& near) {
@@ -331,15 +338,14 @@ template <int N, class R>
       entry[a] = ray.entry(a, load_lanes<G>(block + ray.near_plane[a] + c));
       exit[a] = ray.widened_exit(a, load_lanes<G>(block + ray.far_plane[a] + c));
     }
-    const G t0 = max(max(G(tmin), entry[0]), max(entry[1], entry[2]));
-    const G t1 = min(min(G(tmax * kSlabWidening), exit[0]), min(exit[1], exit[2]));
-    const G lane_near = t0 * G(1.f - kSlabSlack);
+    G lane_near;
+    const Mask<G> enters = widened_interval(entry, exit, G(tmin), G(tmax), lane_near);
     if constexpr (kG == 1) {
       near[c] = lane_near;
     } else {
       store_lanes(lane_near, near.data() + c);
     }
-    bits |= lane_bits(t0 <= t1) << c;
+    bits |= lane_bits(enters) << c;
   }
   return bits;
 }
