@@ -15,7 +15,9 @@
 //      product difference from difference_of_products. A point exactly on an
 //      edge is inside or outside depending on that edge's direction.
 // All lanes share the polygon, so the edge loop is the same for every lane;
-// an edge no lane straddles is skipped (it could toggle no lane).
+// an edge no lane straddles is skipped (it could toggle no lane), except in
+// bands, whose few edges are all computed (that branch mispredicted: 9-16%
+// on gears-s4's rays, bench/README.md).
 // Edge bands (polygons of many vertices, see PolygonSoA): the v range is cut
 // into bands, each listing the edges whose v range meets it; a lane reads
 // only its own band's edges. band_of is non-decreasing in v, so every edge
@@ -89,10 +91,8 @@ inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, co
     const int j = k == 0 ? n - 1 : k - 1;
     const Mask<F> b_above = F(poly.pv[k]) > v;
     const Mask<F> straddles = masks_differ(F(poly.pv[j]) > v, b_above) && lanes;
-    if (any(straddles)) {
-      const Mask<F> crossed = crossings(u, v, poly.pu[j], poly.pv[j], poly.pu[k], poly.pv[k], straddles, b_above);
-      inside = masks_differ(inside, crossed);
-    }
+    const Mask<F> crossed = crossings(u, v, poly.pu[j], poly.pv[j], poly.pu[k], poly.pv[k], straddles, b_above);
+    inside = masks_differ(inside, crossed);
   }
   return inside;
 }
