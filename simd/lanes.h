@@ -345,7 +345,8 @@ inline Mask<F> mask_from_bits(unsigned bits) {
   if constexpr (lane_count<F> == 1) {
     return (bits & 1u) != 0;
   } else {
-    // bits in every lane, and with each lane's own bit (no per-lane stores, which a wide load cannot forward).
+    // `bits` in every lane, anded with each lane's own bit (not stored lane by
+    // lane: a wide load cannot forward narrow stores).
     alignas(64) static constexpr std::int32_t kLaneBit[kMaxLanes] = {
         1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
         1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
