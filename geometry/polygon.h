@@ -97,27 +97,34 @@ inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, co
   return inside;
 }
 
-// Parity over bands: the candidate lanes grouped by band, each group over its band's edges.
+// Parity over bands: the candidate lanes grouped by band, each group over
+// its band's edges. A group's lanes are found at once: those whose band_of
+// argument x lies in [band, band + 1) (the last band: x >= band), which is
+// band_of(v) == band for the finite x of candidates.
 template <class F>
 inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
   alignas(64) float v_lane[kMaxLanes];
   store_lanes(v, v_lane);
-  // Each candidate lane's band, once.
+  const F x = (v - F(poly.band_vmin)) * F(poly.band_scale);  // band_of's x, lane by lane
+  const int last = poly.band_count - 1;
+  Mask<F> inside(false);
+  // Each candidate lane's band, up front: off the group loop's dependency
+  // chain (band_of on each group's first lane inside it: gears-s4's w16
+  // diffuse rays 2-5% slower).
   int lane_band[kMaxLanes];
   const unsigned candidates = lane_bits(candidate);
   for (unsigned b = candidates; b != 0; b &= b - 1) {
     const int lane = __builtin_ctz(b);
     lane_band[lane] = band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count);
   }
-  Mask<F> inside(false);
   for (unsigned pending = candidates; pending != 0;) {
-    const int band = lane_band[__builtin_ctz(pending)];
-    unsigned members = 0;
-    for (unsigned b = pending; b != 0; b &= b - 1) {
-      if (lane_band[__builtin_ctz(b)] == band) members |= b & (~b + 1u);
-    }
-    pending &= ~members;
-    inside = inside || band_parity(poly, band, u, v, mask_from_bits<F>(members));
+    const int first = __builtin_ctz(pending);
+    const int band = lane_band[first];
+    const Mask<F> in_band = band < last ? x >= F(static_cast<float>(band)) && x < F(static_cast<float>(band + 1))
+                                        : x >= F(static_cast<float>(last));
+    const Mask<F> group = in_band && candidate;
+    pending &= ~(lane_bits(group) | (1u << first));  // the first lane is in its group; cleared in any case
+    inside = inside || band_parity(poly, band, u, v, group);
   }
   return inside;
 }

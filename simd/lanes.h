@@ -339,21 +339,6 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
 }
 #endif
 
-// The mask whose lane k is bit k of `bits` (the inverse of lane_bits).
-template <class F>
-inline Mask<F> mask_from_bits(unsigned bits) {
-  if constexpr (lane_count<F> == 1) {
-    return (bits & 1u) != 0;
-  } else {
-    // `bits` in every lane, anded with each lane's own bit (not stored lane by
-    // lane: a wide load cannot forward narrow stores).
-    alignas(64) static constexpr std::int32_t kLaneBit[kMaxLanes] = {
-        1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
-        1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
-    return nonzero_lanes(IntLanes<F>(static_cast<std::int32_t>(bits)) & load_int_lanes<F>(kLaneBit));
-  }
-}
-
 // The smallest float greater than t (t itself for +inf and NaN): with it as
 // a kernel's exclusive tmax, a hit at exactly t is still reported.
 inline float next_float_up(float t) {
