@@ -62,12 +62,22 @@ struct PolygonLanes {
 
 namespace polygon_detail {
 
-// The band of v (vmin <= v, relative coordinates as stored): non-decreasing
-// in v, so an edge whose v range is [v0, v1] meets exactly the bands
-// band_of(v0) .. band_of(v1). The builder and the kernel both call it.
-inline int band_of(float v, float vmin, float scale, int count) {
-  const float x = (v - vmin) * scale;
+// v's position in band units (relative coordinates as stored), per lane.
+template <class F>
+inline F band_position(const F& v, float vmin, float scale) {
+  return (v - F(vmin)) * F(scale);
+}
+
+// The band at position x >= 0: band b holds [b, b + 1), the last one the rest.
+inline int band_at(float x, int count) {
   return x < static_cast<float>(count - 1) ? static_cast<int>(x) : count - 1;
+}
+
+// The band of v (vmin <= v): non-decreasing in v, so an edge whose v range
+// is [v0, v1] meets exactly the bands band_of(v0) .. band_of(v1). The
+// builder and the kernel both use it.
+inline int band_of(float v, float vmin, float scale, int count) {
+  return band_at(band_position(v, vmin, scale), count);
 }
 
 // Lanes of `straddles` whose +u ray from (u, v) crosses edge a -> b: the
@@ -98,25 +108,24 @@ inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, co
 }
 
 // Parity over bands: the candidate lanes grouped by band, each group over
-// its band's edges. A group's lanes are found at once: those whose band_of
-// argument x lies in [band, band + 1) (the last band: x >= band), which is
-// band_of(v) == band for the finite x of candidates.
+// its band's edges. A group's lanes are found at once: those whose band
+// position x lies in [band, band + 1) (the last band: x >= band).
 template <class F>
 inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
-  alignas(64) float v_lane[kMaxLanes];
-  store_lanes(v, v_lane);
-  const F x = (v - F(poly.band_vmin)) * F(poly.band_scale);  // band_of's x, lane by lane
-  const int last = poly.band_count - 1;
-  Mask<F> inside(false);
+  const F x = band_position(v, poly.band_vmin, poly.band_scale);
+  alignas(64) float x_lane[kMaxLanes];
+  store_lanes(x, x_lane);
   // Each candidate lane's band, up front: off the group loop's dependency
-  // chain (band_of on each group's first lane inside it: gears-s4's w16
-  // diffuse rays 2-5% slower).
+  // chain (band_of on each group's first lane inside it measured 2-5% below
+  // d90b83e on gears-s4's w16 diffuse rays, in three runs).
   int lane_band[kMaxLanes];
   const unsigned candidates = lane_bits(candidate);
   for (unsigned b = candidates; b != 0; b &= b - 1) {
     const int lane = __builtin_ctz(b);
-    lane_band[lane] = band_of(v_lane[lane], poly.band_vmin, poly.band_scale, poly.band_count);
+    lane_band[lane] = band_at(x_lane[lane], poly.band_count);
   }
+  const int last = poly.band_count - 1;
+  Mask<F> inside(false);
   for (unsigned pending = candidates; pending != 0;) {
     const int first = __builtin_ctz(pending);
     const int band = lane_band[first];
