@@ -601,10 +601,14 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
           const Mask<F> hits_block = leaf_ray.intersect(prims.template load<F>(block), F(next_float_up(hit.t)),
                                                         first_lanes<F>(end - block), c);
           if (none(hits_block)) continue;
-          Hit<F> lanes = Hit<F>::none(F(hit.t));
-          lanes.commit(hits_block, c, IntLanes<F>(prims.id_base + static_cast<std::int32_t>(block)) + lane_index<F>());
-          const Hit<float> best = closest_lane(lanes, hit.t);
-          if (wins_over(best.id != kNoHit, best.t, best.id, hit)) hit = best;
+          // Ids rise with the lane, so of the block's nearest hits the lowest lane has the smallest id.
+          const int lane = __builtin_ctz(nearest_lanes(hits_block, c.t));
+          const std::int32_t id = prims.id_base + static_cast<std::int32_t>(block) + lane;
+          const float t = lane_value(c.t, lane);
+          if (wins_over(true, t, id, hit)) {
+            hit = {t, lane_value(c.u, lane), lane_value(c.v, lane),
+                   {lane_value(c.ng.x, lane), lane_value(c.ng.y, lane), lane_value(c.ng.z, lane)}, id};
+          }
         }
       } else {
         for (std::size_t p = first; p < end; ++p) {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <type_traits>
 
 #include "geometry/soa.h"
@@ -100,28 +101,45 @@ template <KernelUnit U, class Method, class S>
   }
 }
 
+// The lanes of `lanes` at the smallest t among them (their t < +inf), by
+// one vector reduction: a loop over the lanes, unrolled in every watertight
+// frame's copy of the single-ray walk, had made that walk twice its size
+// and slower (bench/README.md).
+template <class F>
+[[gnu::always_inline]] inline unsigned nearest_lanes(const Mask<F>& lanes, const F& t) {
+  const F t_in = select(lanes, t, F(std::numeric_limits<float>::infinity()));
+  return lane_bits(lanes && t_in == F(horizontal_min(t_in)));
+}
+
+// One lane's value.
+template <class F>
+[[gnu::always_inline]] inline float lane_value(const F& v, int lane) {
+  alignas(64) float values[kMaxLanes];
+  store_lanes(v, values);
+  return values[lane];
+}
+
 // The closest of a lane set's hits; ties go to the smaller id.
 template <class F>
 [[gnu::always_inline]] inline Hit<float> closest_lane(const Hit<F>& hit, float tmax) {
   if constexpr (lane_count<F> == 1) {
     return hit;
   } else {
-    alignas(64) float t[kMaxLanes], u[kMaxLanes], v[kMaxLanes], nx[kMaxLanes], ny[kMaxLanes], nz[kMaxLanes];
+    const Mask<F> hit_lanes = int_less(IntLanes<F>(kNoHit), hit.id);  // ids are >= 0
+    if (none(hit_lanes)) return Hit<float>::none(tmax);
+    unsigned at_nearest = nearest_lanes(hit_lanes, hit.t);
     alignas(64) std::int32_t id[kMaxLanes];
-    store_lanes(hit.t, t);
-    store_lanes(hit.u, u);
-    store_lanes(hit.v, v);
-    store_lanes(hit.ng.x, nx);
-    store_lanes(hit.ng.y, ny);
-    store_lanes(hit.ng.z, nz);
     store_int_lanes<F>(hit.id, id);
-    int best = -1;
-    for (int lane = 0; lane < lane_count<F>; ++lane) {
-      if (id[lane] == kNoHit) continue;
-      if (best < 0 || t[lane] < t[best] || (t[lane] == t[best] && id[lane] < id[best])) best = lane;
+    int best = __builtin_ctz(at_nearest);
+    for (at_nearest &= at_nearest - 1; at_nearest != 0; at_nearest &= at_nearest - 1) {
+      const int lane = __builtin_ctz(at_nearest);
+      if (id[lane] < id[best]) best = lane;
     }
-    if (best < 0) return Hit<float>::none(tmax);
-    return {t[best], u[best], v[best], {nx[best], ny[best], nz[best]}, id[best]};
+    return {lane_value(hit.t, best),
+            lane_value(hit.u, best),
+            lane_value(hit.v, best),
+            {lane_value(hit.ng.x, best), lane_value(hit.ng.y, best), lane_value(hit.ng.z, best)},
+            id[best]};
   }
 }
 
