@@ -27,7 +27,12 @@
 // min/max operands. The interval is widened by kSlabSlack relative (beyond
 // Ize's 2 gamma(3), "Robust BVH ray traversal", JCGT 2013, to cover the
 // kernels' own error in t), so no primitive a brute-force scan reports is
-// culled.
+// culled. The single-ray walks compare the distances by their bits, as
+// integers (Embree's form: one cycle per max, min and compare), for rays
+// with tmin >= 0 and finite slab terms (widened_interval_bits). The
+// widening is relative, so it would narrow negative distances: a ray whose
+// interval reaches behind its origin (tmin < 0) walks alone and enters
+// every child.
 //
 // Closest hit: the lexicographic minimum of (t, id) over the store, as the
 // brute-force scan in id order gives it: kernels get tmax = next_float_up(t)
@@ -38,8 +43,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include "geometry/bvh.h"
@@ -161,6 +168,26 @@ template <class F>
   return t0 <= t1;
 }
 
+// widened_interval on the distances' bits (float_bits), for rays whose
+// node tests may compare them so (NodeRay::bits_ordered: tmin is +0 to +inf,
+// and no distance can be NaN). The max is then the float max (negative
+// entries lie below tmin), and a negative exit empties the interval as it
+// does in floats, but for an exit of -0 at t0 = 0 (a box left exactly at
+// the ray's origin, where no kernel reports t > tmin >= 0): the same lanes,
+// the same keys. Integer max, min and compare shorten the path from one
+// node to the next. Returns the entered lanes' bits.
+template <class F>
+[[gnu::always_inline]] inline unsigned widened_interval_bits(const std::array<F, 3>& entry,
+                                                             const std::array<F, 3>& exit, const F& tmin,
+                                                             const F& tmax, F& near) {
+  const auto t0 = bits_max(bits_max(float_bits(tmin), float_bits(entry[0])),
+                           bits_max(float_bits(entry[1]), float_bits(entry[2])));
+  const auto t1 = bits_min(bits_min(float_bits(tmax * F(kSlabWidening)), float_bits(exit[0])),
+                           bits_min(float_bits(exit[1]), float_bits(exit[2])));
+  near = float_of_bits(t0) * F(1.f - kSlabSlack);
+  return ~bits_greater(t0, t1) & ((1u << lane_count<F>) - 1u);
+}
+
 // A packet set up for slab tests against a node's children. When every
 // active lane's 1/d has the same signs, each axis' near and far planes are
 // the same for all lanes and are chosen once (no per-lane select); other
@@ -260,19 +287,37 @@ struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
   std::array<SlabTerms<G>, 3> terms;
   std::array<int, 3> near_plane, far_plane;  // float offsets in the block
+  // The node tests may compare distances by their bits (widened_interval_bits):
+  // tmin is +0 to +inf, and 1/d (finite, not zero) and the offsets are
+  // finite, so a plane's distance (box planes are numbers or +-inf) is never NaN.
+  bool bits_ordered;
+  // tmin < 0: the slab widening, relative, would narrow negative distances;
+  // the walk enters every child (the ray meets every primitive, as a scan).
+  bool reaches_behind;
 
-  explicit NodeRay(const Ray<float>& ray) {
+  explicit NodeRay(const Ray<float>& ray)
+      : bits_ordered(float_bits(ray.tmin) >= 0 && ray.tmin == ray.tmin), reaches_behind(ray.tmin < 0.f) {
     for (int a = 0; a < 3; ++a) {
       const SlabTerms<float> one = SlabTerms<float>::of(ray.origin[a], ray.direction[a]);
       const bool reversed = one.entry_inv_dir < 0.f;
       terms[a] = one.template broadcast<G>();
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
+      bits_ordered = bits_ordered && one.entry_inv_dir != 0.f && std::isfinite(one.entry_inv_dir) &&
+                     std::isfinite(one.exit_inv_dir) && std::isfinite(one.entry_offset) &&
+                     std::isfinite(one.exit_offset);
     }
   }
   G entry(int a, const G& plane) const { return terms[a].entry(plane); }
   G widened_exit(int a, const G& plane) const { return terms[a].widened_exit(plane); }
 };
+
+// Some active lane's interval reaches behind its origin (tmin < 0); the
+// streams hand such packets to the single-ray walks (NodeRay::reaches_behind).
+template <class F>
+inline bool reaches_behind(const Ray<F>& ray, const Mask<F>& active) {
+  return any(ray.tmin < F(0.f) && active);
+}
 
 // A packet's active rays bounded per axis, origins and 1/d as intervals, so
 // that one pass over a node's children finds those some lane may enter
@@ -326,7 +371,7 @@ struct NodeFrustum {
 
 // The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]
 // (widened_interval): bit c of the result, near[c] their keys.
-template <int N, class R>
+template <int N, bool kBits = false, class R>
 [[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmin, float tmax,
                                                       std::array<float, N>& near) {
   using G = typename R::G;
@@ -339,15 +384,35 @@ template <int N, class R>
       exit[a] = ray.widened_exit(a, load_lanes<G>(block + ray.far_plane[a] + c));
     }
     G lane_near;
-    const Mask<G> enters = widened_interval(entry, exit, G(tmin), G(tmax), lane_near);
+    if constexpr (kBits) {
+      bits |= widened_interval_bits(entry, exit, G(tmin), G(tmax), lane_near) << c;
+    } else {
+      bits |= lane_bits(widened_interval(entry, exit, G(tmin), G(tmax), lane_near)) << c;
+    }
     if constexpr (kG == 1) {
       near[c] = lane_near;
     } else {
       store_lanes(lane_near, near.data() + c);
     }
-    bits |= lane_bits(enters) << c;
   }
   return bits;
+}
+
+// The children one ray's walk enters (enter_children on the distances' bits
+// when kBits, else on the floats, or all of them with keys -inf for a ray
+// reaching behind its origin).
+template <int N, bool kBits, KernelUnit U>
+[[gnu::always_inline]] inline unsigned enter_children_of(const float* block, const NodeRay<U, N>& ray, float tmin,
+                                                         float tmax, std::array<float, N>& near) {
+  if constexpr (kBits) {
+    return enter_children<N, true>(block, ray, tmin, tmax, near);
+  } else {
+    if (ray.reaches_behind) {
+      near.fill(-std::numeric_limits<float>::infinity());
+      return (1u << N) - 1u;
+    }
+    return enter_children<N>(block, ray, tmin, tmax, near);
+  }
 }
 
 // ---- packet traversal -------------------------------------------------------
@@ -559,6 +624,13 @@ struct WalkInFrame {
   }
 };
 
+// Calls walk(leaf_ray) with the method's own leaf test.
+template <KernelUnit U, class Method, class S, class Walk>
+[[gnu::always_inline]] inline void with_plain_leaf_ray(const Ray<float>& ray, const Walk& walk) {
+  using Prepared = decltype(prepare_for_leaves<U, Method, S>(ray));
+  walk(LeafRay<U, Method, Prepared, void>{prepare_for_leaves<U, Method, S>(ray)});
+}
+
 // Calls walk(leaf_ray). A scan with a per-ray frame gets one walk per frame
 // (six), chosen once per ray: the bunny's single rays measured 5-10% faster
 // than choosing the frame at every leaf block (bench/README.md).
@@ -568,8 +640,38 @@ template <KernelUnit U, class Method, class S, class Walk>
   if constexpr (ScanStore<S> && FixesAxesPerRay<Method, F>) {
     Method::template with_fixed_axes<F>(ray, WalkInFrame<U, Method, Walk>{walk});
   } else {
-    using Prepared = decltype(prepare_for_leaves<U, Method, S>(ray));
-    walk(LeafRay<U, Method, Prepared, void>{prepare_for_leaves<U, Method, S>(ray)});
+    with_plain_leaf_ray<U, Method, S>(ray, walk);
+  }
+}
+
+// A single-ray walk run with its node tests on the distances' bits (kBits)
+// or on the floats.
+template <bool kBits, class Walk>
+struct WithNodeTests {
+  const Walk& walk;
+
+  template <class Leaf>
+  [[gnu::always_inline]] void operator()(const Leaf& leaf_ray) const {
+    walk.template run<kBits>(leaf_ray);
+  }
+};
+
+// Runs a single-ray walk. Scan stores: a ray whose node tests may compare
+// distances by their bits (NodeRay::bits_ordered) through with_leaf_ray,
+// any other (a negative or NaN tmin, a non-finite direction or an origin so
+// far off that o/d overflows: rays no renderer makes) through one plain
+// copy with float node tests, or entering every child
+// (NodeRay::reaches_behind). Other kinds keep one copy, on the floats: the
+// two copies made teapot-s12's polygon walk about a third slower (its rays
+// spend most of their time in the per-ray setup).
+template <KernelUnit U, class Method, class S, class Walk>
+[[gnu::always_inline]] inline void run_single_walk(const Ray<float>& ray, bool bits_ordered, const Walk& walk) {
+  if constexpr (!ScanStore<S>) {
+    with_plain_leaf_ray<U, Method, S>(ray, WithNodeTests<false, Walk>{walk});
+  } else if (bits_ordered) [[likely]] {
+    with_leaf_ray<U, Method, S>(ray, WithNodeTests<true, Walk>{walk});
+  } else {
+    with_plain_leaf_ray<U, Method, S>(ray, WithNodeTests<false, Walk>{walk});
   }
 }
 
@@ -577,7 +679,7 @@ template <KernelUnit U, class Method, class S, class Walk>
 // directly and pushes the others, farthest first; a popped entry is culled
 // against the current hit. The hit is a local copy (stores through a
 // reference kept the tree's fields from staying in registers).
-template <KernelUnit U, int N, class S, int K, class Leaf>
+template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
 [[gnu::always_inline]] inline Hit<float> closest_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                              const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
                                                              float tmin, Hit<float> hit) {
@@ -621,7 +723,7 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
     } else {
       std::array<float, N> near;
       const float* block = nodes.block(current);
-      unsigned bits = enter_children<N>(block, node_ray, tmin, hit.t, near);
+      unsigned bits = enter_children_of<N, kBits>(block, node_ray, tmin, hit.t, near);
       // Empty slots have empty boxes, which no ray enters (and hold no primitive).
       if (bits != 0) {
         int c = __builtin_ctz(bits);
@@ -665,9 +767,9 @@ struct ClosestSingleWalk {
   float tmin;
   Hit<float>& hit;
 
-  template <class Leaf>
-  [[gnu::always_inline]] void operator()(const Leaf& leaf_ray) const {
-    hit = closest_single_walk<U, N>(stores, nodes, node_ray, leaf_ray, tmin, hit);
+  template <bool kBits, class Leaf>
+  [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
+    hit = closest_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, tmin, hit);
   }
 };
 
@@ -677,11 +779,12 @@ template <KernelUnit U, class Method, int N, class S, int K>
 [[gnu::noinline, gnu::flatten]] void closest_bvh_single(BvhStores<S, K> stores, const Bvh& bvh,
                                                         const Ray<float>& ray, Hit<float>& hit) {
   const NodeRay<U, N> node_ray(ray);
-  with_leaf_ray<U, Method, S>(ray, ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin, hit});
+  run_single_walk<U, Method, S>(ray, node_ray.bits_ordered,
+                                ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin, hit});
 }
 
 // The any-hit walk of one ray: stops at its first hit.
-template <KernelUnit U, int N, class S, int K, class Leaf>
+template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
 [[gnu::always_inline]] inline bool occluded_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                         const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
                                                         float tmin, float tmax) {
@@ -712,7 +815,8 @@ template <KernelUnit U, int N, class S, int K, class Leaf>
     }
     std::array<float, N> near;
     const float* block = nodes.block(entry);
-    for (unsigned bits = enter_children<N>(block, node_ray, tmin, tmax, near); bits != 0; bits &= bits - 1) {
+    for (unsigned bits = enter_children_of<N, kBits>(block, node_ray, tmin, tmax, near); bits != 0;
+         bits &= bits - 1) {
       // Never an empty slot (empty boxes are never entered), yet dropping
       // that test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
       const std::int32_t child = BvhNodes<N>::child(block, __builtin_ctz(bits));
@@ -731,9 +835,9 @@ struct OccludedSingleWalk {
   float tmin, tmax;
   bool& blocked;
 
-  template <class Leaf>
-  [[gnu::always_inline]] void operator()(const Leaf& leaf_ray) const {
-    blocked = occluded_single_walk<U, N>(stores, nodes, node_ray, leaf_ray, tmin, tmax);
+  template <bool kBits, class Leaf>
+  [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
+    blocked = occluded_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, tmin, tmax);
   }
 };
 
@@ -743,8 +847,9 @@ template <KernelUnit U, class Method, int N, class S, int K>
                                                         const Ray<float>& ray) {
   const NodeRay<U, N> node_ray(ray);
   bool blocked = false;
-  with_leaf_ray<U, Method, S>(ray, OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin,
-                                                                  ray.tmax, blocked});
+  run_single_walk<U, Method, S>(
+      ray, node_ray.bits_ordered,
+      OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin, ray.tmax, blocked});
   return blocked;
 }
 
@@ -793,7 +898,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
-    if (travels_together<S>(traversal, ray, active)) {
+    if (travels_together<S>(traversal, ray, active) && !reaches_behind(ray, active)) {
       Hit<F> hit = hits.load<F>(first);
       const PacketSlab<F, N> slab(ray, active);
       const NodeFrustum<U, N> frustum(slab, ray.tmin, hit.t, active);
@@ -825,7 +930,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     const Mask<F> open = and_not(valid, occluded);
     if (none(open)) continue;
-    if (travels_together<S>(traversal, ray, open)) {
+    if (travels_together<S>(traversal, ray, open) && !reaches_behind(ray, open)) {
       // No frustum over two stores: the walk skips the untested store's
       // children without a box test, which leaves it little to save
       // (gears-s4: shadow rays -3..-5%, its whole render -5%).

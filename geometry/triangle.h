@@ -192,7 +192,7 @@ struct TriangleWatertight {
   // (Preparing the scalar ray and broadcasting its fields measured faster
   // than prepare(broadcast_ray<F>(ray)): triangle single rays 2-11%.)
   template <class F, class Visit>
-  static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
+  [[gnu::always_inline]] static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
     using namespace triangle_detail;
     const WatertightRay<float> one = prepare(ray);
     WatertightRay<F> r;

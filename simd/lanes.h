@@ -339,6 +339,54 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
 }
 #endif
 
+// Floats compared through their bits as signed ints: +0 to +inf order as
+// they do as floats, every float with the sign bit set (negatives, -0,
+// NaNs from x86 arithmetic) lies below them, and a NaN with the sign bit
+// clear above +inf. An integer max, min and compare take one cycle where
+// the float ones take four (Embree's node tests use them the same way).
+inline std::int32_t float_bits(float x) { return std::bit_cast<std::int32_t>(x); }
+inline float float_of_bits(std::int32_t i) { return std::bit_cast<float>(i); }
+inline std::int32_t bits_max(std::int32_t a, std::int32_t b) { return a < b ? b : a; }
+inline std::int32_t bits_min(std::int32_t a, std::int32_t b) { return b < a ? b : a; }
+// Bit k set iff a > b in lane k.
+inline unsigned bits_greater(std::int32_t a, std::int32_t b) { return a > b ? 1u : 0u; }
+template <class A>
+inline xsimd::batch<std::int32_t, A> float_bits(const xsimd::batch<float, A>& x) {
+  return xsimd::bitwise_cast<xsimd::batch<std::int32_t, A>>(x);
+}
+template <class A>
+inline xsimd::batch<float, A> float_of_bits(const xsimd::batch<std::int32_t, A>& i) {
+  return xsimd::bitwise_cast<xsimd::batch<float, A>>(i);
+}
+template <class A>
+inline xsimd::batch<std::int32_t, A> bits_max(const xsimd::batch<std::int32_t, A>& a,
+                                              const xsimd::batch<std::int32_t, A>& b) {
+  return xsimd::max(a, b);
+}
+template <class A>
+inline xsimd::batch<std::int32_t, A> bits_min(const xsimd::batch<std::int32_t, A>& a,
+                                              const xsimd::batch<std::int32_t, A>& b) {
+  return xsimd::min(a, b);
+}
+#if defined(__SSE4_2__) && defined(__FMA__)
+inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::sse4_2>& a,
+                             const xsimd::batch<std::int32_t, xsimd::sse4_2>& b) {
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(a, b))));
+}
+#endif
+#if XSIMD_WITH_FMA3_AVX2
+inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::fma3<xsimd::avx2>>& a,
+                             const xsimd::batch<std::int32_t, xsimd::fma3<xsimd::avx2>>& b) {
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(a, b))));
+}
+#endif
+#if XSIMD_WITH_AVX512BW
+inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::avx512bw>& a,
+                             const xsimd::batch<std::int32_t, xsimd::avx512bw>& b) {
+  return _mm512_cmpgt_epi32_mask(a, b);
+}
+#endif
+
 // The smallest float greater than t (t itself for +inf and NaN): with it as
 // a kernel's exclusive tmax, a hit at exactly t is still reported.
 inline float next_float_up(float t) {

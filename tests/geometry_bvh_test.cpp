@@ -338,6 +338,13 @@ std::vector<ConeDesc> random_cones(RaySampler& s, int n) {
   return out;
 }
 
+// The rays as SoA, their padding lanes poisoned (NaN, inf).
+RaySoA padded_soa(const std::vector<Ray<float>>& rays) {
+  RaySoA soa = testing::to_soa(rays);
+  testing::poison_padding(soa);
+  return soa;
+}
+
 // Coherent camera rays (one eye, a grid of directions), random rays from
 // inside the scene, and adversarial ones (NaN, Inf, empty intervals).
 RaySoA traversal_rays(RaySampler& s) {
@@ -384,9 +391,7 @@ RaySoA traversal_rays(RaySampler& s) {
     rays.push_back(r);
   }
   for (const Ray<float>& r : testing::adversarial_rays(s, 500, {0, 0, 0}, 10.f)) rays.push_back(r);
-  RaySoA soa = testing::to_soa(rays);
-  testing::poison_padding(soa);
-  return soa;
+  return padded_soa(rays);
 }
 
 // Closest and any hits through the tree (`stores`: one store, or the
@@ -520,9 +525,7 @@ RaySoA rays_leaving(RaySampler& s, const std::vector<TriangleDesc>& sheet, int c
     rays.push_back({on + Vec3<float>(0.f, 0.002f, 0.f), s.unit_direction(), 0.f,
                     std::numeric_limits<float>::infinity()});
   }
-  RaySoA soa = testing::to_soa(rays);
-  testing::poison_padding(soa);
-  return soa;
+  return padded_soa(rays);
 }
 
 TYPED_TEST(BvhTraversalTest, TrianglesFarFromTheOriginMatchTheScanBitForBit) {
@@ -531,6 +534,32 @@ TYPED_TEST(BvhTraversalTest, TrianglesFarFromTheOriginMatchTheScanBitForBit) {
   const std::vector<TriangleDesc> sheet = far_sheet(s, {7000.f, -6000.f, 8000.f}, 24, 0.02f);
   check_kind<kUnit>(sheet, build_triangles, triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
                     triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays_leaving(s, sheet, 3000));
+}
+
+// Rays from inside the scene whose interval reaches behind their origin
+// (tmin -inf or -40, tmax +inf, 0 or -1): their closest hits lie at
+// negative t, where the relative slab widening narrows the intervals and
+// distances compared by their bits order backwards (the streams hand such
+// rays to the single-ray walk, which enters every child).
+RaySoA rays_reaching_behind(RaySampler& s, int count) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float tmins[2] = {-inf, -40.f}, tmaxs[3] = {inf, 0.f, -1.f};
+  std::vector<Ray<float>> rays;
+  for (int k = 0; k < count; ++k) {
+    rays.push_back({s.in_box({-9, -9, -9}, {9, 9, 9}), s.unit_direction(), tmins[k % 2], tmaxs[k % 3]});
+  }
+  return padded_soa(rays);
+}
+
+TYPED_TEST(BvhTraversalTest, RaysReachingBehindTheirOriginMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(26);
+  const RaySoA rays = rays_reaching_behind(s, 1500);
+  check_kind<kUnit>(random_triangles(s, 400), build_triangles,
+                    triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays);
+  check_kind<kUnit>(random_spheres(s, 400), build_spheres, sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
+                    sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
 }
 
 TYPED_TEST(BvhTraversalTest, PolygonsMatchTheScanBitForBit) {
