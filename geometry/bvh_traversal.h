@@ -185,7 +185,7 @@ template <class F>
   const auto t1 = bits_min(bits_min(float_bits(tmax * F(kSlabWidening)), float_bits(exit[0])),
                            bits_min(float_bits(exit[1]), float_bits(exit[2])));
   near = float_of_bits(t0) * F(1.f - kSlabSlack);
-  return ~bits_greater(t0, t1) & ((1u << lane_count<F>) - 1u);
+  return bits_at_most(t0, t1);
 }
 
 // A packet set up for slab tests against a node's children. When every
@@ -291,16 +291,22 @@ struct NodeRay {
   // tmin is +0 to +inf, and 1/d (finite, not zero) and the offsets are
   // finite, so a plane's distance (box planes are numbers or +-inf) is never NaN.
   bool bits_ordered;
-  // tmin < 0: the slab widening, relative, would narrow negative distances;
-  // the walk enters every child (the ray meets every primitive, as a scan).
-  bool reaches_behind;
+  // The node tests' lower bound: the ray's tmin, or -inf when tmin < 0. The
+  // slab widening, relative, would narrow negative distances, so a ray
+  // reaching behind its origin enters every child (a scan through the tree):
+  // its terms give every plane the distance -inf (entries) or +inf (exits),
+  // or NaN for a plane at +-inf, which the float test drops.
+  float tmin;
 
   explicit NodeRay(const Ray<float>& ray)
-      : bits_ordered(float_bits(ray.tmin) >= 0 && ray.tmin == ray.tmin), reaches_behind(ray.tmin < 0.f) {
+      : bits_ordered(float_bits(ray.tmin) >= 0 && ray.tmin == ray.tmin),
+        tmin(ray.tmin < 0.f ? -std::numeric_limits<float>::infinity() : ray.tmin) {
+    constexpr float inf = std::numeric_limits<float>::infinity();
     for (int a = 0; a < 3; ++a) {
       const SlabTerms<float> one = SlabTerms<float>::of(ray.origin[a], ray.direction[a]);
       const bool reversed = one.entry_inv_dir < 0.f;
-      terms[a] = one.template broadcast<G>();
+      terms[a] = ray.tmin < 0.f ? SlabTerms<float>{0.f, -inf, 0.f, inf}.template broadcast<G>()
+                                : one.template broadcast<G>();
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
       bits_ordered = bits_ordered && one.entry_inv_dir != 0.f && std::isfinite(one.entry_inv_dir) &&
@@ -313,7 +319,7 @@ struct NodeRay {
 };
 
 // Some active lane's interval reaches behind its origin (tmin < 0); the
-// streams hand such packets to the single-ray walks (NodeRay::reaches_behind).
+// streams hand such packets to the single-ray walks (NodeRay::tmin).
 template <class F>
 inline bool reaches_behind(const Ray<F>& ray, const Mask<F>& active) {
   return any(ray.tmin < F(0.f) && active);
@@ -396,23 +402,6 @@ template <int N, bool kBits = false, class R>
     }
   }
   return bits;
-}
-
-// The children one ray's walk enters (enter_children on the distances' bits
-// when kBits, else on the floats, or all of them with keys -inf for a ray
-// reaching behind its origin).
-template <int N, bool kBits, KernelUnit U>
-[[gnu::always_inline]] inline unsigned enter_children_of(const float* block, const NodeRay<U, N>& ray, float tmin,
-                                                         float tmax, std::array<float, N>& near) {
-  if constexpr (kBits) {
-    return enter_children<N, true>(block, ray, tmin, tmax, near);
-  } else {
-    if (ray.reaches_behind) {
-      near.fill(-std::numeric_limits<float>::infinity());
-      return (1u << N) - 1u;
-    }
-    return enter_children<N>(block, ray, tmin, tmax, near);
-  }
 }
 
 // ---- packet traversal -------------------------------------------------------
@@ -660,8 +649,8 @@ struct WithNodeTests {
 // distances by their bits (NodeRay::bits_ordered) through with_leaf_ray,
 // any other (a negative or NaN tmin, a non-finite direction or an origin so
 // far off that o/d overflows: rays no renderer makes) through one plain
-// copy with float node tests, or entering every child
-// (NodeRay::reaches_behind). Other kinds keep one copy, on the floats: the
+// copy with float node tests (which enter every child of a ray reaching
+// behind its origin, NodeRay::tmin). Other kinds keep one copy, on the floats: the
 // two copies made teapot-s12's polygon walk about a third slower (its rays
 // spend most of their time in the per-ray setup).
 template <KernelUnit U, class Method, class S, class Walk>
@@ -723,7 +712,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
     } else {
       std::array<float, N> near;
       const float* block = nodes.block(current);
-      unsigned bits = enter_children_of<N, kBits>(block, node_ray, tmin, hit.t, near);
+      unsigned bits = enter_children<N, kBits>(block, node_ray, tmin, hit.t, near);
       // Empty slots have empty boxes, which no ray enters (and hold no primitive).
       if (bits != 0) {
         int c = __builtin_ctz(bits);
@@ -780,7 +769,7 @@ template <KernelUnit U, class Method, int N, class S, int K>
                                                         const Ray<float>& ray, Hit<float>& hit) {
   const NodeRay<U, N> node_ray(ray);
   run_single_walk<U, Method, S>(ray, node_ray.bits_ordered,
-                                ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin, hit});
+                                ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, node_ray.tmin, hit});
 }
 
 // The any-hit walk of one ray: stops at its first hit.
@@ -815,7 +804,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
     }
     std::array<float, N> near;
     const float* block = nodes.block(entry);
-    for (unsigned bits = enter_children_of<N, kBits>(block, node_ray, tmin, tmax, near); bits != 0;
+    for (unsigned bits = enter_children<N, kBits>(block, node_ray, tmin, tmax, near); bits != 0;
          bits &= bits - 1) {
       // Never an empty slot (empty boxes are never entered), yet dropping
       // that test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
@@ -849,7 +838,7 @@ template <KernelUnit U, class Method, int N, class S, int K>
   bool blocked = false;
   run_single_walk<U, Method, S>(
       ray, node_ray.bits_ordered,
-      OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmin, ray.tmax, blocked});
+      OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, node_ray.tmin, ray.tmax, blocked});
   return blocked;
 }
 

@@ -348,8 +348,8 @@ inline std::int32_t float_bits(float x) { return std::bit_cast<std::int32_t>(x);
 inline float float_of_bits(std::int32_t i) { return std::bit_cast<float>(i); }
 inline std::int32_t bits_max(std::int32_t a, std::int32_t b) { return a < b ? b : a; }
 inline std::int32_t bits_min(std::int32_t a, std::int32_t b) { return b < a ? b : a; }
-// Bit k set iff a > b in lane k.
-inline unsigned bits_greater(std::int32_t a, std::int32_t b) { return a > b ? 1u : 0u; }
+// Bit k set iff a <= b in lane k.
+inline unsigned bits_at_most(std::int32_t a, std::int32_t b) { return a <= b ? 1u : 0u; }
 template <class A>
 inline xsimd::batch<std::int32_t, A> float_bits(const xsimd::batch<float, A>& x) {
   return xsimd::bitwise_cast<xsimd::batch<std::int32_t, A>>(x);
@@ -368,22 +368,27 @@ inline xsimd::batch<std::int32_t, A> bits_min(const xsimd::batch<std::int32_t, A
                                               const xsimd::batch<std::int32_t, A>& b) {
   return xsimd::min(a, b);
 }
+// (SSE and AVX2: a > b's sign bits, flipped by one xor; AVX-512: one compare into a mask register.)
 #if defined(__SSE4_2__) && defined(__FMA__)
-inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::sse4_2>& a,
+inline unsigned bits_at_most(const xsimd::batch<std::int32_t, xsimd::sse4_2>& a,
                              const xsimd::batch<std::int32_t, xsimd::sse4_2>& b) {
-  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(a, b))));
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(a, b)))) ^ 0xfu;
 }
 #endif
 #if XSIMD_WITH_FMA3_AVX2
-inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::fma3<xsimd::avx2>>& a,
+inline unsigned bits_at_most(const xsimd::batch<std::int32_t, xsimd::fma3<xsimd::avx2>>& a,
                              const xsimd::batch<std::int32_t, xsimd::fma3<xsimd::avx2>>& b) {
-  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(a, b))));
+#if defined(__AVX512VL__)
+  return _mm256_cmple_epi32_mask(a, b);  // the AVX-512 unit's 8-lane node tests
+#else
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(a, b)))) ^ 0xffu;
+#endif
 }
 #endif
 #if XSIMD_WITH_AVX512BW
-inline unsigned bits_greater(const xsimd::batch<std::int32_t, xsimd::avx512bw>& a,
+inline unsigned bits_at_most(const xsimd::batch<std::int32_t, xsimd::avx512bw>& a,
                              const xsimd::batch<std::int32_t, xsimd::avx512bw>& b) {
-  return _mm512_cmpgt_epi32_mask(a, b);
+  return _mm512_cmple_epi32_mask(a, b);
 }
 #endif
 
