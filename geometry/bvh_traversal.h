@@ -28,7 +28,7 @@
 // Ize's 2 gamma(3), "Robust BVH ray traversal", JCGT 2013, to cover the
 // kernels' own error in t), so no primitive a brute-force scan reports is
 // culled. The single-ray walks compare the distances by their bits, as
-// integers (Embree's form: one cycle per max, min and compare), for rays
+// integers (Embree's form, with shorter latencies), for rays
 // with tmin >= 0 and finite slab terms (widened_interval_bits). The
 // widening is relative, so it would narrow negative distances: a ray whose
 // interval reaches behind its origin (tmin < 0) walks alone and enters
