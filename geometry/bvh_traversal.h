@@ -309,9 +309,9 @@ struct NodeRay {
                                 : one.template broadcast<G>();
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
+      // (|1/d| <= 2^80, so exit_inv_dir is finite with entry_inv_dir.)
       bits_ordered = bits_ordered && one.entry_inv_dir != 0.f && std::isfinite(one.entry_inv_dir) &&
-                     std::isfinite(one.exit_inv_dir) && std::isfinite(one.entry_offset) &&
-                     std::isfinite(one.exit_offset);
+                     std::isfinite(one.entry_offset) && std::isfinite(one.exit_offset);
     }
   }
   G entry(int a, const G& plane) const { return terms[a].entry(plane); }
@@ -651,13 +651,13 @@ struct WithNodeTests {
 // far off that o/d overflows: rays no renderer makes) through one plain
 // copy with float node tests (which enter every child of a ray reaching
 // behind its origin, NodeRay::tmin). Other kinds keep one copy, on the floats: the
-// two copies made teapot-s12's polygon walk about a third slower (its rays
-// spend most of their time in the per-ray setup).
+// two copies made teapot-s12's polygon walk about a third slower (perf;
+// its per-ray setup weighs much there).
 template <KernelUnit U, class Method, class S, class Walk>
-[[gnu::always_inline]] inline void run_single_walk(const Ray<float>& ray, bool bits_ordered, const Walk& walk) {
+[[gnu::always_inline]] inline void run_single_walk(const Ray<float>& ray, const Walk& walk) {
   if constexpr (!ScanStore<S>) {
     with_plain_leaf_ray<U, Method, S>(ray, WithNodeTests<false, Walk>{walk});
-  } else if (bits_ordered) [[likely]] {
+  } else if (walk.node_ray.bits_ordered) [[likely]] {
     with_leaf_ray<U, Method, S>(ray, WithNodeTests<true, Walk>{walk});
   } else {
     with_plain_leaf_ray<U, Method, S>(ray, WithNodeTests<false, Walk>{walk});
@@ -753,12 +753,11 @@ struct ClosestSingleWalk {
   BvhStores<S, K> stores;
   BvhNodes<N> nodes;
   const NodeRay<U, N>& node_ray;
-  float tmin;
   Hit<float>& hit;
 
   template <bool kBits, class Leaf>
   [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
-    hit = closest_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, tmin, hit);
+    hit = closest_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, node_ray.tmin, hit);
   }
 };
 
@@ -768,8 +767,7 @@ template <KernelUnit U, class Method, int N, class S, int K>
 [[gnu::noinline, gnu::flatten]] void closest_bvh_single(BvhStores<S, K> stores, const Bvh& bvh,
                                                         const Ray<float>& ray, Hit<float>& hit) {
   const NodeRay<U, N> node_ray(ray);
-  run_single_walk<U, Method, S>(ray, node_ray.bits_ordered,
-                                ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, node_ray.tmin, hit});
+  run_single_walk<U, Method, S>(ray, ClosestSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, hit});
 }
 
 // The any-hit walk of one ray: stops at its first hit.
@@ -821,12 +819,12 @@ struct OccludedSingleWalk {
   BvhStores<S, K> stores;
   BvhNodes<N> nodes;
   const NodeRay<U, N>& node_ray;
-  float tmin, tmax;
+  float tmax;
   bool& blocked;
 
   template <bool kBits, class Leaf>
   [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
-    blocked = occluded_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, tmin, tmax);
+    blocked = occluded_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, node_ray.tmin, tmax);
   }
 };
 
@@ -836,9 +834,8 @@ template <KernelUnit U, class Method, int N, class S, int K>
                                                         const Ray<float>& ray) {
   const NodeRay<U, N> node_ray(ray);
   bool blocked = false;
-  run_single_walk<U, Method, S>(
-      ray, node_ray.bits_ordered,
-      OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, node_ray.tmin, ray.tmax, blocked});
+  run_single_walk<U, Method, S>(ray, OccludedSingleWalk<U, N, S, K>{stores, BvhNodes<N>(bvh), node_ray, ray.tmax,
+                                                                    blocked});
   return blocked;
 }
 
