@@ -6,7 +6,8 @@
 // Each set is cut into blocks of 256 rays spread over oneTBB threads (one
 // arena per thread count) and traced by
 //   quiver  SceneIntersector::closest (shadow: occluded on both layers) on
-//           each block's RaySoA, 8-wide avx2 unit,
+//           each block's RaySoA, in the kernel unit QUIVER_SIMD names,
+//           else the widest the CPU has,
 //   e1      rtcIntersect1 / rtcOccluded1 per ray,
 //   e8      rtcIntersect8 / rtcOccluded8 per 8 consecutive rays,
 // each pass filling its ray state and writing every ray's result out, so
@@ -411,8 +412,8 @@ int main(int argc, char** argv) {
       ->delimiter(',')->capture_default_str();
   app.add_flag("--robust", options.robust, "Build the Embree scene with RTC_SCENE_FLAG_ROBUST");
   app.add_option("--embree-isa", options.embree_isa,
-                 "Embree's widest ISA: native (its own choice, AVX-512 where the CPU has it), avx2 (quiver's "
-                 "widest), sse4.2")
+                 "Embree's widest ISA: native (its own choice, AVX-512 where the CPU has it), avx2 (as quiver "
+                 "with QUIVER_SIMD=avx2), sse4.2")
       ->check(CLI::IsMember({"native", "avx2", "sse4.2"}))->capture_default_str();
   app.add_option("--json", options.json_path, "Also write every measurement to this JSON file");
   try {
