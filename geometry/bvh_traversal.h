@@ -318,8 +318,8 @@ struct NodeRay {
   G widened_exit(int a, const G& plane) const { return terms[a].widened_exit(plane); }
 };
 
-// Some active lane's interval reaches behind its origin (tmin < 0); the
-// streams hand such packets to the single-ray walks (NodeRay::tmin).
+// Some active lane's interval reaches behind its origin (tmin < 0): such
+// packets go to the single-ray walks (travels_together, NodeRay::tmin).
 template <class F>
 inline bool reaches_behind(const Ray<F>& ray, const Mask<F>& active) {
   return any(ray.tmin < F(0.f) && active);
@@ -375,10 +375,10 @@ struct NodeFrustum {
   G widened_exit(int a, const G& plane) const { return (plane - origin_at_exit[a]) * inv_dir_at_exit[a]; }
 };
 
-// The node's children a NodeRay or a NodeFrustum enters within [tmin, tmax]
-// (widened_interval): bit c of the result, near[c] their keys.
+// The node's children a NodeRay or a NodeFrustum enters within [its tmin,
+// tmax] (widened_interval): bit c of the result, near[c] their keys.
 template <int N, bool kBits = false, class R>
-[[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmin, float tmax,
+[[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmax,
                                                       std::array<float, N>& near) {
   using G = typename R::G;
   constexpr int kG = lane_count<G>;
@@ -391,9 +391,9 @@ template <int N, bool kBits = false, class R>
     }
     G lane_near;
     if constexpr (kBits) {
-      bits |= widened_interval_bits(entry, exit, G(tmin), G(tmax), lane_near) << c;
+      bits |= widened_interval_bits(entry, exit, G(ray.tmin), G(tmax), lane_near) << c;
     } else {
-      bits |= lane_bits(widened_interval(entry, exit, G(tmin), G(tmax), lane_near)) << c;
+      bits |= lane_bits(widened_interval(entry, exit, G(ray.tmin), G(tmax), lane_near)) << c;
     }
     if constexpr (kG == 1) {
       near[c] = lane_near;
@@ -472,7 +472,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
     unsigned candidates = 0;
     if constexpr (kCulls) {
       std::array<float, N> unused;
-      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum_tmax, unused);
+      candidates = enter_children<N>(block, frustum, frustum_tmax, unused);
     }
     for_each_child<N, kCulls, false>(candidates, [&](int c) __attribute__((always_inline)) {
       const std::int32_t child = BvhNodes<N>::child(block, c);
@@ -535,7 +535,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
     unsigned candidates = 0;
     if constexpr (kCulls) {
       std::array<float, N> unused;
-      candidates = enter_children<N>(block, frustum, frustum.tmin, frustum.tmax, unused);
+      candidates = enter_children<N>(block, frustum, frustum.tmax, unused);
     }
     for_each_child<N, kCulls, true>(candidates, [&](int c) __attribute__((always_inline)) {
       const std::int32_t child = BvhNodes<N>::child(block, c);
@@ -671,7 +671,7 @@ template <KernelUnit U, class Method, class S, class Walk>
 template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
 [[gnu::always_inline]] inline Hit<float> closest_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                              const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
-                                                             float tmin, Hit<float> hit) {
+                                                             Hit<float> hit) {
   using F = LeafScanLanes<U>;
   struct Entry {
     std::int32_t node;
@@ -712,7 +712,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
     } else {
       std::array<float, N> near;
       const float* block = nodes.block(current);
-      unsigned bits = enter_children<N, kBits>(block, node_ray, tmin, hit.t, near);
+      unsigned bits = enter_children<N, kBits>(block, node_ray, hit.t, near);
       // Empty slots have empty boxes, which no ray enters (and hold no primitive).
       if (bits != 0) {
         int c = __builtin_ctz(bits);
@@ -757,7 +757,7 @@ struct ClosestSingleWalk {
 
   template <bool kBits, class Leaf>
   [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
-    hit = closest_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, node_ray.tmin, hit);
+    hit = closest_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, hit);
   }
 };
 
@@ -774,7 +774,7 @@ template <KernelUnit U, class Method, int N, class S, int K>
 template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
 [[gnu::always_inline]] inline bool occluded_single_walk(BvhStores<S, K> stores, BvhNodes<N> nodes,
                                                         const NodeRay<U, N>& node_ray, const Leaf& leaf_ray,
-                                                        float tmin, float tmax) {
+                                                        float tmax) {
   using F = LeafScanLanes<U>;
   std::array<std::int32_t, bvh_stack_size(N)> stack;
   std::size_t top = 0;
@@ -802,7 +802,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
     }
     std::array<float, N> near;
     const float* block = nodes.block(entry);
-    for (unsigned bits = enter_children<N, kBits>(block, node_ray, tmin, tmax, near); bits != 0;
+    for (unsigned bits = enter_children<N, kBits>(block, node_ray, tmax, near); bits != 0;
          bits &= bits - 1) {
       // Never an empty slot (empty boxes are never entered), yet dropping
       // that test measured 4-5% slower on the bunny's and balls-s4's shadow rays.
@@ -824,7 +824,7 @@ struct OccludedSingleWalk {
 
   template <bool kBits, class Leaf>
   [[gnu::always_inline]] void run(const Leaf& leaf_ray) const {
-    blocked = occluded_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, node_ray.tmin, tmax);
+    blocked = occluded_single_walk<U, N, kBits>(stores, nodes, node_ray, leaf_ray, tmax);
   }
 };
 
@@ -859,15 +859,17 @@ inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
 template <class S>
 concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
 
-// Whether the packet's active lanes walk the tree together. Triangles: only
-// within one octant. (Any-hit triangle packets one by one won 9% on the
+// Whether the packet's active lanes walk the tree together: never when one
+// reaches behind its origin (the packet walks' slab tests need tmin >= 0),
+// else as the traversal says; automatic: triangles only within one octant. (Any-hit triangle packets one by one won 9% on the
 // bunny's shadow rays and lost 38% on teapot-s12's, so they follow the same
 // rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
 // (Benthin et al. 2012) gained at most 3% (bunny primary rays) and lost up
 // to 23% (gears-s4 shadow rays), so it is not used.)
 template <class S, class F>
 inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
-  if (traversal != BvhTraversal::automatic) return traversal == BvhTraversal::packets;
+  if (traversal == BvhTraversal::single || reaches_behind(ray, active)) return false;
+  if (traversal == BvhTraversal::packets) return true;
   if (lane_count<F> == 1) return false;
   if constexpr (IncoherentRaysTraverseAlone<S>) {
     return same_octant(ray, active);
@@ -884,7 +886,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
-    if (travels_together<S>(traversal, ray, active) && !reaches_behind(ray, active)) {
+    if (travels_together<S>(traversal, ray, active)) {
       Hit<F> hit = hits.load<F>(first);
       const PacketSlab<F, N> slab(ray, active);
       const NodeFrustum<U, N> frustum(slab, ray.tmin, hit.t, active);
@@ -916,7 +918,7 @@ template <KernelUnit U, class Method, class S, int N, int K>
     const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
     const Mask<F> open = and_not(valid, occluded);
     if (none(open)) continue;
-    if (travels_together<S>(traversal, ray, open) && !reaches_behind(ray, open)) {
+    if (travels_together<S>(traversal, ray, open)) {
       // No frustum over two stores: the walk skips the untested store's
       // children without a box test, which leaves it little to save
       // (gears-s4: shadow rays -3..-5%, its whole render -5%).
