@@ -14,7 +14,9 @@
 //   single: one ray tests all children of a wide node at once (a node's
 //           boxes are SoA), nearest child first; leaves test the ray against
 //           W primitives at a time (the scan kernels), or one at a time for
-//           kinds without a scan orientation.
+//           kinds without a scan orientation. A packet's rays that walk
+//           one by one through watertight triangles are set up together
+//           (node terms and frames in SIMD, then walked frame by frame).
 // The stream decides per packet: packets travel together, except that
 // triangle packets whose active lanes' directions span several octants
 // (incoherent) traverse lane by lane (measured, bench/README.md).
@@ -279,6 +281,38 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
 
 // ---- a node's children in one pass ----------------------------------------------
 
+// The node-test terms of a packet's rays for walks ray by ray, set up for
+// all lanes at once (SlabTerms on the packet's lanes: per lane the
+// operations NodeRay does for one ray, so the same bits) and stored per
+// lane, so that each ray starts from loads instead of its own divisions.
+// Only lanes NodeRay would mark bits_ordered are set up (`ordered`).
+template <class F>
+struct LaneNodeTerms {
+  static constexpr std::size_t kLanes = lane_count<F>;
+  // Axis a's entry_inv_dir, entry_offset, exit_inv_dir, exit_offset at 4a .. 4a + 3.
+  alignas(64) std::array<std::array<float, kLanes>, 12> terms;
+  alignas(64) std::array<float, kLanes> tmin;
+  std::array<unsigned, 3> reversed{};  // lanes whose 1/d < 0, per axis
+  unsigned ordered = 0;
+
+  explicit LaneNodeTerms(const Ray<F>& ray) {
+    // tmin is +0 to +inf: its sign bit clear, not NaN.
+    Mask<F> ordered_lanes = copysign(F(1.f), ray.tmin) > F(0.f) && ray.tmin == ray.tmin;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const SlabTerms<F> t = SlabTerms<F>::of(ray.origin[static_cast<int>(a)], ray.direction[static_cast<int>(a)]);
+      store_lanes(t.entry_inv_dir, terms[4 * a].data());
+      store_lanes(t.entry_offset, terms[4 * a + 1].data());
+      store_lanes(t.exit_inv_dir, terms[4 * a + 2].data());
+      store_lanes(t.exit_offset, terms[4 * a + 3].data());
+      reversed[a] = lane_bits(t.entry_inv_dir < F(0.f));
+      ordered_lanes = ordered_lanes && t.entry_inv_dir != F(0.f) && isfinite_lanes(t.entry_inv_dir) &&
+                      isfinite_lanes(t.entry_offset) && isfinite_lanes(t.exit_offset);
+    }
+    store_lanes(ray.tmin, tmin.data());
+    ordered = lane_bits(ordered_lanes);
+  }
+};
+
 // One ray set up for a node's children: its SlabTerms in node lanes, and
 // per axis the near and far plane (lo or hi by the sign of 1/d), chosen
 // once per ray.
@@ -312,6 +346,21 @@ struct NodeRay {
       // (|1/d| <= 2^80, so exit_inv_dir is finite with entry_inv_dir.)
       bits_ordered = bits_ordered && one.entry_inv_dir != 0.f && std::isfinite(one.entry_inv_dir) &&
                      std::isfinite(one.entry_offset) && std::isfinite(one.exit_offset);
+    }
+  }
+  // One lane of a packet's terms, a lane they mark ordered: the same values
+  // as NodeRay(that lane's ray).
+  template <class F>
+  NodeRay(const LaneNodeTerms<F>& lanes, int lane) : bits_ordered(true) {
+    const std::size_t k = static_cast<std::size_t>(lane);
+    tmin = lanes.tmin[k];
+    for (std::size_t a = 0; a < 3; ++a) {
+      terms[a] = SlabTerms<float>{lanes.terms[4 * a][k], lanes.terms[4 * a + 1][k], lanes.terms[4 * a + 2][k],
+                                  lanes.terms[4 * a + 3][k]}
+                     .template broadcast<G>();
+      const bool reversed = ((lanes.reversed[a] >> lane) & 1u) != 0;
+      near_plane[a] = near_plane_offset<N>(static_cast<int>(a), reversed);
+      far_plane[a] = far_plane_offset<N>(static_cast<int>(a), reversed);
     }
   }
   G entry(int a, const G& plane) const { return terms[a].entry(plane); }
@@ -839,6 +888,143 @@ template <KernelUnit U, class Method, int N, class S, int K>
   return blocked;
 }
 
+// ---- a packet's rays one by one ---------------------------------------------------
+
+// Methods whose scans prepare a packet's rays at once and hand them over
+// lane by lane in compile-time frames (the watertight triangle test).
+template <class Method, class F>
+concept PreparesLanesByFrame = requires(const Ray<F>& ray) { Method::prepare_lanes(ray); };
+
+// Walks ray by ray with the packet's setup done at once: scan stores
+// whose method prepares lanes by frame.
+template <class Method, class S, class F>
+concept WalksLanesByFrame = ScanStore<S> && PreparesLanesByFrame<Method, F>;
+
+// A packet's closest hits stored per lane, for its rays' walks one by one.
+template <class F>
+struct LaneHits {
+  static constexpr std::size_t kLanes = lane_count<F>;
+  alignas(64) std::array<float, kLanes> t, u, v, ngx, ngy, ngz;
+  alignas(64) std::array<std::int32_t, kLanes> id;
+
+  explicit LaneHits(const Hit<F>& hit) {
+    store_lanes(hit.t, t.data());
+    store_lanes(hit.u, u.data());
+    store_lanes(hit.v, v.data());
+    store_lanes(hit.ng.x, ngx.data());
+    store_lanes(hit.ng.y, ngy.data());
+    store_lanes(hit.ng.z, ngz.data());
+    store_int_lanes<F>(hit.id, id.data());
+  }
+  Hit<float> get(std::size_t k) const { return {t[k], u[k], v[k], {ngx[k], ngy[k], ngz[k]}, id[k]}; }
+  void set(std::size_t k, const Hit<float>& hit) {
+    t[k] = hit.t;
+    u[k] = hit.u;
+    v[k] = hit.v;
+    ngx[k] = hit.ng.x;
+    ngy[k] = hit.ng.y;
+    ngz[k] = hit.ng.z;
+    id[k] = hit.id;
+  }
+  Hit<F> packet() const {
+    return {load_lanes<F>(t.data()), load_lanes<F>(u.data()), load_lanes<F>(v.data()),
+            Vec3<F>(load_lanes<F>(ngx.data()), load_lanes<F>(ngy.data()), load_lanes<F>(ngz.data())),
+            load_int_lanes<F>(id.data())};
+  }
+};
+
+// One lane's closest-hit walk, for Method::for_each_lane_by_frame.
+template <KernelUnit U, class Method, int N, class S, int K, class F>
+struct LaneClosestWalk {
+  BvhStores<S, K> stores;
+  BvhNodes<N> nodes;
+  const LaneNodeTerms<F>& node_terms;
+  LaneHits<F>& hits;
+
+  template <class Prepared, class Axes>
+  [[gnu::always_inline]] void operator()(int lane, const Prepared& prepared, Axes) const {
+    const std::size_t k = static_cast<std::size_t>(lane);
+    const NodeRay<U, N> node_ray(node_terms, lane);
+    const LeafRay<U, Method, Prepared, Axes> leaf_ray{prepared};
+    hits.set(k, closest_single_walk<U, N, true>(stores, nodes, node_ray, leaf_ray, hits.get(k)));
+  }
+};
+
+// One lane's any-hit walk, for Method::for_each_lane_by_frame.
+template <KernelUnit U, class Method, int N, class S, int K, class F>
+struct LaneOccludedWalk {
+  BvhStores<S, K> stores;
+  BvhNodes<N> nodes;
+  const LaneNodeTerms<F>& node_terms;
+  const std::array<float, lane_count<F>>& tmax;
+  unsigned& blocked;
+
+  template <class Prepared, class Axes>
+  [[gnu::always_inline]] void operator()(int lane, const Prepared& prepared, Axes) const {
+    const NodeRay<U, N> node_ray(node_terms, lane);
+    if (occluded_single_walk<U, N, true>(stores, nodes, node_ray, LeafRay<U, Method, Prepared, Axes>{prepared},
+                                         tmax[static_cast<std::size_t>(lane)])) {
+      blocked |= 1u << lane;
+    }
+  }
+};
+
+// The closest hits of a packet's `lanes` (bits), ray by ray. The packet's
+// node terms and frames are set up at once (LaneNodeTerms,
+// Method::prepare_lanes) and its rays walked frame by frame, so no ray
+// pays for its own divisions and frame branches (fandisk's diffuse rays,
+// one or two node visits each, spent about half their time in that setup:
+// bench/README.md); a lane those terms do not cover walks through
+// closest_bvh_single. Out of line and flattened, as closest_bvh_single.
+template <KernelUnit U, class Method, int N, class S, int K>
+[[gnu::noinline, gnu::flatten]] void closest_bvh_lanes(BvhStores<S, K> stores, const Bvh& bvh, const RaySoA& rays,
+                                                       std::size_t first, unsigned lanes, HitSoA& hits) {
+  using F = UnitLanes<U>;
+  const Ray<F> ray = rays.load<F>(first);
+  const LaneNodeTerms<F> node_terms(ray);
+  const unsigned set_up = lanes & node_terms.ordered;
+  if (set_up != 0) {
+    LaneHits<F> lane_hits(hits.load<F>(first));
+    Method::template for_each_lane_by_frame<LeafScanLanes<U>>(
+        Method::prepare_lanes(ray), set_up,
+        LaneClosestWalk<U, Method, N, S, K, F>{stores, BvhNodes<N>(bvh), node_terms, lane_hits});
+    hits.store(first, lane_hits.packet());
+  }
+  for (unsigned rest = lanes & ~set_up; rest != 0; rest &= rest - 1) {
+    const std::size_t r = first + static_cast<std::size_t>(__builtin_ctz(rest));
+    Hit<float> hit = hits.get(r);
+    closest_bvh_single<U, Method, N>(stores, bvh, rays.get(r), hit);
+    hits.set(r, hit);
+  }
+}
+
+// Any hits of a packet's `lanes` (bits), ray by ray, as closest_bvh_lanes.
+template <KernelUnit U, class Method, int N, class S, int K>
+[[gnu::noinline, gnu::flatten]] void occluded_bvh_lanes(BvhStores<S, K> stores, const Bvh& bvh, const RaySoA& rays,
+                                                        std::size_t first, unsigned lanes, OcclusionSoA& result) {
+  using F = UnitLanes<U>;
+  const Ray<F> ray = rays.load<F>(first);
+  const LaneNodeTerms<F> node_terms(ray);
+  const unsigned set_up = lanes & node_terms.ordered;
+  unsigned blocked = 0;
+  if (set_up != 0) {
+    alignas(64) std::array<float, lane_count<F>> tmax;
+    store_lanes(ray.tmax, tmax.data());
+    Method::template for_each_lane_by_frame<LeafScanLanes<U>>(
+        Method::prepare_lanes(ray), set_up,
+        LaneOccludedWalk<U, Method, N, S, K, F>{stores, BvhNodes<N>(bvh), node_terms, tmax, blocked});
+  }
+  for (unsigned rest = lanes & ~set_up; rest != 0; rest &= rest - 1) {
+    const int lane = __builtin_ctz(rest);
+    if (occluded_bvh_single<U, Method, N>(stores, bvh, rays.get(first + static_cast<std::size_t>(lane)))) {
+      blocked |= 1u << lane;
+    }
+  }
+  for (; blocked != 0; blocked &= blocked - 1) {
+    result.occluded[first + static_cast<std::size_t>(__builtin_ctz(blocked))] = 1;
+  }
+}
+
 // ---- streams --------------------------------------------------------------------
 
 // Every active lane's direction in one octant.
@@ -898,6 +1084,10 @@ template <KernelUnit U, class Method, class S, int N, int K>
       hits.store(first, hit);
       continue;
     }
+    if constexpr (WalksLanesByFrame<Method, S, F>) {
+      closest_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(active), hits);
+      continue;
+    }
     const std::size_t end = first + W < rays.count ? first + W : rays.count;
     for (std::size_t r = first; r < end; ++r) {
       Hit<float> hit = hits.get(r);
@@ -929,6 +1119,10 @@ template <KernelUnit U, class Method, class S, int N, int K>
           frustum.usable ? occluded_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid)
                          : occluded_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid);
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
+      continue;
+    }
+    if constexpr (WalksLanesByFrame<Method, S, F>) {
+      occluded_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(open), result);
       continue;
     }
     const std::size_t end = first + W < rays.count ? first + W : rays.count;

@@ -27,7 +27,8 @@
 //   selects per test (AxesPerLane). Both pick the same floats, so the bits
 //   are the same either way. with_fixed_axes prepares one ray once and hands
 //   its frame to the caller as a type, so a walk over many scan blocks (the
-//   single-ray BVH walk) chooses it once per ray.
+//   single-ray BVH walk) chooses it once per ray; prepare_lanes and
+//   for_each_lane_by_frame do the same for a packet's rays at once.
 //
 // Both: hit iff active, inside (edges and vertices included), det != 0,
 // tmin < t < tmax and ng != 0 (a triangle whose computed ng is exactly zero,
@@ -38,6 +39,9 @@
 // (the watertight test again once none is within (tmin, tmax)); that
 // changes no lane's result.
 #pragma once
+
+#include <array>
+#include <cstddef>
 
 #include "geometry/hit.h"
 #include "simd/ray.h"
@@ -108,11 +112,22 @@ struct WatertightRay {
   F sx, sy, sz;
   F tmin;
   Mask<F> valid;  // direction not zero
+  Mask<F> swap;   // d[kz] < 0: kx and ky swapped
   // kz * 2 + swap when every lane shares them, else kMixedAxes.
   int shared_axes;
 };
 
 inline constexpr int kMixedAxes = -1;
+
+// A packet's rays prepared for scans ray by ray (TriangleWatertight::
+// prepare_lanes), stored per lane, with the lanes of each frame kz * 2 + swap.
+template <class F>
+struct WatertightLanes {
+  static constexpr int kLanes = lane_count<F>;
+  alignas(64) std::array<float, kLanes> origin_x, origin_y, origin_z, sx, sy, sz, tmin;
+  unsigned valid = 0;
+  std::array<unsigned, 6> frame_lanes{};
+};
 
 namespace triangle_detail {
 
@@ -130,6 +145,7 @@ struct AxesPerLane {
 // cyclic after it and swapped when Swap.
 template <int KZ, bool Swap>
 struct AxesFixed {
+  static constexpr int kz = KZ;
   static constexpr int kx = Swap ? (KZ + 2) % 3 : (KZ + 1) % 3;
   static constexpr int ky = Swap ? (KZ + 1) % 3 : (KZ + 2) % 3;
   template <int K, class F>
@@ -165,6 +181,7 @@ struct TriangleWatertight {
     // Swap kx and ky when d[kz] < 0 to keep the winding.
     const Mask<F> swap = dz < F(0.f);
     WatertightRay<F> r;
+    r.swap = swap;
     r.origin = ray.origin;
     r.kx_is_x = choose<F>(swap, ky_is_x, kx_is_x);
     r.kx_is_y = choose<F>(swap, ky_is_y, kx_is_y);
@@ -208,6 +225,7 @@ struct TriangleWatertight {
     r.sz = F(one.sz);
     r.tmin = F(one.tmin);
     r.valid = Mask<F>(one.valid);
+    r.swap = Mask<F>(one.swap);
     r.shared_axes = one.shared_axes;  // one ray: never kMixedAxes
     switch (one.shared_axes) {
       case 0: return visit(r, AxesFixed<0, false>{});
@@ -216,6 +234,50 @@ struct TriangleWatertight {
       case 3: return visit(r, AxesFixed<1, true>{});
       case 4: return visit(r, AxesFixed<2, false>{});
       default: return visit(r, AxesFixed<2, true>{});
+    }
+  }
+
+  // A packet's rays prepared at once for scans ray by ray: prepare on the
+  // packet's lanes does per lane what with_fixed_axes does for one ray, so
+  // each lane's values are the same bits, without one ray's divisions and
+  // frame branches.
+  template <class F>
+  [[gnu::always_inline]] static WatertightLanes<F> prepare_lanes(const Ray<F>& ray) {
+    const WatertightRay<F> r = prepare(ray);
+    WatertightLanes<F> lanes;
+    store_lanes(r.origin.x, lanes.origin_x.data());
+    store_lanes(r.origin.y, lanes.origin_y.data());
+    store_lanes(r.origin.z, lanes.origin_z.data());
+    store_lanes(r.sx, lanes.sx.data());
+    store_lanes(r.sy, lanes.sy.data());
+    store_lanes(r.sz, lanes.sz.data());
+    store_lanes(r.tmin, lanes.tmin.data());
+    lanes.valid = lane_bits(r.valid);
+    const unsigned kz_x = lane_bits(r.kz_is_x), kz_y = lane_bits(r.kz_is_y), swapped = lane_bits(r.swap);
+    const unsigned kz_z = ~(kz_x | kz_y);
+    lanes.frame_lanes = {kz_x & ~swapped, kz_x & swapped, kz_y & ~swapped, kz_y & swapped, kz_z & ~swapped,
+                         kz_z & swapped};
+    return lanes;
+  }
+
+  // Calls visit(lane, prepared, Axes{}) for each lane in `lanes`, frame by
+  // frame (the lanes of one frame in a row): prepared is the lane's ray
+  // broadcast to G, as with_fixed_axes hands it over.
+  template <class G, class F, class Visit>
+  [[gnu::always_inline]] static void for_each_lane_by_frame(const WatertightLanes<F>& prepared, unsigned lanes,
+                                                           const Visit& visit) {
+    using namespace triangle_detail;
+    for (int frame = 0; frame < 6; ++frame) {
+      const unsigned in_frame = lanes & prepared.frame_lanes[static_cast<std::size_t>(frame)];
+      if (in_frame == 0) continue;
+      switch (frame) {
+        case 0: visit_lanes<AxesFixed<0, false>, G>(prepared, in_frame, frame, visit); break;
+        case 1: visit_lanes<AxesFixed<0, true>, G>(prepared, in_frame, frame, visit); break;
+        case 2: visit_lanes<AxesFixed<1, false>, G>(prepared, in_frame, frame, visit); break;
+        case 3: visit_lanes<AxesFixed<1, true>, G>(prepared, in_frame, frame, visit); break;
+        case 4: visit_lanes<AxesFixed<2, false>, G>(prepared, in_frame, frame, visit); break;
+        default: visit_lanes<AxesFixed<2, true>, G>(prepared, in_frame, frame, visit); break;
+      }
     }
   }
 
@@ -231,6 +293,32 @@ struct TriangleWatertight {
       case 4: return intersect_in<AxesFixed<2, false>>(ray, tri, tmax, active, out);
       case 5: return intersect_in<AxesFixed<2, true>>(ray, tri, tmax, active, out);
       default: return intersect_in<AxesPerLane>(ray, tri, tmax, active, out);
+    }
+  }
+
+  // for_each_lane_by_frame's lanes of one frame.
+  template <class Axes, class G, class F, class Visit>
+  [[gnu::always_inline]] static void visit_lanes(const WatertightLanes<F>& prepared, unsigned lanes, int frame,
+                                                 const Visit& visit) {
+    for (; lanes != 0; lanes &= lanes - 1) {
+      const int lane = __builtin_ctz(lanes);
+      const std::size_t k = static_cast<std::size_t>(lane);
+      WatertightRay<G> r;
+      r.origin = Vec3<G>(G(prepared.origin_x[k]), G(prepared.origin_y[k]), G(prepared.origin_z[k]));
+      r.sx = G(prepared.sx[k]);
+      r.sy = G(prepared.sy[k]);
+      r.sz = G(prepared.sz[k]);
+      r.tmin = G(prepared.tmin[k]);
+      r.kx_is_x = Mask<G>(Axes::kx == 0);
+      r.kx_is_y = Mask<G>(Axes::kx == 1);
+      r.ky_is_x = Mask<G>(Axes::ky == 0);
+      r.ky_is_y = Mask<G>(Axes::ky == 1);
+      r.kz_is_x = Mask<G>(Axes::kz == 0);
+      r.kz_is_y = Mask<G>(Axes::kz == 1);
+      r.valid = Mask<G>(((prepared.valid >> lane) & 1u) != 0);
+      r.swap = Mask<G>((frame & 1) != 0);
+      r.shared_axes = frame;
+      visit(lane, r, Axes{});
     }
   }
 
