@@ -281,6 +281,18 @@ inline bool worth_entering(const BvhStores<S, K>& stores, std::int32_t child) {
 
 // ---- a node's children in one pass ----------------------------------------------
 
+// Whether a ray's node tests may compare distances by their bits
+// (widened_interval_bits): tmin is +0 to +inf (sign bit clear, not NaN),
+// and on each axis 1/d is finite and not zero and the offsets are finite,
+// so a plane's distance (box planes are numbers or +-inf) is never NaN.
+// (|1/d| <= 2^80, so exit_inv_dir is finite with entry_inv_dir.)
+template <class F>
+inline Mask<F> orders_by_bits(const F& tmin, const SlabTerms<F>& axis_terms, const Mask<F>& other_axes) {
+  return other_axes && axis_terms.entry_inv_dir != F(0.f) && isfinite_lanes(axis_terms.entry_inv_dir) &&
+         isfinite_lanes(axis_terms.entry_offset) && isfinite_lanes(axis_terms.exit_offset) &&
+         copysign(F(1.f), tmin) > F(0.f) && tmin == tmin;
+}
+
 // The node-test terms of a packet's rays for walks ray by ray, set up for
 // all lanes at once (SlabTerms on the packet's lanes: per lane the
 // operations NodeRay does for one ray, so the same bits) and stored per
@@ -296,8 +308,7 @@ struct LaneNodeTerms {
   unsigned ordered = 0;
 
   explicit LaneNodeTerms(const Ray<F>& ray) {
-    // tmin is +0 to +inf: its sign bit clear, not NaN.
-    Mask<F> ordered_lanes = copysign(F(1.f), ray.tmin) > F(0.f) && ray.tmin == ray.tmin;
+    Mask<F> ordered_lanes(true);
     for (std::size_t a = 0; a < 3; ++a) {
       const SlabTerms<F> t = SlabTerms<F>::of(ray.origin[static_cast<int>(a)], ray.direction[static_cast<int>(a)]);
       store_lanes(t.entry_inv_dir, terms[4 * a].data());
@@ -305,8 +316,7 @@ struct LaneNodeTerms {
       store_lanes(t.exit_inv_dir, terms[4 * a + 2].data());
       store_lanes(t.exit_offset, terms[4 * a + 3].data());
       reversed[a] = lane_bits(t.entry_inv_dir < F(0.f));
-      ordered_lanes = ordered_lanes && t.entry_inv_dir != F(0.f) && isfinite_lanes(t.entry_inv_dir) &&
-                      isfinite_lanes(t.entry_offset) && isfinite_lanes(t.exit_offset);
+      ordered_lanes = orders_by_bits(ray.tmin, t, ordered_lanes);
     }
     store_lanes(ray.tmin, tmin.data());
     ordered = lane_bits(ordered_lanes);
@@ -321,9 +331,7 @@ struct NodeRay {
   using G = typename NodeLanesOf<U, N>::type;
   std::array<SlabTerms<G>, 3> terms;
   std::array<int, 3> near_plane, far_plane;  // float offsets in the block
-  // The node tests may compare distances by their bits (widened_interval_bits):
-  // tmin is +0 to +inf, and 1/d (finite, not zero) and the offsets are
-  // finite, so a plane's distance (box planes are numbers or +-inf) is never NaN.
+  // The node tests may compare distances by their bits (orders_by_bits).
   bool bits_ordered;
   // The node tests' lower bound: the ray's tmin, or -inf when tmin < 0. The
   // slab widening, relative, would narrow negative distances, so a ray
@@ -333,7 +341,7 @@ struct NodeRay {
   float tmin;
 
   explicit NodeRay(const Ray<float>& ray)
-      : bits_ordered(float_bits(ray.tmin) >= 0 && ray.tmin == ray.tmin),
+      : bits_ordered(true),
         tmin(ray.tmin < 0.f ? -std::numeric_limits<float>::infinity() : ray.tmin) {
     constexpr float inf = std::numeric_limits<float>::infinity();
     for (int a = 0; a < 3; ++a) {
@@ -343,9 +351,7 @@ struct NodeRay {
                                 : one.template broadcast<G>();
       near_plane[a] = near_plane_offset<N>(a, reversed);
       far_plane[a] = far_plane_offset<N>(a, reversed);
-      // (|1/d| <= 2^80, so exit_inv_dir is finite with entry_inv_dir.)
-      bits_ordered = bits_ordered && one.entry_inv_dir != 0.f && std::isfinite(one.entry_inv_dir) &&
-                     std::isfinite(one.entry_offset) && std::isfinite(one.exit_offset);
+      bits_ordered = orders_by_bits(ray.tmin, one, bits_ordered);
     }
   }
   // One lane of a packet's terms, a lane they mark ordered: the same values
