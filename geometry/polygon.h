@@ -22,7 +22,11 @@
 // into bands, each listing the edges whose v range meets it; a lane reads
 // only its own band's edges. band_of is non-decreasing in v, so every edge
 // that straddles a lane's v is in the lane's band: the toggles, and so the
-// bits, are those of the full loop.
+// bits, are those of the full loop. A band's span (BandSpan) decides most
+// lanes without edges: left or right of all its edges' u ranges is outside,
+// within its widest gap between them of odd parity inside, each bound kept
+// kBandSpanMargin of the rectangle's width away from every edge, beyond any
+// rounding that could flip a crossing's sign there: the full loop's bits.
 // t-range: hit iff tmin < t < tmax. A ray parallel to the plane (n.dir == 0)
 // misses, even in the plane; its division is fed 1 (no NaN, no division by 0).
 // Masks: only active lanes can hit.
@@ -41,6 +45,18 @@
 
 namespace quiver {
 
+// Per band: u < edges_lo or u > edges_hi: outside (left or right of every
+// edge the band lists); inside_lo < u < inside_hi: inside (an empty range
+// when no gap qualifies). Relative coordinates, as the vertices.
+struct BandSpan {
+  float edges_lo, inside_lo, inside_hi, edges_hi;
+};
+
+// A span bound's distance from the band's edge u ranges, relative to the
+// polygon's rectangle width: the crossing test's sign is exact beyond 2^-22
+// of it (a difference of products of differences within the rectangle).
+inline constexpr float kBandSpanMargin = 0x1p-18f;
+
 template <class F>
 struct PolygonLanes {
   Vec3<F> normal;          // unit length
@@ -58,6 +74,7 @@ struct PolygonLanes {
   float band_vmin, band_scale;
   const std::size_t* band_first;
   const std::uint32_t* band_edges;
+  const BandSpan* band_spans;  // band b's span at band_spans[b]
 };
 
 namespace polygon_detail {
@@ -107,31 +124,42 @@ inline Mask<F> band_parity(const PolygonLanes<F>& poly, int band, const F& u, co
   return inside;
 }
 
-// Parity over bands: the candidate lanes grouped by band, each group over
-// its band's edges. A group's lanes are found at once: those whose band
-// position x lies in [band, band + 1) (the last band: x >= band).
+// Parity over bands. Each candidate lane's band span decides it or leaves
+// it open; the open lanes are grouped by band, each group over its band's
+// edges. A group's lanes are found at once: those whose band position x
+// lies in [band, band + 1) (the last band: x >= band).
 template <class F>
 inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v, const Mask<F>& candidate) {
   const F x = band_position(v, poly.band_vmin, poly.band_scale);
-  alignas(64) float x_lane[kMaxLanes];
+  alignas(64) float x_lane[kMaxLanes], u_lane[kMaxLanes];
   store_lanes(x, x_lane);
+  store_lanes(u, u_lane);
   // Each candidate lane's band, up front: off the group loop's dependency
   // chain (band_of on each group's first lane inside it measured 2-5% below
   // d90b83e on gears-s4's w16 diffuse rays, in three runs).
   int lane_band[kMaxLanes];
-  const unsigned candidates = lane_bits(candidate);
-  for (unsigned b = candidates; b != 0; b &= b - 1) {
+  unsigned inside_by_span = 0, open = 0;
+  for (unsigned b = lane_bits(candidate); b != 0; b &= b - 1) {
     const int lane = __builtin_ctz(b);
-    lane_band[lane] = band_at(x_lane[lane], poly.band_count);
+    const int band = band_at(x_lane[lane], poly.band_count);
+    lane_band[lane] = band;
+    const BandSpan& span = poly.band_spans[band];
+    const float lane_u = u_lane[lane];
+    const bool inside = lane_u > span.inside_lo && lane_u < span.inside_hi;
+    const bool among_edges = lane_u >= span.edges_lo && lane_u <= span.edges_hi;
+    inside_by_span |= static_cast<unsigned>(inside) << lane;
+    open |= static_cast<unsigned>(among_edges && !inside) << lane;
   }
+  Mask<F> inside = mask_from_bits<F>(inside_by_span);
+  if (open == 0) return inside;
+  const Mask<F> open_lanes = mask_from_bits<F>(open);
   const int last = poly.band_count - 1;
-  Mask<F> inside(false);
-  for (unsigned pending = candidates; pending != 0;) {
+  for (unsigned pending = open; pending != 0;) {
     const int first = __builtin_ctz(pending);
     const int band = lane_band[first];
     const Mask<F> in_band = band < last ? x >= F(static_cast<float>(band)) && x < F(static_cast<float>(band + 1))
                                         : x >= F(static_cast<float>(last));
-    const Mask<F> group = in_band && candidate;
+    const Mask<F> group = in_band && open_lanes;
     pending &= ~(lane_bits(group) | (1u << first));  // the first lane is in its group; cleared in any case
     inside = inside || band_parity(poly, band, u, v, group);
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -89,9 +90,53 @@ Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
   return Verdict::ok;
 }
 
+// The span of one band (BandSpan, geometry/polygon.h) from the edges it
+// lists, with above(k): band_of(vertex k's v) > band. Between the edges' u
+// ranges (sorted by their low ends) lie gaps; the edges right of a gap form
+// paths whose end vertices lie outside the band, so each band lane's
+// crossings right of the gap have the parity of the above() changes along
+// them: the gap is inside iff that parity is odd. The widest such gap
+// narrowed by `margin` at each end, the edges' whole u range widened by it.
+template <class Above>
+BandSpan band_span(const std::vector<float>& us, std::span<const std::uint32_t> edges, const Above& above,
+                   double margin) {
+  struct Range {
+    double lo, hi;
+    bool crosses;  // its ends differ in above()
+  };
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  if (edges.empty()) return {kInf, 0.f, 0.f, -kInf};  // no crossings: outside
+  const std::size_t n = us.size();
+  std::vector<Range> ranges;
+  for (std::uint32_t k : edges) {
+    const std::size_t j = k == 0 ? n - 1 : k - 1;
+    ranges.push_back({std::min(us[j], us[k]), std::max(us[j], us[k]), above(j) != above(k)});
+  }
+  std::sort(ranges.begin(), ranges.end(), [](const Range& a, const Range& b) { return a.lo < b.lo; });
+  // right_parity[i]: the crossings' parity of ranges i.. (those right of a gap before range i).
+  std::vector<bool> right_parity(ranges.size() + 1, false);
+  for (std::size_t i = ranges.size(); i-- > 0;) right_parity[i] = right_parity[i + 1] != ranges[i].crosses;
+  double reach = ranges.front().hi, widest = 0.0, gap_lo = 0.0, gap_hi = 0.0;
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    if (ranges[i].lo > reach && right_parity[i] && ranges[i].lo - reach > widest) {
+      widest = ranges[i].lo - reach;
+      gap_lo = reach;
+      gap_hi = ranges[i].lo;
+    }
+    reach = std::max(reach, ranges[i].hi);
+  }
+  BandSpan span{float(ranges.front().lo - margin), 0.f, 0.f, float(reach + margin)};
+  if (gap_hi - gap_lo > 2.0 * margin) {
+    span.inside_lo = float(gap_lo + margin);
+    span.inside_hi = float(gap_hi - margin);
+  }
+  return span;
+}
+
 // Appends the next polygon's edge bands (or none) for its projected
-// vertices vs, whose range is [vmin, vmax].
-void add_edge_bands(PolygonSoA& soa, const std::vector<float>& vs, float vmin, float vmax) {
+// vertices (us, vs), whose rectangle is [umin, umax] x [vmin, vmax].
+void add_edge_bands(PolygonSoA& soa, const std::vector<float>& us, const std::vector<float>& vs, float umin,
+                    float umax, float vmin, float vmax) {
   const std::size_t n = vs.size();
   soa.band_start.push_back(soa.band_first.size());
   int count = n >= kMinBandedVertices ? static_cast<int>(std::min(kMaxEdgeBands, n / kEdgesPerBand)) : 0;
@@ -121,6 +166,15 @@ void add_edge_bands(PolygonSoA& soa, const std::vector<float>& vs, float vmin, f
       }
     }
     for (std::size_t o : offset) soa.band_first.push_back(base + o);
+    // Rounding each bound to float moves it by at most 2^-24 of the width, well within the margin.
+    const double margin = kBandSpanMargin * (static_cast<double>(umax) - static_cast<double>(umin));
+    for (int band = 0; band < count; ++band) {
+      const std::span<const std::uint32_t> edges(soa.band_edges.data() + base + offset[band],
+                                                 offset[band + 1] - offset[band]);
+      const auto above = [&](std::size_t k) { return polygon_detail::band_of(vs[k], vmin, scale, count) > band; };
+      soa.band_spans.push_back(band_span(us, edges, above, margin));
+    }
+    soa.band_spans.push_back({});  // beside the last offset, which starts no band
     soa.band_count.push_back(count);
     soa.band_scale.push_back(scale);
     return;
@@ -190,7 +244,7 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
     soa.first_vertex.push_back(soa.pu.size());
     soa.pu.insert(soa.pu.end(), us.begin(), us.end());
     soa.pv.insert(soa.pv.end(), vs.begin(), vs.end());
-    add_edge_bands(soa, vs, soa.vmin.back(), soa.vmax.back());
+    add_edge_bands(soa, us, vs, soa.umin.back(), soa.umax.back(), soa.vmin.back(), soa.vmax.back());
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
@@ -216,7 +270,8 @@ std::size_t PolygonSoA::memory_bytes() const {
   for (const std::vector<std::size_t>* c : {&first_vertex, &band_start, &band_first}) {
     bytes += c->capacity() * sizeof(std::size_t);
   }
-  return bytes + band_edges.capacity() * sizeof(std::uint32_t) + source.capacity() * sizeof(std::uint32_t);
+  return bytes + band_edges.capacity() * sizeof(std::uint32_t) + band_spans.capacity() * sizeof(BandSpan) +
+         source.capacity() * sizeof(std::uint32_t);
 }
 
 namespace {

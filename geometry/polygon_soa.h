@@ -48,12 +48,15 @@ struct PolygonSoA {
   AlignedFloats pu, pv;
   // Edge bands, per polygon: band_count (0: none), the scale of band_of
   // (geometry/polygon.h), and where its band_count + 1 offsets into
-  // band_edges start in band_first.
+  // band_edges start in band_first. band_spans runs beside band_first: the
+  // span of the band each offset starts (a polygon's last offset starts
+  // none; its span is empty).
   AlignedInts band_count;
   AlignedFloats band_scale;
   std::vector<std::size_t> band_start;
   std::vector<std::size_t> band_first;
   std::vector<std::uint32_t> band_edges;
+  std::vector<BandSpan> band_spans;
   std::size_t count = 0;
   // Input index of each kept primitive (builders drop some), and the id of
   // primitive 0 in hits (a scene numbers its stores consecutively).
@@ -80,7 +83,8 @@ struct PolygonSoA {
             vmin[i],
             band_scale[i],
             band_first.data() + band_start[i],
-            band_edges.data()};
+            band_edges.data(),
+            band_spans.data() + band_start[i]};
   }
   // Bytes of every column and list.
   std::size_t memory_bytes() const;

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 // GCC 12 reports the deliberately undefined source of AVX-512 intrinsics
 // (_mm512_undefined_ps) as uninitialized (GCC bug 105593).
@@ -338,6 +339,25 @@ inline unsigned lane_bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
   return static_cast<__mmask16>(m);  // the k-register itself
 }
 #endif
+
+// The mask whose lane k is bit k of `bits` (lane_bits' inverse): the bits
+// broadcast and tested per lane (per-lane stores and a wide load would not
+// be store-forwarded); in AVX-512 the k-register itself.
+template <class F>
+inline Mask<F> mask_from_bits(unsigned bits) {
+  if constexpr (lane_count<F> == 1) {
+    return (bits & 1u) != 0;
+#if XSIMD_WITH_AVX512BW
+  } else if constexpr (std::is_same_v<F, xsimd::batch<float, xsimd::avx512bw>>) {
+    return Mask<F>(static_cast<__mmask16>(bits));
+#endif
+  } else {
+    alignas(64) static constexpr std::int32_t kLaneBit[kMaxLanes] = {
+        1 << 0, 1 << 1, 1 << 2,  1 << 3,  1 << 4,  1 << 5,  1 << 6,  1 << 7,
+        1 << 8, 1 << 9, 1 << 10, 1 << 11, 1 << 12, 1 << 13, 1 << 14, 1 << 15};
+    return nonzero_lanes(IntLanes<F>(static_cast<std::int32_t>(bits)) & load_int_lanes<F>(kLaneBit));
+  }
+}
 
 // Floats compared through their bits as signed ints: +0 to +inf order as
 // they do as floats, every float with the sign bit set (negatives, -0,

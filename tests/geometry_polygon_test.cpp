@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -593,6 +594,70 @@ TEST(PolygonBuild, EdgeBandsListEveryEdgeTheirRangeMeets) {
   EXPECT_LE(soa.band_count[descs.size() - 2], 4);  // the zigzag: at most 4 bands of 64 edges each
 }
 
+// Each band's span lies the margin clear of every edge it lists, and a
+// point it decides has the crossing rule's answer (in double, on the stored
+// projected vertices): inside within the inside range, outside beyond the
+// edges' range.
+TEST(PolygonBuild, BandSpansLieClearOfTheirEdgesAndDecideRightly) {
+  RaySampler s(31);
+  const std::vector<PolygonDesc> descs = banded_polygon_descs(s);
+  const PolygonSoA soa = polygons_of(descs);
+  ASSERT_EQ(soa.size(), descs.size());
+  std::size_t bands_total = 0, inside_ranges = 0, points = 0;
+  for (std::size_t i = 0; i < soa.size(); ++i) {
+    SCOPED_TRACE(i);
+    const std::size_t n = std::size_t(soa.vertex_count[i]);
+    const int bands = soa.band_count[i];
+    ASSERT_GE(bands, 2);
+    const float* pu = soa.pu.data() + soa.first_vertex[i];
+    const float* pv = soa.pv.data() + soa.first_vertex[i];
+    std::vector<Point2> outline;
+    for (std::size_t k = 0; k < n; ++k) outline.push_back({pu[k], pv[k]});
+    const double clearance = 0.99 * double(kBandSpanMargin) * (double(soa.umax[i]) - double(soa.umin[i]));
+    const std::size_t* first = soa.band_first.data() + soa.band_start[i];
+    const BandSpan* spans = soa.band_spans.data() + soa.band_start[i];
+    int inside_bands = 0;
+    for (int band = 0; band < bands; ++band) {
+      SCOPED_TRACE(band);
+      const BandSpan& span = spans[band];
+      const bool has_inside = span.inside_lo < span.inside_hi;
+      for (std::size_t e = first[band]; e < first[band + 1]; ++e) {
+        const std::size_t k = soa.band_edges[e], j = k == 0 ? n - 1 : k - 1;
+        const double lo = std::min(pu[j], pu[k]), hi = std::max(pu[j], pu[k]);
+        EXPECT_LE(span.edges_lo, lo - clearance) << "edge " << k;
+        EXPECT_GE(span.edges_hi, hi + clearance) << "edge " << k;
+        if (has_inside) {
+          EXPECT_TRUE(hi <= span.inside_lo - clearance || lo >= span.inside_hi + clearance) << "edge " << k;
+        }
+      }
+      ++bands_total;
+      inside_ranges += has_inside;
+      inside_bands += has_inside;
+      // Scan lines of this band (band_of maps them to it), through the span's bounds.
+      for (int step = 0; step < 8; ++step) {
+        const float v = soa.vmin[i] + (float(band) + (float(step) + 0.5f) / 8.f) / soa.band_scale[i];
+        if (polygon_detail::band_of(v, soa.vmin[i], soa.band_scale[i], bands) != band) continue;
+        const float left = std::nextafter(span.edges_lo, -kInf), right = std::nextafter(span.edges_hi, kInf);
+        EXPECT_FALSE(crossing_reference(outline, left, v)) << v;
+        EXPECT_FALSE(crossing_reference(outline, right, v)) << v;
+        points += 2;
+        if (!has_inside) continue;
+        for (const float u : {std::nextafter(span.inside_lo, kInf), std::nextafter(span.inside_hi, -kInf),
+                              0.5f * (span.inside_lo + span.inside_hi)}) {
+          EXPECT_TRUE(crossing_reference(outline, u, v)) << u << " " << v;
+          ++points;
+        }
+      }
+    }
+    if (i == 1) {
+      EXPECT_GE(inside_bands, bands / 2);  // the gear: an inside range in most bands
+    }
+  }
+  std::printf("[ measured ] %zu bands, %zu with an inside range; %zu points checked against the crossing rule\n",
+              bands_total, inside_ranges, points);
+  EXPECT_GT(inside_ranges, bands_total / 4);
+}
+
 template <class W>
 class PolygonWidths : public testing::UnitTest<W> {};
 TYPED_TEST_SUITE(PolygonWidths, testing::KernelUnits);
@@ -653,6 +718,24 @@ TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
   for (int i = 0; i < 4'000; ++i) {  // straight down on the comb's grid of scan lines through its vertices
     const Vec3<float> origin{0.5f * float(s.uniform_int(-2, 200)), 0.5f * float(s.uniform_int(-1, 12)), 100.f};
     rays.push_back({origin, {0, 0, -1}, 0.f, kInf});
+  }
+  // Straight down on the comb and the gear (their u, v are x, y) within a few
+  // floats of a band span's bounds, where the spans stop deciding.
+  for (std::size_t i = 0; i < 2; ++i) {
+    ASSERT_EQ(banded.axis_u[i], 0);
+    const BandSpan* spans = banded.band_spans.data() + banded.band_start[i];
+    for (int band = 0; band < banded.band_count[i]; ++band) {
+      for (int k = 0; k < 24; ++k) {
+        const BandSpan& span = spans[band];
+        const float bound = std::array{span.edges_lo, span.inside_lo, span.inside_hi, span.edges_hi}[k % 4];
+        float u = bound;
+        for (int step = s.uniform_int(-3, 3); step != 0; step += step < 0 ? 1 : -1) {
+          u = std::nextafter(u, step < 0 ? -kInf : kInf);
+        }
+        const float v = banded.vmin[i] + (float(band) + s.uniform(0.f, 1.f)) / banded.band_scale[i];
+        rays.push_back({{banded.origin_u[i] + u, banded.origin_v[i] + v, 100.f}, {0, 0, -1}, 0.f, kInf});
+      }
+    }
   }
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
