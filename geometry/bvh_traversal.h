@@ -524,21 +524,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
     std::array<float, bvh_stack_size(N)> key;
     const std::size_t base = top;
     const float* block = nodes.block(entry_node);
-    unsigned candidates = 0;
-    if constexpr (kCulls) {
-      std::array<float, N> unused;
-      candidates = enter_children<N>(block, frustum, frustum_tmax, unused);
-    }
-    for_each_child<N, kCulls, false>(candidates, [&](int c) __attribute__((always_inline)) {
-      const std::int32_t child = BvhNodes<N>::child(block, c);
-      // One store: no check, an empty slot's empty box lets no lane in (measured faster on balls-s4).
-      if constexpr (K == 2) {
-        if (!worth_entering(stores, child)) return;
-      }
-      F near;
-      const Mask<F> enters = slab.enters(block, c, ray.tmin, hit.t, near) && lanes;
-      if (none(enters)) return;
-      const F lane_near = select(enters, near, inf);
+    const auto push = [&](std::int32_t child, const F& lane_near) __attribute__((always_inline)) {
       const float k = horizontal_min(lane_near);
       std::size_t at = top++;
       for (; at > base && key[at - 1] < k; --at) {
@@ -549,7 +535,38 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
       key[at] = k;
       stack_node[at] = child;
       stack_near[at] = lane_near;
-    });
+    };
+    if constexpr (kCulls) {
+      std::array<float, N> unused;
+      const unsigned candidates = enter_children<N>(block, frustum, frustum_tmax, unused);
+      for_each_child<N, true, false>(candidates, [&](int c) __attribute__((always_inline)) {
+        const std::int32_t child = BvhNodes<N>::child(block, c);
+        if constexpr (K == 2) {
+          if (!worth_entering(stores, child)) return;
+        }
+        F near;
+        const Mask<F> enters = slab.enters(block, c, ray.tmin, hit.t, near) && lanes;
+        if (any(enters)) push(child, select(enters, near, inf));
+      });
+    } else {
+      // Every child tested first, then the entered ones pushed: no branch between the tests.
+      std::array<F, N> child_near;
+      unsigned entered = 0;
+      for (int c = 0; c < N; ++c) {
+        // One store: no check, an empty slot's empty box lets no lane in (measured faster on balls-s4).
+        if constexpr (K == 2) {
+          if (!worth_entering(stores, BvhNodes<N>::child(block, c))) continue;
+        }
+        F near;
+        const Mask<F> enters = slab.enters(block, c, ray.tmin, hit.t, near) && lanes;
+        child_near[c] = select(enters, near, inf);
+        entered |= static_cast<unsigned>(any(enters)) << c;
+      }
+      for (; entered != 0; entered &= entered - 1) {
+        const int c = __builtin_ctz(entered);
+        push(BvhNodes<N>::child(block, c), child_near[c]);
+      }
+    }
   }
 }
 
