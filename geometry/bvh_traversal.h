@@ -549,7 +549,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
         if (any(enters)) push(child, select(enters, near, inf));
       });
     } else {
-      // Every child tested first, then the entered ones pushed: no branch between the tests.
+      // Every child tested first, then the entered ones pushed: no branch on entered lanes between the tests.
       std::array<F, N> child_near;
       unsigned entered = 0;
       for (int c = 0; c < N; ++c) {
@@ -1070,9 +1070,9 @@ concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
 
 // Whether the packet's active lanes walk the tree together: never when one
 // reaches behind its origin (the packet walks' slab tests need tmin >= 0),
-// else as the traversal says; automatic: triangles only within one octant. (Any-hit triangle packets one by one won 9% on the
-// bunny's shadow rays and lost 38% on teapot-s12's, so they follow the same
-// rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
+// else as the traversal says; automatic: triangles only within one octant.
+// (Any-hit triangle packets one by one won 9% on the bunny's shadow rays
+// and lost 38% on teapot-s12's, so they follow the same rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
 // (Benthin et al. 2012) gained at most 3% (bunny primary rays) and lost up
 // to 23% (gears-s4 shadow rays), so it is not used.)
 template <class S, class F>
