@@ -20,7 +20,7 @@
 #include "bench/bench_rays.h"
 #include "bench/bench_support.h"
 #include "integrator/scene_intersector.h"
-#include "io/auto_view.h"
+#include "scene/auto_view.h"
 #include "io/scene_loader.h"
 
 namespace quiver::bench {

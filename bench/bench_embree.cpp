@@ -44,9 +44,9 @@
 #include "bench/bench_embree_scene.h"
 #include "bench/bench_rays.h"
 #include "integrator/scene_intersector.h"
-#include "io/auto_view.h"
+#include "scene/auto_view.h"
 #include "io/scene_loader.h"
-#include "io/trace_command.h"
+#include "app/trace_command.h"
 
 namespace quiver::bench {
 namespace {

@@ -18,8 +18,8 @@
 
 #include <embree3/rtcore.h>
 
-#include "integrator/scene.h"
-#include "io/scene_desc.h"
+#include "scene/scene.h"
+#include "scene/scene_desc.h"
 
 namespace quiver::bench {
 

@@ -19,7 +19,7 @@
 
 #include "bench/bench_rays.h"
 #include "bench/bench_support.h"
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/scene_loader.h"
 

@@ -1,6 +1,6 @@
 #include "bench/bench_support.h"
 #include "geometry/plane_streams.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver::bench {
 namespace {

@@ -11,7 +11,7 @@
 #include "bench/bench_support.h"
 #include "geometry/polygon_streams.h"
 #include "geometry/triangle_streams.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver::bench {
 namespace {

@@ -13,7 +13,7 @@
 #include <cstdint>
 
 #include "geometry/soa.h"
-#include "integrator/scene.h"
+#include "scene/scene.h"
 
 namespace quiver::bench {
 

@@ -14,7 +14,7 @@
 #include <tbb/info.h>
 
 #include "bench/bench_support.h"
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/nff_reader.h"
 

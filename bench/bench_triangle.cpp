@@ -1,6 +1,6 @@
 #include "bench/bench_support.h"
 #include "geometry/triangle_streams.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver::bench {
 namespace {

@@ -11,4 +11,4 @@ find_package(TBB CONFIG REQUIRED)
 find_package(tomlplusplus CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
-find_package(nlohmann_json CONFIG REQUIRED)  # io/stats_json.cpp
+find_package(nlohmann_json CONFIG REQUIRED)  # app/stats_json.cpp

@@ -7,7 +7,7 @@
 // (i + 0.5, j + 0.5); x grows right, y grows down.
 #pragma once
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 #include "simd/ray.h"
 
 namespace quiver {

@@ -6,11 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace quiver {
+#include "scene/primitive_kind.h"
 
-// Primitive kinds as AOVs and stats name them; kNoKind on a miss.
-enum class PrimitiveKind : std::int32_t { sphere = 0, plane = 1, triangle = 2, polygon = 3, cone = 4 };
-inline constexpr std::int32_t kNoKind = -1;
+namespace quiver {
 
 struct Framebuffer {
   int width = 0, height = 0;

@@ -13,7 +13,7 @@
 
 #include "integrator/anti_aliasing.h"
 #include "integrator/framebuffer.h"
-#include "integrator/scene.h"
+#include "scene/scene.h"
 #include "integrator/trace_stats.h"
 #include "integrator/tracer.h"
 #include "simd/isa.h"

@@ -16,7 +16,7 @@
 #include "geometry/polygon_streams.h"
 #include "geometry/sphere_streams.h"
 #include "geometry/triangle_streams.h"
-#include "integrator/scene.h"
+#include "scene/scene.h"
 
 namespace quiver {
 

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "integrator/optics.h"
+#include "integrator/texture.h"
 
 namespace quiver {
 

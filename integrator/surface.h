@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "geometry/hit.h"
-#include "integrator/scene.h"
+#include "scene/scene.h"
 
 namespace quiver {
 

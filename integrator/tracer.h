@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "integrator/scene.h"
+#include "scene/scene.h"
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
 #include "integrator/trace_stats.h"

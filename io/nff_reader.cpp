@@ -272,15 +272,15 @@ class NffParser {
 
     expect_keyword_line("resolution");
     const Token width_token = peek();
-    const std::int64_t width = integer("an image width", 1, kMaxNffImageSide);
+    const std::int64_t width = integer("an image width", 1, kMaxImageSide);
     const Token height_token = peek();
-    const std::int64_t height = integer("an image height", 1, kMaxNffImageSide);
-    if (width * height > kMaxNffImagePixels) {
+    const std::int64_t height = integer("an image height", 1, kMaxImageSide);
+    if (width * height > kMaxImagePixels) {
       const std::size_t end = height_token.column + height_token.text.size();
       const std::string_view both =
           std::string_view(width_token.text.data(), end - width_token.column);
       throw ParseError(file_, line_, width_token.column,
-                       joined({"at most ", std::to_string(kMaxNffImagePixels), " pixels (width * height)"}),
+                       joined({"at most ", std::to_string(kMaxImagePixels), " pixels (width * height)"}),
                        quoted_token(both));
     }
     expect_end_of_line("the resolution");

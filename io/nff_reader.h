@@ -8,15 +8,13 @@
 #include <filesystem>
 #include <string_view>
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 
 // Largest NFF input read, in bytes.
 inline constexpr std::size_t kMaxNffBytes = std::size_t{1} << 30;
-// Largest `resolution` side and pixel count.
-inline constexpr std::int64_t kMaxNffImageSide = 65'536;
-inline constexpr std::int64_t kMaxNffImagePixels = std::int64_t{1} << 28;
+// Largest `resolution` side and pixel count: kMaxImageSide, kMaxImagePixels (scene/scene_desc.h).
 // Largest `p` / `pp` vertex count: kMaxPolygonVertices (geometry/polygon_soa.h).
 
 // An NFF `f` line as written: colour, diffuse weight, specular (and mirror)

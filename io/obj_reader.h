@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 

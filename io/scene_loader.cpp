@@ -5,6 +5,7 @@
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
+#include "io/texture_image.h"
 #include "io/toml_reader.h"
 
 namespace quiver {
@@ -14,11 +15,20 @@ SceneDesc load_scene(const std::filesystem::path& path) {
   for (char& c : extension) {
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
   }
-  if (extension == ".nff") return read_nff(path);
-  if (extension == ".toml") return read_toml_scene(path);
-  if (extension == ".obj") return read_obj_scene(path);
-  const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
-  throw ParseError::whole_file(path.string(), "unknown scene format (" + shown + "): expected .nff, .toml or .obj");
+  SceneDesc scene;
+  if (extension == ".nff") {
+    scene = read_nff(path);
+  } else if (extension == ".toml") {
+    scene = read_toml_scene(path);
+  } else if (extension == ".obj") {
+    scene = read_obj_scene(path);
+  } else {
+    const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
+    throw ParseError::whole_file(path.string(),
+                                 "unknown scene format (" + shown + "): expected .nff, .toml or .obj");
+  }
+  read_texture_images(scene);
+  return scene;
 }
 
 }  // namespace quiver

@@ -492,12 +492,12 @@ class TomlSceneReader {
     camera.width = 640;
     camera.height = 480;
     if (const toml::node* w = t.get("width"))
-      camera.width = static_cast<int>(integer(*w, "width", s, 1, kMaxNffImageSide));
+      camera.width = static_cast<int>(integer(*w, "width", s, 1, kMaxImageSide));
     const toml::node* h = t.get("height");
-    if (h != nullptr) camera.height = static_cast<int>(integer(*h, "height", s, 1, kMaxNffImageSide));
-    if (std::int64_t{camera.width} * camera.height > kMaxNffImagePixels) {
+    if (h != nullptr) camera.height = static_cast<int>(integer(*h, "height", s, 1, kMaxImageSide));
+    if (std::int64_t{camera.width} * camera.height > kMaxImagePixels) {
       fail(h != nullptr ? *h : required(t, "width", s),
-           joined({"at most ", std::to_string(kMaxNffImagePixels), " pixels (width * height in [camera])"}));
+           joined({"at most ", std::to_string(kMaxImagePixels), " pixels (width * height in [camera])"}));
     }
     scene_.camera = camera;
   }

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 

@@ -5,7 +5,7 @@
 
 #include "geometry/plane_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver {
 namespace {

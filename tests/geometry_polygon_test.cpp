@@ -11,7 +11,7 @@
 #include "geometry/polygon_streams.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "geometry/sphere_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver {
 

@@ -17,7 +17,7 @@
 #include "geometry/bvh_store.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 namespace quiver {
 namespace {

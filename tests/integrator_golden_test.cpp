@@ -15,7 +15,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/image_output.h"
 #include "io/scene_loader.h"

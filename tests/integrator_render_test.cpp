@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/nff_reader.h"
 

@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "bench/accuracy/studies.h"
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/scene_loader.h"
 

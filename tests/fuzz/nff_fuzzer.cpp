@@ -3,13 +3,13 @@
 // Any other exception, a sanitizer report or a broken invariant below is a
 // finding (__builtin_trap, or the uncaught exception's abort).
 //
-// Invariants on success (io/README.md, io/scene_desc.h):
+// Invariants on success (io/README.md, scene/scene_desc.h):
 //   - every float in the SceneDesc is finite;
 //   - every primitive's material index < materials.size();
 //   - every polygon has 3 .. kMaxPolygonVertices vertices, and its normals are
 //     empty (`p`) or one per vertex (`pp`);
 //   - colours, Kd, Ks, Shine, T, ior, hither are >= 0; angle in (0, 180);
-//     resolution sides in [1, kMaxNffImageSide], at most kMaxNffImagePixels.
+//     resolution sides in [1, kMaxImageSide], at most kMaxImagePixels.
 // Invariants on ParseError (io/parse_error.h):
 //   - what() starts with "fuzz.nff:LINE:COLUMN: expected ", file() is
 //     "fuzz.nff", LINE >= 1 names a line of the input (or the empty line after

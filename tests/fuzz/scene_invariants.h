@@ -1,5 +1,5 @@
 // Checks shared by the NFF, TOML and OBJ fuzz targets: the invariants every
-// SceneDesc a reader returns must hold (io/scene_desc.h, io/README.md), and
+// SceneDesc a reader returns must hold (scene/scene_desc.h, io/README.md), and
 // the shape of a positioned ParseError. A broken invariant traps.
 #pragma once
 
@@ -10,7 +10,7 @@
 
 #include "io/nff_reader.h"
 #include "io/parse_error.h"
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver::fuzz {
 
@@ -31,8 +31,8 @@ inline void check_scene(const SceneDesc& scene) {
     check(finite(c.from) && finite(c.at) && finite(c.up));
     check(finite(c.angle_degrees) && c.angle_degrees > 0.f && c.angle_degrees < 180.f);
     check(finite(c.hither) && c.hither >= 0.f);
-    check(c.width >= 1 && c.width <= kMaxNffImageSide && c.height >= 1 && c.height <= kMaxNffImageSide);
-    check(std::int64_t{c.width} * c.height <= kMaxNffImagePixels);
+    check(c.width >= 1 && c.width <= kMaxImageSide && c.height >= 1 && c.height <= kMaxImageSide);
+    check(std::int64_t{c.width} * c.height <= kMaxImagePixels);
     check(!(c.at.x == c.from.x && c.at.y == c.from.y && c.at.z == c.from.z));
   }
   check(finite(scene.background) && non_negative(scene.background));

@@ -1,4 +1,4 @@
-#include "io/progress_bar.h"
+#include "app/progress_bar.h"
 
 #include <unistd.h>
 

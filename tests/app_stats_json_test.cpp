@@ -1,4 +1,4 @@
-// The render statistics JSON (io/stats_json.h): every key present, values
+// The render statistics JSON (app/stats_json.h): every key present, values
 // consistent with a hand-made RenderResult (total = sum of kinds,
 // utilisation = active / issued), and the atomic file write.
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/stats_json.h"
+#include "app/stats_json.h"
 
 namespace quiver {
 namespace {

@@ -1,4 +1,4 @@
-#include "integrator/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Command-line options -> RenderSettings (io/render_options.h): defaults,
+// Command-line options -> RenderSettings (app/render_options.h): defaults,
 // the scene's RenderDesc, the aspect rule, bounds, --preset spd and its
 // conflicts, the AOV list, the seed and the ISA choice.
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/render_options.h"
+#include "app/render_options.h"
 
 namespace quiver {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "io/auto_view.h"
+#include "scene/auto_view.h"
 
 namespace quiver {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/trace_command.h"
+#include "app/trace_command.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 
 #include <cmath>
 #include <numbers>

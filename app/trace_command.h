@@ -5,7 +5,7 @@
 // queries (SceneIntersector::closest on one RaySoA per tile, tiles spread over
 // oneTBB threads). hits counts the rays that hit; t_sum adds their hit
 // distances in double, tile by tile in a fixed order, so both are the same
-// for every thread count and SIMD width. No CLI11 here (io/cli_main.cpp
+// for every thread count and SIMD width. No CLI11 here (app/main.cpp
 // parses the flags into TraceOptions).
 #pragma once
 
@@ -19,8 +19,8 @@
 #include "geometry/soa.h"
 #include "integrator/camera.h"
 #include "integrator/render.h"
-#include "integrator/scene.h"
-#include "io/render_options.h"
+#include "scene/scene.h"
+#include "app/render_options.h"
 #include "simd/isa.h"
 
 namespace quiver {

@@ -3,7 +3,7 @@
 // light beside it.
 #pragma once
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 
@@ -21,7 +21,7 @@ inline constexpr float kDefaultViewAngleDegrees = 40.f;
 // intensity is 1 minus the largest ambient
 // component (at least 0.3); a zero ambient becomes 0.1.
 // Nothing is changed where the scene has its own camera or lights. Throws
-// std::invalid_argument for width or height outside [1, kMaxNffImageSide].
+// std::invalid_argument for width or height outside [1, kMaxImageSide].
 void add_default_view(SceneDesc& scene, int width, int height);
 
 }  // namespace quiver

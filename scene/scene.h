@@ -19,9 +19,9 @@
 #include "geometry/polygon_soa.h"
 #include "geometry/sphere_soa.h"
 #include "geometry/triangle_soa.h"
-#include "integrator/framebuffer.h"
-#include "integrator/texture.h"
-#include "io/scene_desc.h"
+#include "scene/primitive_kind.h"
+#include "scene/scene_desc.h"
+#include "scene/texture.h"
 
 namespace quiver {
 
@@ -97,7 +97,7 @@ struct Scene {
   std::size_t acceleration_bytes() const;  // BVH nodes
 };
 
-// Builds the scene; the SceneDesc must have a camera (io/auto_view.h adds
+// Builds the scene; the SceneDesc must have a camera (scene/auto_view.h adds
 // one). Throws std::invalid_argument for a material or texture index out of
 // range, and what build_texture throws for a bad texture.
 Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options);

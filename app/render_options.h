@@ -15,8 +15,8 @@
 #include <utility>
 
 #include "integrator/render.h"
-#include "integrator/scene.h"
-#include "io/scene_desc.h"
+#include "scene/scene.h"
+#include "scene/scene_desc.h"
 #include "simd/isa.h"
 
 namespace quiver {
@@ -27,9 +27,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Image size bounds (as the NFF reader's) and the defaults.
-inline constexpr int kMaxImageSide = 65'536;
-inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
+// Image size bounds: kMaxImageSide, kMaxImagePixels (scene/scene_desc.h). The defaults:
 inline constexpr int kDefaultImageSide = 512;  // scenes without a camera
 // Bounces after the primary ray.
 inline constexpr int kDefaultMaxDepth = 5;

@@ -9,8 +9,8 @@
 #include <ostream>
 #include <string>
 
-#include "integrator/scene.h"
-#include "io/scene_desc.h"
+#include "scene/scene.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 

@@ -1,4 +1,4 @@
-#include "io/scene_info.h"
+#include "app/scene_info.h"
 
 #include <charconv>
 #include <initializer_list>

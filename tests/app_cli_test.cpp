@@ -1,4 +1,4 @@
-// The quiver program end to end (io/cli_main.cpp), run as a child process
+// The quiver program end to end (app/main.cpp), run as a child process
 // on tiny scenes: exit codes (0 success, 1 failure, 2 usage), images and
 // stats written only on success, error messages with file:line:column, the
 // SPD preset's ray count, `quiver info`, byte-identical pixels from every

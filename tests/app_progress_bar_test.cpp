@@ -1,4 +1,4 @@
-// The progress bar (io/progress_bar.h): silent when disabled or before its
+// The progress bar (app/progress_bar.h): silent when disabled or before its
 // delay, redraws limited by its interval, a final line ending in a newline.
 #include <chrono>
 #include <cstdio>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/progress_bar.h"
+#include "app/progress_bar.h"
 
 namespace quiver {
 namespace {

@@ -1,4 +1,4 @@
-#include "tests/support/ray_sampling.h"
+#include "bench/support/ray_sampling.h"
 
 #include <cmath>
 #include <limits>

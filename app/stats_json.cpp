@@ -1,4 +1,4 @@
-#include "io/stats_json.h"
+#include "app/stats_json.h"
 
 #include "io/output_file.h"
 

@@ -20,6 +20,10 @@
 
 namespace quiver {
 
+// Largest image side and pixel count any scene or command line may ask for.
+inline constexpr int kMaxImageSide = 65'536;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
+
 // Pinhole camera: eye, look-at point, up hint (any length, not parallel to
 // at - from), and the full field of view between the centres of the
 // outermost pixel columns (rows when the image is taller than wide).

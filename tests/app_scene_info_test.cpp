@@ -1,4 +1,4 @@
-// The `quiver info` report (io/scene_info.h): per-kind memory adds up to the
+// The `quiver info` report (app/scene_info.h): per-kind memory adds up to the
 // layers' own totals, and the count rows show what was read, kept and
 // dropped, split into opaque and transmissive.
 #include <limits>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/scene_info.h"
+#include "app/scene_info.h"
 
 namespace quiver {
 namespace {

@@ -1,7 +1,7 @@
 // quiver, the command-line program: `quiver render [SCENE]` renders a scene
 // file (or the built-in scene) to an image, `quiver info SCENE` reports what
 // a scene holds, `quiver trace SCENE` times the primary rays' closest hits
-// and prints one JSON line (io/trace_command.h). Exit codes: 0 success,
+// and prints one JSON line (app/trace_command.h). Exit codes: 0 success,
 // 1 failure (unreadable or invalid scene, render or write error), 2 usage
 // error (bad flag or value). Errors go to stderr as "quiver: <message>"; no
 // output file is left on failure.
@@ -23,18 +23,18 @@
 
 #include <nlohmann/json.hpp>
 
-#include "integrator/default_scene.h"
+#include "scene/default_scene.h"
 #include "integrator/render.h"
-#include "integrator/scene.h"
-#include "io/auto_view.h"
+#include "scene/scene.h"
+#include "scene/auto_view.h"
 #include "io/image_output.h"
 #include "io/parse_error.h"
-#include "io/progress_bar.h"
-#include "io/render_options.h"
-#include "io/scene_info.h"
+#include "app/progress_bar.h"
+#include "app/render_options.h"
+#include "app/scene_info.h"
 #include "io/scene_loader.h"
-#include "io/stats_json.h"
-#include "io/trace_command.h"
+#include "app/stats_json.h"
+#include "app/trace_command.h"
 
 namespace {
 

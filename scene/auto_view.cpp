@@ -1,4 +1,4 @@
-#include "io/auto_view.h"
+#include "scene/auto_view.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "io/nff_reader.h"
 
 namespace quiver {
 
@@ -70,7 +69,7 @@ Vec3<float> to_float(const double v[3]) {
 }  // namespace
 
 void add_default_view(SceneDesc& scene, int width, int height) {
-  if (width < 1 || height < 1 || width > kMaxNffImageSide || height > kMaxNffImageSide) {
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
     throw std::invalid_argument("add_default_view: width and height must lie in [1, 65536]");
   }
   // Bounding sphere of the primitives' box (the unit sphere when there is none).

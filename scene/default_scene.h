@@ -6,7 +6,7 @@
 // light (soft shadows), adaptive anti-aliasing.
 #pragma once
 
-#include "io/scene_desc.h"
+#include "scene/scene_desc.h"
 
 namespace quiver {
 

@@ -1,4 +1,4 @@
-// `quiver trace` below the command line (io/trace_command.h): the primary
+// `quiver trace` below the command line (app/trace_command.h): the primary
 // rays cover every pixel centre once, in 4x2 groups; hits and t_sum equal a
 // brute-force count computed here in double (analytic sphere roots, a
 // Moller-Trumbore triangle, a convex quad's plane and edge tests) for a small
@@ -18,8 +18,8 @@
 #include <gtest/gtest.h>
 
 #include "integrator/camera.h"
-#include "integrator/scene.h"
-#include "io/trace_command.h"
+#include "scene/scene.h"
+#include "app/trace_command.h"
 #include "simd/isa.h"
 
 namespace quiver {

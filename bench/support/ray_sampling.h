@@ -1,4 +1,4 @@
-// Deterministic ray generators for tests: random, aimed, and adversarial.
+// Deterministic ray generators for tests and benchmarks: random, aimed, and adversarial.
 #pragma once
 
 #include <cstdint>

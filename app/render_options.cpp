@@ -1,4 +1,4 @@
-#include "io/render_options.h"
+#include "app/render_options.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,0 +1,135 @@
+// Texture images read through OpenImageIO into linear RGB floats.
+#include "io/texture_image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "io/parse_error.h"
+
+namespace quiver {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& path, std::string_view message) {
+  throw ParseError::whole_file(path.string(), message);
+}
+
+constexpr std::size_t kUint16Levels = 65'536;
+
+// The sRGB EOTF (IEC 61966-2-1), encoded value in [0, 1] to linear.
+double srgb_to_linear(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+// Linear value of each 16-bit code of an sRGB-encoded channel. An 8-bit code
+// c widens exactly to c * 257, and c * 257 / 65535 == c / 255.
+const std::vector<float>& srgb_uint16_table() {
+  static const std::vector<float> table = [] {
+    std::vector<float> values(kUint16Levels);
+    for (std::size_t code = 0; code < kUint16Levels; ++code) {
+      values[code] = static_cast<float>(srgb_to_linear(double(code) / 65535.0));
+    }
+    return values;
+  }();
+  return table;
+}
+
+// True when the file's colour space metadata names a linear encoding.
+bool names_linear_space(std::string color_space) {
+  for (char& c : color_space) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return color_space.find("linear") != std::string::npos || color_space.rfind("lin_", 0) == 0 ||
+         color_space == "acescg" || color_space == "aces2065-1";
+}
+
+// Copies the first channel of each texel into the other two (grey images).
+void replicate_grey(std::vector<float>& rgb) {
+  for (std::size_t i = 0; i < rgb.size(); i += 3) rgb[i + 1] = rgb[i + 2] = rgb[i];
+}
+
+void check_finite_texels(const fs::path& path, const TextureImage& image) {
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+    if (!std::isfinite(image.rgb[i])) {
+      const std::size_t texel = i / 3;
+      const std::size_t width = static_cast<std::size_t>(image.width);
+      fail(path, "texel (" + std::to_string(texel % width) + ", " + std::to_string(texel / width) +
+                     ") is not finite (NaN or infinity)");
+    }
+  }
+}
+
+}  // namespace
+
+TextureImage read_texture_image(const fs::path& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) fail(path, "cannot open: no such file");
+  if (fs::is_directory(status)) fail(path, "cannot open: it is a directory");
+
+  // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path.string(), &config);
+  if (!input) fail(path, "not an image OpenImageIO can read (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = input->spec();
+
+  // Bounds first: nothing is sized from the header before this.
+  const std::int64_t w = spec.width, h = spec.height;
+  if (w < 1 || h < 1 || spec.nchannels < 1) fail(path, "the image is empty");
+  if (spec.depth != 1) fail(path, "volume images (depth " + std::to_string(spec.depth) + ") are not textures");
+  if (w > kMaxTextureSide || h > kMaxTextureSide || w * h > kMaxTexturePixels) {
+    fail(path, std::to_string(w) + " x " + std::to_string(h) + " texels exceeds " + texture_size_limit_text());
+  }
+
+  TextureImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  const std::size_t texels = std::size_t(w * h);
+  const int channels = spec.nchannels >= 3 ? 3 : 1;  // grey (+ alpha) or RGB (+ alpha)
+  image.rgb.resize(texels * 3);
+
+  if (spec.format.is_floating_point()) {
+    // Linear floats straight into the RGB array; grey lands in the first slot.
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeFloat, image.rgb.data(), 3 * sizeof(float))) {
+      fail(path, "cannot read the pixels (" + input->geterror() + ")");
+    }
+    if (channels == 1) replicate_grey(image.rgb);
+    check_finite_texels(path, image);
+  } else {
+    // Integer codes widened to 16 bits (exact), then decoded per code.
+    std::vector<std::uint16_t> codes(texels * std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT16, codes.data())) {
+      fail(path, "cannot read the pixels (" + input->geterror() + ")");
+    }
+    const bool linear = names_linear_space(spec.get_string_attribute("oiio:ColorSpace"));
+    const std::vector<float>& srgb = srgb_uint16_table();
+    for (std::size_t t = 0; t < texels; ++t) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::uint16_t code = codes[t * std::size_t(channels) + (channels == 1 ? 0 : c)];
+        image.rgb[t * 3 + c] = linear ? static_cast<float>(double(code) / 65535.0) : srgb[code];
+      }
+    }
+  }
+  input->close();
+  return image;
+}
+
+void read_texture_images(SceneDesc& scene) {
+  for (TextureDesc& t : scene.textures) {
+    if (t.kind != TextureDesc::Kind::image || t.path.empty() || !t.rgb.empty()) continue;
+    TextureImage image = read_texture_image(t.path);
+    t.width = image.width;
+    t.height = image.height;
+    t.rgb = std::move(image.rgb);
+  }
+}
+
+}  // namespace quiver

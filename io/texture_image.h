@@ -1,0 +1,24 @@
+// Texture images from files (OpenImageIO): read into the scene description
+// before the scene is built, so that the layers above io/ read no file.
+#pragma once
+
+#include <filesystem>
+
+#include "scene/scene_desc.h"
+#include "scene/texture.h"
+
+namespace quiver {
+
+// Reads an image file. One channel is grey (replicated), two are grey +
+// alpha, three or more are RGB (+ alpha); alpha is dropped. Integer formats
+// are sRGB-decoded (exact EOTF) unless the file's "oiio:ColorSpace" names a
+// linear space; float formats are linear. Throws ParseError ("file:
+// message") for a missing, unreadable or non-image file, sizes beyond
+// kMaxTextureSide / kMaxTexturePixels, or non-finite texels.
+TextureImage read_texture_image(const std::filesystem::path& path);
+
+// Reads the file of every image texture that names one and has no pixels
+// yet into its width, height and rgb. Throws as read_texture_image.
+void read_texture_images(SceneDesc& scene);
+
+}  // namespace quiver

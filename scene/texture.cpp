@@ -1,0 +1,59 @@
+#include "scene/texture.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace quiver {
+
+namespace {
+
+bool finite(const Vec3<float>& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+// The in-memory image of a TextureDesc, checked.
+TextureImage image_from_memory(const TextureDesc& desc) {
+  if (desc.rgb.empty() && !desc.path.empty()) {
+    throw std::invalid_argument("texture: the image '" + desc.path + "' was not read");
+  }
+  const std::int64_t w = desc.width, h = desc.height;
+  if (w < 1 || h < 1 || w > kMaxTextureSide || h > kMaxTextureSide || w * h > kMaxTexturePixels) {
+    throw std::invalid_argument("texture: in-memory image of " + std::to_string(w) + " x " + std::to_string(h) +
+                                " texels is empty or exceeds " + texture_size_limit_text());
+  }
+  if (desc.rgb.size() != std::size_t(w * h * 3)) {
+    throw std::invalid_argument("texture: in-memory image needs " + std::to_string(w * h * 3) +
+                                " floats (3 per texel), has " + std::to_string(desc.rgb.size()));
+  }
+  for (float value : desc.rgb) {
+    if (!std::isfinite(value)) throw std::invalid_argument("texture: in-memory image has a non-finite texel");
+  }
+  return {desc.width, desc.height, desc.rgb};
+}
+
+}  // namespace
+
+std::string texture_size_limit_text() {
+  return "the limit of " + std::to_string(kMaxTextureSide) + " texels per side and " +
+         std::to_string(kMaxTexturePixels) + " texels in total";
+}
+
+Texture build_texture(const TextureDesc& desc) {
+  Texture texture;
+  texture.kind = desc.kind;
+  texture.color_a = desc.color_a;
+  texture.color_b = desc.color_b;
+  texture.scale = desc.scale;
+  texture.wrap = desc.wrap;
+  if (desc.kind == TextureDesc::Kind::image) {
+    texture.image = image_from_memory(desc);
+    return texture;
+  }
+  if (!std::isfinite(desc.scale) || desc.scale <= 0.f) {
+    throw std::invalid_argument("texture: checker scale must be finite and positive, is " + std::to_string(desc.scale));
+  }
+  if (!finite(desc.color_a) || !finite(desc.color_b)) {
+    throw std::invalid_argument("texture: checker colours must be finite");
+  }
+  return texture;
+}
+
+}  // namespace quiver
