@@ -57,7 +57,7 @@ SceneRays make_scene_rays(const Scene& scene, int width, int height, std::uint32
     reflection.push_back({from, reflect(primary[i].direction, s.geometric), 0.f, inf});
     Vec3<float> d{gauss(rng), gauss(rng), gauss(rng)};
     if (dot(d, s.geometric) < 0.f) d = d * -1.f;
-    diffuse.push_back({from, normalized(d), 0.f, inf});
+    diffuse.push_back({from, normalize(d), 0.f, inf});
     shadow.push_back({from, light - from, 0.f, 1.f});
   }
   out.reflection = to_soa(reflection);

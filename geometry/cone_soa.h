@@ -7,21 +7,11 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/primitive_desc.h"
 #include "geometry/cone.h"
 #include "geometry/soa.h"
 
 namespace quiver {
-
-// NFF `c`: an open cone (a cylinder when the radii are equal) from the base
-// circle (center, radius) to the apex circle. NFF gives negative radii the
-// meaning "inside visible"; both radii <= 0 (not both 0) is kept with |r| and
-// facing -1, a positive and a negative radius together is dropped.
-struct ConeDesc {
-  Vec3<float> base;
-  float base_radius;
-  Vec3<float> apex;
-  float apex_radius;
-};
 
 struct ConeSoA {
   AlignedFloats bx, by, bz, ax, ay, az, height, radius0, slope, facing;

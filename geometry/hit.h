@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "simd/vec3.h"
+#include "simd/lanes.h"
 
 namespace quiver {
 

@@ -6,16 +6,11 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/primitive_desc.h"
 #include "geometry/plane.h"
 #include "geometry/soa.h"
 
 namespace quiver {
-
-// A plane through `point` with normal `normal` (any non-zero length).
-struct PlaneDesc {
-  Vec3<float> point;
-  Vec3<float> normal;
-};
 
 struct PlaneSoA {
   AlignedFloats nx, ny, nz, d;

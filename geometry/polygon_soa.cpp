@@ -10,13 +10,9 @@ namespace quiver {
 
 namespace {
 
-struct Vec3d {
-  double x, y, z;
-  double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-};
+using Vec3d = Vec3<double>;
 
 Vec3d to_double(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
-double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool same(const Vec3<float>& a, const Vec3<float>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
@@ -53,18 +49,14 @@ Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
   const std::size_t n = vs.size();
   if (n < 3) return Verdict::degenerate;
 
-  // Newell's normal (twice the area vector), vertices relative to the first.
+  const Vec3d normal = newell_normal(vs);
   const Vec3d base = to_double(vs[0]);
-  Vec3d normal{0, 0, 0}, lo = base, hi = base, centroid{0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3d a = to_double(vs[i]), b = to_double(vs[(i + 1) % n]);
-    const Vec3d ra{a.x - base.x, a.y - base.y, a.z - base.z}, rb{b.x - base.x, b.y - base.y, b.z - base.z};
-    normal.x += (ra.y - rb.y) * (ra.z + rb.z);
-    normal.y += (ra.z - rb.z) * (ra.x + rb.x);
-    normal.z += (ra.x - rb.x) * (ra.y + rb.y);
+  Vec3d lo = base, hi = base, centroid{0, 0, 0};
+  for (const Vec3<float>& v : vs) {
+    const Vec3d a = to_double(v);
     lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
     hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
-    centroid = {centroid.x + ra.x, centroid.y + ra.y, centroid.z + ra.z};
+    centroid = {centroid.x + (a.x - base.x), centroid.y + (a.y - base.y), centroid.z + (a.z - base.z)};
   }
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   const double twice_area = std::sqrt(dot(normal, normal));
@@ -184,6 +176,21 @@ void add_edge_bands(PolygonSoA& soa, const std::vector<float>& us, const std::ve
 }
 
 }  // namespace
+
+Vec3<double> newell_normal(std::span<const Vec3<float>> vertices) {
+  const std::size_t n = vertices.size();
+  Vec3d normal{0, 0, 0};
+  if (n == 0) return normal;
+  const Vec3d base = to_double(vertices[0]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d a = to_double(vertices[i]), b = to_double(vertices[(i + 1) % n]);
+    const Vec3d ra{a.x - base.x, a.y - base.y, a.z - base.z}, rb{b.x - base.x, b.y - base.y, b.z - base.z};
+    normal.x += (ra.y - rb.y) * (ra.z + rb.z);
+    normal.y += (ra.z - rb.z) * (ra.x + rb.x);
+    normal.z += (ra.x - rb.x) * (ra.y + rb.y);
+  }
+  return normal;
+}
 
 PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report) {
   PolygonSoA soa;

@@ -12,18 +12,12 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/primitive_desc.h"
 #include "geometry/polygon.h"
 #include "geometry/soa.h"
 
 namespace quiver {
 
-// Vertices in order (either winding; ng follows it counter-clockwise).
-struct PolygonDesc {
-  std::vector<Vec3<float>> vertices;
-};
-
-// Largest vertex count build_polygons accepts per polygon (more: degenerate).
-inline constexpr std::size_t kMaxPolygonVertices = 1'000'000;
 // Non-planar: some vertex lies farther than this times the polygon's extent
 // (largest side of its 3D bounding box) from the fitted plane.
 inline constexpr double kPolygonPlanarityTolerance = 1e-4;
@@ -94,6 +88,11 @@ struct PolygonSoA {
 // overflows) as non-finite; more than kMaxPolygonVertices input vertices,
 // fewer than 3 after removing consecutive duplicates (cyclically), zero area
 // or a non-planar polygon (see the tolerances above) as degenerate.
+// Newell's normal of a closed polygon in double: twice its area vector,
+// from the vertices relative to the first (no cancellation far from the
+// origin); the counter-clockwise winding's side.
+Vec3<double> newell_normal(std::span<const Vec3<float>> vertices);
+
 PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report);
 
 // Ear-clipping triangulation of a simple (possibly concave) polygon, in its

@@ -6,15 +6,11 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/primitive_desc.h"
 #include "geometry/soa.h"
 #include "geometry/sphere.h"
 
 namespace quiver {
-
-struct SphereDesc {
-  Vec3<float> center;
-  float radius;
-};
 
 struct SphereSoA {
   AlignedFloats cx, cy, cz, r2, inv_r;

@@ -10,16 +10,11 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/primitive_desc.h"
 #include "geometry/soa.h"
 #include "geometry/triangle.h"
 
 namespace quiver {
-
-struct TriangleDesc {
-  std::array<Vec3<float>, 3> p;
-  std::optional<std::array<Vec3<float>, 3>> normals;         // per vertex, any length
-  std::optional<std::array<std::array<float, 2>, 3>> uvs;    // per vertex (u, v)
-};
 
 struct TriangleSoA {
   AlignedFloats v0x, v0y, v0z, v1x, v1y, v1z, v2x, v2y, v2z;

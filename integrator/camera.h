@@ -7,6 +7,7 @@
 // (i + 0.5, j + 0.5); x grows right, y grows down.
 #pragma once
 
+#include "scene/camera_frame.h"
 #include "scene/scene_desc.h"
 #include "simd/ray.h"
 
@@ -25,7 +26,7 @@ class Camera {
 
  private:
   int width_, height_;
-  double eye_[3], forward_[3], right_[3], up_[3];
+  CameraFrame frame_;
   double pixel_size_;  // tangent-plane size of one pixel at unit distance
 };
 

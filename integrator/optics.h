@@ -14,7 +14,7 @@
 #include <limits>
 #include <optional>
 
-#include "simd/vec3.h"
+#include "simd/lanes.h"
 
 namespace quiver {
 
@@ -28,11 +28,6 @@ inline std::optional<Vec3<float>> refract(const Vec3<float>& incident, const Vec
   const float k = 1.f - eta * eta * (1.f - c1 * c1);
   if (k < 0.f) return std::nullopt;  // total internal reflection
   return incident * eta + normal * (eta * c1 - std::sqrt(k));
-}
-
-inline Vec3<float> normalized(const Vec3<float>& v) {
-  const float l = std::sqrt(dot(v, v));
-  return l > 0.f ? v / l : v;
 }
 
 // Rounding error of p = o + t d per component, from |o| and |t d|: a few

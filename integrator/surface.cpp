@@ -14,13 +14,6 @@ namespace {
 constexpr float kInvTwoPi = float(0.5 / std::numbers::pi);
 constexpr float kInvPi = float(1.0 / std::numbers::pi);
 
-// Two unit axes perpendicular to unit n.
-void tangent_axes(const Vec3<float>& n, Vec3<float>& t1, Vec3<float>& t2) {
-  const Vec3<float> helper = std::fabs(n.x) < 0.9f ? Vec3<float>(1.f, 0.f, 0.f) : Vec3<float>(0.f, 1.f, 0.f);
-  t1 = normalized(cross(n, helper));
-  t2 = cross(n, t1);
-}
-
 double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
 // (s, t) with p = a + s e + t f + s t g for a quad a, b, c, d in 2D
@@ -58,7 +51,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
   const std::uint32_t i = s.ref.local;
   s.position = ray.origin + ray.direction * hit.t;
   s.error = hit_point_error(ray.origin, ray.direction, hit.t);
-  const Vec3<float> outward = normalized(hit.ng);
+  const Vec3<float> outward = normalize(hit.ng);
   Vec3<float> shading = outward;
   s.u = hit.u;
   s.v = hit.v;
@@ -70,7 +63,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
     case PrimitiveKind::sphere: {
       if (!textured) break;
       const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
-      const Vec3<float> d = normalized(s.position - c);
+      const Vec3<float> d = normalize(s.position - c);
       s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
       s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
       break;
@@ -93,7 +86,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       }
       if (tri.has_normals()) {
         const Vec3<float> n = tri.normal(i, 0) * w0 + tri.normal(i, 1) * hit.u + tri.normal(i, 2) * hit.v;
-        if (dot(n, n) > 0.f) shading = normalized(n);
+        if (dot(n, n) > 0.f) shading = normalize(n);
       }
       break;
     }

@@ -34,9 +34,10 @@ Vec3<float> mul(const Vec3<float>& a, const Vec3<float>& b) { return {a.x * b.x,
 float max_component(const Vec3<float>& a) { return std::max(a.x, std::max(a.y, a.z)); }
 std::size_t padded_to(std::size_t n, std::size_t w) { return (n + w - 1) / w * w; }
 
-int light_sample_count(const LightDesc& light) {
+// Shadow rays per side of a light's sample grid: n x n for area lights, one ray otherwise.
+int samples_per_side(const LightDesc& light) {
   const bool area = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
-  return area ? light.samples * light.samples : 1;
+  return area ? light.samples : 1;
 }
 
 }  // namespace
@@ -53,7 +54,7 @@ float hash_uniform(std::uint64_t key, std::uint64_t a, std::uint64_t b) {
 Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
     : scene_(scene), intersector_(intersector), settings_(settings), width_(std::size_t(intersector.lanes())) {
   light_slots_ = 0;
-  for (const LightDesc& l : scene.lights) light_slots_ += light_sample_count(l);
+  for (const LightDesc& l : scene.lights) light_slots_ += samples_per_side(l) * samples_per_side(l);
 }
 
 void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats) {
@@ -108,7 +109,7 @@ void Tracer::shade(std::size_t i, const Ray<float>& ray, const Hit<float>& hit, 
   const SurfacePoint s = surface_at(scene_, ray, hit);
   const MaterialDesc& m = *s.material;
   const Vec3<float> color = surface_color(scene_, s);
-  const Vec3<float> incident = normalized(ray.direction);
+  const Vec3<float> incident = normalize(ray.direction);
   // Ambient: ka * Ia * colour.
   out = out + mul(path.weight, mul(scene_.ambient, color) * m.ka);
   // A one-sided surface seen from behind gets the ambient term only.
@@ -123,7 +124,7 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
   int slot = 0;
   for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
     const LightDesc& light = scene_.lights[l];
-    const int n = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere ? light.samples : 1;
+    const int n = samples_per_side(light);
     const Vec3<float> intensity = light.color / float(n * n);
     for (int j = 0; j < n * n; ++j, ++slot) {
       // Stratified jitter for area lights: a point in cell (j % n, j / n) of an n x n grid.
@@ -145,9 +146,9 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
         }
         case LightDesc::Kind::sphere: {
           // The silhouette disk facing the point, by the concentric map.
-          const Vec3<float> axis = normalized(light.position - origin);
-          const Vec3<float> helper = std::fabs(axis.x) < 0.9f ? Vec3<float>(1.f, 0.f, 0.f) : Vec3<float>(0.f, 1.f, 0.f);
-          const Vec3<float> t1 = normalized(cross(axis, helper)), t2 = cross(axis, t1);
+          const Vec3<float> axis = normalize(light.position - origin);
+          Vec3<float> t1, t2;
+          tangent_axes(axis, t1, t2);
           const float sx = 2.f * jittered(j % n, 2 * j) - 1.f, sy = 2.f * jittered(j / n, 2 * j + 1) - 1.f;
           float r = 0.f, phi = 0.f;
           if (sx != 0.f || sy != 0.f) {
@@ -166,11 +167,11 @@ void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec
           break;
         }
       }
-      const Vec3<float> to_light = normalized(direction);
+      const Vec3<float> to_light = normalize(direction);
       const float n_dot_l = dot(s.shading, to_light);
       // No shadow ray where the surface faces away from the light.
       if (!(n_dot_l > 0.f) || !(dot(s.geometric, to_light) > 0.f)) continue;
-      const Vec3<float> half = normalized(to_light + to_eye);
+      const Vec3<float> half = normalize(to_light + to_eye);
       const float n_dot_h = std::max(dot(s.shading, half), 0.f);
       const float specular = m.ks > 0.f && n_dot_h > 0.f ? m.ks * std::pow(n_dot_h, m.shininess) : 0.f;
       // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.

@@ -31,12 +31,6 @@ struct Token {
 };
 
 // The parts back to back (messages only; avoids operator+ on temporaries).
-std::string joined(std::initializer_list<std::string_view> parts) {
-  std::string text;
-  for (std::string_view part : parts) text += part;
-  return text;
-}
-
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 class NffParser {

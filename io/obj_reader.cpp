@@ -49,12 +49,6 @@ struct Token {
   std::size_t column;  // 1-based byte column
 };
 
-std::string joined(std::initializer_list<std::string_view> parts) {
-  std::string text;
-  for (std::string_view part : parts) text += part;
-  return text;
-}
-
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // Lines and tokens as tinyobjloader sees them: a line ends at "\n", "\r\n"
@@ -629,19 +623,15 @@ void triangulate_face(std::span<const Vec3<float>> p, std::vector<std::array<std
   };
   if (n == 3) return fan();
   // Newell normal, then the turn at every corner against it (in double).
-  glm::dvec3 normal(0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec3 a(p[i].x, p[i].y, p[i].z), b(p[(i + 1) % n].x, p[(i + 1) % n].y, p[(i + 1) % n].z);
-    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
+  const Vec3<double> normal = newell_normal(p);
   bool convex = true;
   for (std::size_t i = 0; i < n && convex; ++i) {
     const Vec3<float>& a = p[(i + n - 1) % n];
     const Vec3<float>& b = p[i];
     const Vec3<float>& c = p[(i + 1) % n];
-    const glm::dvec3 e1(double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z);
-    const glm::dvec3 e2(double(c.x) - b.x, double(c.y) - b.y, double(c.z) - b.z);
-    convex = glm::dot(glm::cross(e1, e2), normal) >= 0.0;
+    const Vec3<double> e1(double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z);
+    const Vec3<double> e2(double(c.x) - b.x, double(c.y) - b.y, double(c.z) - b.z);
+    convex = dot(cross(e1, e2), normal) >= 0.0;
   }
   if (convex) return fan();
   const PolygonDesc polygon{std::vector<Vec3<float>>(p.begin(), p.end())};

@@ -56,4 +56,10 @@ std::string quoted_token(std::string_view token) {
   return quoted;
 }
 
+std::string joined(std::initializer_list<std::string_view> parts) {
+  std::string text;
+  for (std::string_view part : parts) text += part;
+  return text;
+}
+
 }  // namespace quiver

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -30,6 +31,9 @@ class ParseError : public std::runtime_error {
   std::size_t line_ = 0;
   std::size_t column_ = 0;
 };
+
+// The parts of a message, concatenated.
+std::string joined(std::initializer_list<std::string_view> parts);
 
 // A token as error messages show it: in single quotes, bytes outside
 // printable ASCII written as \xNN, cut after 40 bytes with "...".

@@ -37,12 +37,6 @@ namespace fs = std::filesystem;
 
 using KeyList = std::initializer_list<std::string_view>;
 
-std::string joined(std::initializer_list<std::string_view> parts) {
-  std::string text;
-  for (std::string_view part : parts) text += part;
-  return text;
-}
-
 // "KIND (KEY in SECTION)": what an error message says was expected.
 std::string expected_for(std::string_view kind, std::string_view key, std::string_view section) {
   return joined({kind, " (", key, " in ", section, ")"});

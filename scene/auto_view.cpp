@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "scene/camera_frame.h"
 
 namespace quiver {
 
@@ -47,20 +48,6 @@ Bounds scene_bounds(const SceneDesc& scene) {
 }
 
 double length(const double v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-// Unit length; a zero vector stays zero.
-void normalize(double v[3]) {
-  const double l = length(v);
-  if (l > 0.0) {
-    for (int a = 0; a < 3; ++a) v[a] /= l;
-  }
-}
-
-void cross(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 Vec3<float> to_float(const double v[3]) {
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
@@ -115,16 +102,14 @@ void add_default_view(SceneDesc& scene, int width, int height) {
   if (scene.lights.empty()) {
     // Above and to the right of the scene's camera, half the view distance away.
     const CameraDesc& c = *scene.camera;
-    double forward[3], right[3], up[3];
-    for (int a = 0; a < 3; ++a) forward[a] = double(c.at[a]) - double(c.from[a]);
-    const double view_distance = length(forward);
-    normalize(forward);
-    const double hint[3] = {c.up.x, c.up.y, c.up.z};
-    cross(forward, hint, right);
-    normalize(right);
-    cross(right, forward, up);
+    double to_target[3];
+    for (int a = 0; a < 3; ++a) to_target[a] = double(c.at[a]) - double(c.from[a]);
+    const double view_distance = length(to_target);
+    const CameraFrame frame = camera_frame(c);
     double position[3];
-    for (int a = 0; a < 3; ++a) position[a] = double(c.from[a]) + 0.5 * view_distance * (right[a] + up[a]);
+    for (int a = 0; a < 3; ++a) {
+      position[a] = double(c.from[a]) + 0.5 * view_distance * (frame.right[a] + frame.up[a]);
+    }
     const float largest_ambient = std::max({scene.ambient.x, scene.ambient.y, scene.ambient.z});
     if (largest_ambient == 0.f) scene.ambient = {0.1f, 0.1f, 0.1f};
     const float intensity = std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));

@@ -21,7 +21,9 @@ inline constexpr float kDefaultViewAngleDegrees = 40.f;
 // intensity is 1 minus the largest ambient
 // component (at least 0.3); a zero ambient becomes 0.1.
 // Nothing is changed where the scene has its own camera or lights. Throws
-// std::invalid_argument for width or height outside [1, kMaxImageSide].
+// std::invalid_argument for width or height outside [1, kMaxImageSide], and
+// as camera_frame (scene/camera_frame.h) when a light is added beside a
+// degenerate camera of the scene's own.
 void add_default_view(SceneDesc& scene, int width, int height);
 
 }  // namespace quiver

@@ -11,11 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/cone_soa.h"
-#include "geometry/plane_soa.h"
-#include "geometry/polygon_soa.h"
-#include "geometry/sphere_soa.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/primitive_desc.h"
 #include "simd/vec3.h"
 
 namespace quiver {

@@ -36,6 +36,7 @@
 #pragma GCC diagnostic pop
 
 #include "simd/isa.h"
+#include "simd/vec3.h"
 
 #if defined(__SSE4_2__) && defined(__FMA__)
 #include <immintrin.h>
@@ -479,6 +480,38 @@ template <class F>
 inline Mask<F> first_lanes(std::size_t remaining) {
   const float n = remaining < std::size_t(kMaxLanes) ? float(remaining) : float(kMaxLanes);
   return lane_index_float<F>() < F(n);
+}
+
+// ---- Vec3 forms ------------------------------------------------------------
+
+template <class F>
+inline Vec3<F> select(const Mask<F>& m, const Vec3<F>& a, const Vec3<F>& b) {
+  return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+// Cross product with each component from difference_of_products (error <= 1.5 ulp).
+template <class F>
+inline Vec3<F> cross_accurate(const Vec3<F>& a, const Vec3<F>& b) {
+  return {difference_of_products(a.y, b.z, a.z, b.y), difference_of_products(a.z, b.x, a.x, b.z),
+          difference_of_products(a.x, b.y, a.y, b.x)};
+}
+template <class F>
+inline F length(const Vec3<F>& a) {
+  return sqrt(dot(a, a));
+}
+// a / |a|; a itself where |a| is zero or NaN (no division by zero).
+template <class F>
+inline Vec3<F> normalize(const Vec3<F>& a) {
+  const F l = length(a);
+  return a / select(l > F(0.f), l, F(1.f));
+}
+// Two unit axes perpendicular to the unit vector n: t1 = normalize(n x h),
+// h the x axis (the y axis where |n.x| >= 0.9), and t2 = n x t1.
+template <class F>
+inline void tangent_axes(const Vec3<F>& n, Vec3<F>& t1, Vec3<F>& t2) {
+  const Mask<F> off_x = abs(n.x) < F(0.9f);
+  const Vec3<F> helper(select(off_x, F(1.f), F(0.f)), select(off_x, F(0.f), F(1.f)), F(0.f));
+  t1 = normalize(cross(n, helper));
+  t2 = cross(n, t1);
 }
 
 }  // namespace quiver

@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "simd/vec3.h"
+#include "simd/lanes.h"
 
 namespace quiver {
 

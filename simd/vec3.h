@@ -1,9 +1,11 @@
-// Vec3<F>: three lanes of F (a point or direction per lane). Plain
-// arithmetic evaluated left to right; contraction is off, so a product-sum
-// rounds the same at every width. fma appears only where written.
+// Vec3<F>: three lanes of F (a point or direction per lane), or three plain
+// numbers (float, double). Plain arithmetic evaluated left to right;
+// contraction is off, so a product-sum rounds the same at every width. fma
+// appears only where written. No xsimd here: the forms that need lane
+// operations (select, length, normalize, ...) are in simd/lanes.h.
 #pragma once
 
-#include "simd/lanes.h"
+#include <type_traits>
 
 namespace quiver {
 
@@ -54,23 +56,4 @@ template <class F>
 inline Vec3<F> cross(const Vec3<F>& a, const Vec3<F>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-// Cross product with each component from difference_of_products (error <= 1.5 ulp).
-template <class F>
-inline Vec3<F> cross_accurate(const Vec3<F>& a, const Vec3<F>& b) {
-  return {difference_of_products(a.y, b.z, a.z, b.y), difference_of_products(a.z, b.x, a.x, b.z),
-          difference_of_products(a.x, b.y, a.y, b.x)};
-}
-template <class F>
-inline F length(const Vec3<F>& a) {
-  return sqrt(dot(a, a));
-}
-template <class F>
-inline Vec3<F> normalize(const Vec3<F>& a) {
-  return a / length(a);
-}
-template <class F>
-inline Vec3<F> select(const Mask<F>& m, const Vec3<F>& a, const Vec3<F>& b) {
-  return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
-}
-
 }  // namespace quiver

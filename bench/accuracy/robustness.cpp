@@ -96,7 +96,7 @@ AcneCount count_acne(const Method& method, KernelUnit unit, double scale, Offset
     const Hit<float> hit = first.get(i);
     if (hit.id == kNoHit) continue;
     const Ray<float> ray = c.rays.get(i);
-    const Vec3<float> unit_normal = normalized(hit.ng);
+    const Vec3<float> unit_normal = normalize(hit.ng);
     // Only hits from outside (the convex side); for a plane, triangle or polygon either side is outside.
     const bool from_front = dot(ray.direction, unit_normal) < 0.f;
     if (!from_front && (method.kind == Kind::sphere || method.kind == Kind::cone)) continue;
