@@ -13,6 +13,8 @@ struct Box {
   Vec3<float> lo, hi;
 };
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 inline Box empty_box() {
   constexpr float inf = std::numeric_limits<float>::infinity();
   return {{inf, inf, inf}, {-inf, -inf, -inf}};
@@ -51,4 +53,5 @@ inline T midpoint_of(const T& lo, const T& hi) {
 
 inline Vec3<float> centroid(const Box& b) { return midpoint_of(b.lo, b.hi); }
 
+}  // namespace QUIVER_UNIT_NAMESPACE
 }  // namespace quiver

@@ -13,7 +13,7 @@
 //
 // Boxes are conservative: each primitive's box contains every point the
 // kernel can report on it (see geometry/primitive_bounds.h), and the
-// traversal widens the slab interval (geometry/bvh_traversal.h), so culling
+// traversal widens the slab interval (geometry/bvh/slab.h), so culling
 // never removes a primitive a brute-force scan would report.
 #pragma once
 
@@ -81,6 +81,8 @@ struct Bvh {
   std::size_t memory_bytes() const { return nodes.capacity() * sizeof(float); }
 };
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 // The nodes of a tree of width N known at compile time (the traversal
 // walks): the same layout at a constant stride.
 template <int N>
@@ -94,6 +96,8 @@ struct BvhNodes {
     return std::bit_cast<std::int32_t>(block[child_slot(N, 0) + slot]);
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 // Builds the BVH of `boxes` and the primitive order its leaves use. An empty
 // input gives an empty Bvh. Throws std::length_error past kMaxBvhPrimitives

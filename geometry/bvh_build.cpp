@@ -19,7 +19,6 @@
 #include <stdexcept>
 
 #include <oneapi/tbb/parallel_invoke.h>
-#include <xsimd/xsimd.hpp>
 
 #include "simd/lanes.h"
 

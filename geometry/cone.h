@@ -38,6 +38,8 @@
 
 namespace quiver {
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 template <class F>
 struct ConeLanes {
   Vec3<F> base;  // center of the base circle
@@ -131,5 +133,7 @@ struct ConeQuadric {
     return (ok1 || ok2) && out.t < tmax;
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 }  // namespace quiver

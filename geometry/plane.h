@@ -12,6 +12,8 @@
 
 namespace quiver {
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 template <class F>
 struct PlaneLanes {
   Vec3<F> normal;  // unit length
@@ -40,5 +42,7 @@ struct PlaneSeed : RayAsIs {
     return active && crosses && out.t > ray.tmin && out.t < tmax;
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 }  // namespace quiver

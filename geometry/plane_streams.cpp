@@ -1,14 +1,17 @@
-// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
+// Compiled once per kernel unit (simd/kernel_units.h); QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/plane_streams.h"
 
 namespace quiver {
 
-template <>
-KernelStreams<PlaneSoA> plane_streams<kThisUnit>(PlaneMethod method) {
+template <KernelUnit U>
+KernelStreams<PlaneSoA> plane_streams(PlaneMethod method) {
   switch (method) {
     case PlaneMethod::seed: break;
   }
-  return make_streams<kThisUnit, PlaneSeed, PlaneSoA>();
+  return make_streams<U, PlaneSeed, PlaneSoA>();
 }
+
+// This unit's instances.
+template KernelStreams<PlaneSoA> plane_streams<kThisUnit>(PlaneMethod);
 
 }  // namespace quiver

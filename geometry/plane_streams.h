@@ -1,4 +1,5 @@
-// Plane streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
+// Plane streams per kernel unit: plane_streams.cpp defines them, and each kernel
+// unit compiles it with its own flags and instantiates them for itself.
 #pragma once
 
 #include "geometry/plane_soa.h"
@@ -10,15 +11,5 @@ enum class PlaneMethod { seed };
 
 template <KernelUnit U>
 KernelStreams<PlaneSoA> plane_streams(PlaneMethod method);
-template <>
-KernelStreams<PlaneSoA> plane_streams<KernelUnit::scalar>(PlaneMethod method);
-template <>
-KernelStreams<PlaneSoA> plane_streams<KernelUnit::scalar_fma>(PlaneMethod method);
-template <>
-KernelStreams<PlaneSoA> plane_streams<KernelUnit::sse4>(PlaneMethod method);
-template <>
-KernelStreams<PlaneSoA> plane_streams<KernelUnit::avx2>(PlaneMethod method);
-template <>
-KernelStreams<PlaneSoA> plane_streams<KernelUnit::avx512>(PlaneMethod method);
 
 }  // namespace quiver

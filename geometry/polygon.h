@@ -16,8 +16,8 @@
 //      edge is inside or outside depending on that edge's direction.
 // All lanes share the polygon, so the edge loop is the same for every lane;
 // an edge no lane straddles is skipped (it could toggle no lane), except in
-// bands, whose few edges are all computed (that branch mispredicted: 9-16%
-// on gears-s4's rays, bench/README.md).
+// bands, whose few edges are all computed (that branch mispredicted there,
+// bench/README.md).
 // Edge bands (polygons of many vertices, see PolygonSoA): the v range is cut
 // into bands, each listing the edges whose v range meets it; a lane reads
 // only its own band's edges. band_of is non-decreasing in v, so every edge
@@ -51,6 +51,8 @@ namespace quiver {
 struct BandSpan {
   float edges_lo, inside_lo, inside_hi, edges_hi;
 };
+
+inline namespace QUIVER_UNIT_NAMESPACE {
 
 // A span bound's distance from the band's edge u ranges, relative to the
 // polygon's rectangle width: the crossing test's sign is exact beyond 2^-22
@@ -135,8 +137,7 @@ inline Mask<F> banded_parity(const PolygonLanes<F>& poly, const F& u, const F& v
   store_lanes(x, x_lane);
   store_lanes(u, u_lane);
   // Each candidate lane's band, up front: off the group loop's dependency
-  // chain (band_of on each group's first lane inside it measured 2-5% below
-  // d90b83e on gears-s4's w16 diffuse rays, in three runs).
+  // chain (band_of on each group's first lane inside it measured slower).
   int lane_band[kMaxLanes];
   unsigned inside_by_span = 0, open = 0;
   for (unsigned b = lane_bits(candidate); b != 0; b &= b - 1) {
@@ -204,5 +205,7 @@ struct PolygonCrossing : RayAsIs {
     return candidate && inside;
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 }  // namespace quiver

@@ -1,9 +1,10 @@
-// Polygon streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
+// Polygon streams per kernel unit: polygon_streams.cpp defines them, and each kernel
+// unit compiles it with its own flags and instantiates them for itself.
 // Packets only: polygons differ in vertex count, so W polygons cannot share
 // one edge loop (no scan orientation).
 #pragma once
 
-#include "geometry/bvh_traversal.h"
+#include "geometry/bvh/bvh_streams.h"
 #include "geometry/polygon_soa.h"
 #include "geometry/streams.h"
 
@@ -13,29 +14,9 @@ enum class PolygonMethod { crossing };
 
 template <KernelUnit U>
 KernelStreams<PolygonSoA> polygon_streams(PolygonMethod method);
-template <>
-KernelStreams<PolygonSoA> polygon_streams<KernelUnit::scalar>(PolygonMethod method);
-template <>
-KernelStreams<PolygonSoA> polygon_streams<KernelUnit::scalar_fma>(PolygonMethod method);
-template <>
-KernelStreams<PolygonSoA> polygon_streams<KernelUnit::sse4>(PolygonMethod method);
-template <>
-KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx2>(PolygonMethod method);
-template <>
-KernelStreams<PolygonSoA> polygon_streams<KernelUnit::avx512>(PolygonMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
 BvhStreams<PolygonSoA> polygon_bvh_streams(PolygonMethod method);
-template <>
-BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::scalar>(PolygonMethod method);
-template <>
-BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::scalar_fma>(PolygonMethod method);
-template <>
-BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::sse4>(PolygonMethod method);
-template <>
-BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::avx2>(PolygonMethod method);
-template <>
-BvhStreams<PolygonSoA> polygon_bvh_streams<KernelUnit::avx512>(PolygonMethod method);
 
 }  // namespace quiver

@@ -65,19 +65,9 @@ void HitSoA::reset(const RaySoA& rays) {
   id.assign(t.size(), kNoHit);
 }
 
-Hit<float> HitSoA::get(std::size_t i) const {
-  return {t[i], u[i], v[i], {ngx[i], ngy[i], ngz[i]}, id[i]};
-}
+Hit<float> HitSoA::get(std::size_t i) const { return column_hit(*this, i); }
 
-void HitSoA::set(std::size_t i, const Hit<float>& hit) {
-  t[i] = hit.t;
-  u[i] = hit.u;
-  v[i] = hit.v;
-  ngx[i] = hit.ng.x;
-  ngy[i] = hit.ng.y;
-  ngz[i] = hit.ng.z;
-  id[i] = hit.id;
-}
+void HitSoA::set(std::size_t i, const Hit<float>& hit) { set_column_hit(*this, i, hit); }
 
 std::size_t HitSoA::hit_count() const {
   std::size_t n = 0;

@@ -8,9 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include <xsimd/xsimd.hpp>
-
 #include "geometry/hit.h"
+#include "simd/lanes.h"
 #include "simd/ray.h"
 
 namespace quiver {
@@ -28,6 +27,8 @@ constexpr std::size_t padded_size(std::size_t n) {
 // column[count - 1] (zeros when count is 0).
 void pad_column(AlignedFloats& column, std::size_t count);
 void pad_column(AlignedInts& column, std::size_t count);
+
+inline namespace QUIVER_UNIT_NAMESPACE {
 
 template <class F>
 inline Vec3<F> load_vec3(const AlignedFloats& x, const AlignedFloats& y, const AlignedFloats& z,
@@ -48,6 +49,8 @@ inline Vec3<F> broadcast_vec3(const AlignedFloats& x, const AlignedFloats& y,
   return {F(x[i]), F(y[i]), F(z[i])};
 }
 
+}  // namespace QUIVER_UNIT_NAMESPACE
+
 // Rays in SoA; a closest-hit stream reads (tmin, tmax) from here.
 struct RaySoA {
   AlignedFloats ox, oy, oz, dx, dy, dz, tmin, tmax;
@@ -64,7 +67,7 @@ struct RaySoA {
   void pad();
 
   template <class F>
-  Ray<F> load(std::size_t first) const {
+  [[gnu::always_inline]] Ray<F> load(std::size_t first) const {
     return {load_vec3<F>(ox, oy, oz, first), load_vec3<F>(dx, dy, dz, first),
             load_lanes<F>(tmin.data() + first), load_lanes<F>(tmax.data() + first)};
   }
@@ -87,20 +90,12 @@ struct HitSoA {
   std::size_t hit_count() const;  // rays with id != kNoHit
 
   template <class F>
-  Hit<F> load(std::size_t first) const {
-    return {load_lanes<F>(t.data() + first), load_lanes<F>(u.data() + first),
-            load_lanes<F>(v.data() + first), load_vec3<F>(ngx, ngy, ngz, first),
-            load_int_lanes<F>(id.data() + first)};
+  [[gnu::always_inline]] Hit<F> load(std::size_t first) const {
+    return load_column_hits<F>(*this, first);
   }
   template <class F>
-  void store(std::size_t first, const Hit<F>& hit) {
-    store_lanes(hit.t, t.data() + first);
-    store_lanes(hit.u, u.data() + first);
-    store_lanes(hit.v, v.data() + first);
-    store_lanes(hit.ng.x, ngx.data() + first);
-    store_lanes(hit.ng.y, ngy.data() + first);
-    store_lanes(hit.ng.z, ngz.data() + first);
-    store_int_lanes<F>(hit.id, id.data() + first);
+  [[gnu::always_inline]] void store(std::size_t first, const Hit<F>& hit) {
+    store_column_hits(*this, first, hit);
   }
 };
 

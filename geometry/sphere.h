@@ -46,6 +46,8 @@
 
 namespace quiver {
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 template <class F>
 struct SphereLanes {
   Vec3<F> center;
@@ -197,5 +199,7 @@ struct SphereRobust : PreparesSphereRay {
     return real && out.t > ray.tmin && out.t < tmax;
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 }  // namespace quiver

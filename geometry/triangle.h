@@ -48,6 +48,8 @@
 
 namespace quiver {
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 template <class F>
 struct TriangleLanes {
   Vec3<F> v0, v1, v2;
@@ -207,7 +209,7 @@ struct TriangleWatertight {
   // as a compile-time AxesFixed, so that a caller testing many blocks
   // (the single-ray BVH walk) chooses the frame once per ray, not per block.
   // (Preparing the scalar ray and broadcasting its fields measured faster
-  // than prepare(broadcast_ray<F>(ray)): triangle single rays 2-11%.)
+  // than prepare(broadcast_ray<F>(ray)).)
   template <class F, class Visit>
   [[gnu::always_inline]] static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
     using namespace triangle_detail;
@@ -371,5 +373,7 @@ struct TriangleWatertight {
     return in_range && nonzero(ng);
   }
 };
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 
 }  // namespace quiver

@@ -26,7 +26,7 @@ struct TriangleSoA {
   std::vector<std::uint32_t> source;
   std::int32_t id_base = 0;
 
-  // BVH traversal: incoherent packets go ray by ray (geometry/bvh_traversal.h).
+  // BVH traversal: incoherent packets go ray by ray (geometry/bvh/bvh_streams.h).
   static constexpr bool kIncoherentRaysTraverseAlone = true;
 
   std::size_t size() const { return count; }

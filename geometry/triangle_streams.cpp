@@ -1,24 +1,28 @@
-// Compiled once per kernel unit; QUIVER_KERNEL_UNIT names the unit.
+// Compiled once per kernel unit (simd/kernel_units.h); QUIVER_KERNEL_UNIT names the unit.
 #include "geometry/triangle_streams.h"
 
 namespace quiver {
 
-template <>
-KernelStreams<TriangleSoA> triangle_streams<kThisUnit>(TriangleMethod method) {
+template <KernelUnit U>
+KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method) {
   switch (method) {
-    case TriangleMethod::moller_trumbore: return make_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
-    case TriangleMethod::watertight: return make_streams<kThisUnit, TriangleWatertight, TriangleSoA>();
+    case TriangleMethod::moller_trumbore: return make_streams<U, TriangleMollerTrumbore, TriangleSoA>();
+    case TriangleMethod::watertight: return make_streams<U, TriangleWatertight, TriangleSoA>();
   }
-  return make_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
+  return make_streams<U, TriangleMollerTrumbore, TriangleSoA>();
 }
 
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<kThisUnit>(TriangleMethod method) {
+template <KernelUnit U>
+BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method) {
   switch (method) {
-    case TriangleMethod::moller_trumbore: return make_bvh_streams<kThisUnit, TriangleMollerTrumbore, TriangleSoA>();
+    case TriangleMethod::moller_trumbore: return make_bvh_streams<U, TriangleMollerTrumbore, TriangleSoA>();
     case TriangleMethod::watertight: break;
   }
-  return make_bvh_streams<kThisUnit, TriangleWatertight, TriangleSoA>();
+  return make_bvh_streams<U, TriangleWatertight, TriangleSoA>();
 }
+
+// This unit's instances.
+template KernelStreams<TriangleSoA> triangle_streams<kThisUnit>(TriangleMethod);
+template BvhStreams<TriangleSoA> triangle_bvh_streams<kThisUnit>(TriangleMethod);
 
 }  // namespace quiver

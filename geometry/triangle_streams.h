@@ -1,7 +1,8 @@
-// Triangle streams per kernel unit (simd/isa.h), each compiled with that unit's flags.
+// Triangle streams per kernel unit: triangle_streams.cpp defines them, and each kernel
+// unit compiles it with its own flags and instantiates them for itself.
 #pragma once
 
-#include "geometry/bvh_traversal.h"
+#include "geometry/bvh/bvh_streams.h"
 #include "geometry/streams.h"
 #include "geometry/triangle_soa.h"
 
@@ -11,29 +12,9 @@ enum class TriangleMethod { moller_trumbore, watertight };
 
 template <KernelUnit U>
 KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method);
-template <>
-KernelStreams<TriangleSoA> triangle_streams<KernelUnit::scalar>(TriangleMethod method);
-template <>
-KernelStreams<TriangleSoA> triangle_streams<KernelUnit::scalar_fma>(TriangleMethod method);
-template <>
-KernelStreams<TriangleSoA> triangle_streams<KernelUnit::sse4>(TriangleMethod method);
-template <>
-KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx2>(TriangleMethod method);
-template <>
-KernelStreams<TriangleSoA> triangle_streams<KernelUnit::avx512>(TriangleMethod method);
 
 // Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
 template <KernelUnit U>
 BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method);
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::scalar>(TriangleMethod method);
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::scalar_fma>(TriangleMethod method);
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::sse4>(TriangleMethod method);
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::avx2>(TriangleMethod method);
-template <>
-BvhStreams<TriangleSoA> triangle_bvh_streams<KernelUnit::avx512>(TriangleMethod method);
 
 }  // namespace quiver

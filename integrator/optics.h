@@ -18,6 +18,8 @@
 
 namespace quiver {
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 inline Vec3<float> reflect(const Vec3<float>& incident, const Vec3<float>& normal) {
   const float two_cos = 2.f * dot(incident, normal);
   return incident - normal * two_cos;
@@ -56,4 +58,5 @@ inline Vec3<float> offset_origin(const Vec3<float>& p, const Vec3<float>& error,
   return moved;
 }
 
+}  // namespace QUIVER_UNIT_NAMESPACE
 }  // namespace quiver

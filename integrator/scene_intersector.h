@@ -1,6 +1,6 @@
 // The scene's intersection queries for one kernel unit: each kind in turn,
-// through the kind's BVH over both layers where it has one (geometry/
-// bvh_traversal.h; its leaves of untested layers are skipped) and otherwise
+// through the kind's BVH over both layers where it has one
+// (geometry/bvh/bvh_streams.h; leaves of untested layers are skipped), else
 // through each tested layer's packet streams (W rays against one primitive),
 // with the watertight triangle, crossing polygon, seed plane and quadric cone
 // methods, and the sphere method chosen per scene: the seed's algebraic test

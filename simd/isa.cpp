@@ -6,25 +6,46 @@
 
 namespace quiver {
 
-int lane_width(Isa isa) {
-  switch (isa) {
-    case Isa::scalar: return 1;
-    case Isa::sse4: return 4;
-    case Isa::avx2: return 8;
-    case Isa::avx512: return 16;
+namespace {
+
+// GCC's CPU model also checks that the OS saves AVX state (xsimd 8.1's avx
+// flag reads false on some AVX2 machines, so it is not used). The builtin
+// takes only literal names, hence one case per feature.
+bool cpu_has(CpuFeature feature) {
+  switch (feature) {
+    case CpuFeature::avx: return __builtin_cpu_supports("avx");
+    case CpuFeature::fma: return __builtin_cpu_supports("fma");
+    case CpuFeature::sse4_2: return __builtin_cpu_supports("sse4.2");
+    case CpuFeature::avx2: return __builtin_cpu_supports("avx2");
+    case CpuFeature::avx512f: return __builtin_cpu_supports("avx512f");
+    case CpuFeature::avx512cd: return __builtin_cpu_supports("avx512cd");
+    case CpuFeature::avx512dq: return __builtin_cpu_supports("avx512dq");
+    case CpuFeature::avx512bw: return __builtin_cpu_supports("avx512bw");
+    case CpuFeature::avx512vl: return __builtin_cpu_supports("avx512vl");
   }
-  return 1;
+  return false;
 }
 
-std::string_view isa_name(Isa isa) {
-  switch (isa) {
-    case Isa::scalar: return "scalar";
-    case Isa::sse4: return "sse4";
-    case Isa::avx2: return "avx2";
-    case Isa::avx512: return "avx512";
+bool supported(const KernelUnitSpec& spec) {
+  for (unsigned f = 0; f < 32; ++f) {
+    if (((spec.required_features >> f) & 1u) != 0 && !cpu_has(static_cast<CpuFeature>(f))) return false;
   }
-  return "scalar";
+  return true;
 }
+
+// The first unit of an ISA choice (every choice has one).
+const KernelUnitSpec& first_unit_of(Isa isa) {
+  for (const KernelUnitSpec& spec : kKernelUnitSpecs) {
+    if (spec.isa == isa) return spec;
+  }
+  return kKernelUnitSpecs[0];
+}
+
+}  // namespace
+
+int lane_width(Isa isa) { return first_unit_of(isa).lanes; }
+
+std::string_view isa_name(Isa isa) { return first_unit_of(isa).name; }
 
 std::optional<Isa> parse_isa(std::string_view name) {
   for (Isa isa : kIsas) {
@@ -34,84 +55,34 @@ std::optional<Isa> parse_isa(std::string_view name) {
 }
 
 bool isa_supported(Isa isa) {
-  // GCC's CPU model also checks that the OS saves AVX state (xsimd 8.1's
-  // avx flag reads false on some AVX2 machines, so it is not used).
-  switch (isa) {
-    case Isa::scalar: return true;
-    // The 4-wide unit is built with -msse4.2 -mfma, which implies VEX (AVX) encoding.
-    case Isa::sse4:
-      return __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
-    case Isa::avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    // The 16-wide unit is built with -mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl -mfma.
-    case Isa::avx512:
-      return isa_supported(Isa::avx2) && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-             __builtin_cpu_supports("avx512vl");
+  for (const KernelUnitSpec& spec : kKernelUnitSpecs) {
+    if (spec.isa == isa && supported(spec)) return true;
   }
   return false;
 }
 
-int lane_width(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::scalar:
-    case KernelUnit::scalar_fma: return 1;
-    case KernelUnit::sse4: return 4;
-    case KernelUnit::avx2: return 8;
-    case KernelUnit::avx512: return 16;
-  }
-  return 1;
-}
+int lane_width(KernelUnit unit) { return spec_of(unit).lanes; }
 
-std::string_view kernel_unit_name(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::scalar: return "scalar";
-    case KernelUnit::scalar_fma: return "scalar_fma";
-    case KernelUnit::sse4: return "sse4";
-    case KernelUnit::avx2: return "avx2";
-    case KernelUnit::avx512: return "avx512";
-  }
-  return "scalar";
-}
+std::string_view kernel_unit_name(KernelUnit unit) { return spec_of(unit).name; }
 
-bool kernel_unit_supported(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::scalar: return true;
-    // -mfma implies VEX (AVX) encoding.
-    case KernelUnit::scalar_fma: return __builtin_cpu_supports("avx") && __builtin_cpu_supports("fma");
-    case KernelUnit::sse4: return isa_supported(Isa::sse4);
-    case KernelUnit::avx2: return isa_supported(Isa::avx2);
-    case KernelUnit::avx512: return isa_supported(Isa::avx512);
-  }
-  return false;
-}
+bool kernel_unit_supported(KernelUnit unit) { return supported(spec_of(unit)); }
 
 KernelUnit kernel_unit_for(Isa isa) {
-  switch (isa) {
-    case Isa::scalar:
-      return kernel_unit_supported(KernelUnit::scalar_fma) ? KernelUnit::scalar_fma : KernelUnit::scalar;
-    case Isa::sse4: return KernelUnit::sse4;
-    case Isa::avx2: return KernelUnit::avx2;
-    case Isa::avx512: return KernelUnit::avx512;
+  KernelUnit chosen = KernelUnit::scalar;
+  for (const KernelUnitSpec& spec : kKernelUnitSpecs) {
+    if (spec.isa == isa && supported(spec)) chosen = spec.unit;
   }
-  return KernelUnit::scalar;
+  return chosen;
 }
 
-Isa isa_of(KernelUnit unit) {
-  switch (unit) {
-    case KernelUnit::scalar:
-    case KernelUnit::scalar_fma: return Isa::scalar;
-    case KernelUnit::sse4: return Isa::sse4;
-    case KernelUnit::avx2: return Isa::avx2;
-    case KernelUnit::avx512: return Isa::avx512;
-  }
-  return Isa::scalar;
-}
+Isa isa_of(KernelUnit unit) { return spec_of(unit).isa; }
 
 Isa best_supported_isa() {
-  for (Isa isa : {Isa::avx512, Isa::avx2, Isa::sse4}) {
-    if (isa_supported(isa)) return isa;
+  Isa best = Isa::scalar;
+  for (Isa isa : kIsas) {
+    if (isa_supported(isa)) best = isa;
   }
-  return Isa::scalar;
+  return best;
 }
 
 Isa resolve_isa(std::string_view requested) {
@@ -122,8 +93,7 @@ Isa resolve_isa(std::string_view requested) {
                              "': expected auto, scalar, sse4, avx2 or avx512");
   }
   if (!isa_supported(*isa)) {
-    throw std::runtime_error("SIMD choice '" + std::string(requested) +
-                             "' is not supported by this CPU");
+    throw std::runtime_error("SIMD choice '" + std::string(requested) + "' is not supported by this CPU");
   }
   return *isa;
 }

@@ -98,6 +98,8 @@ struct UnitLanesOf<KernelUnit::avx512> {
 template <KernelUnit U>
 using UnitLanes = typename UnitLanesOf<U>::type;
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 // ---- scalar forms -------------------------------------------------------
 
 inline float select(bool m, float a, float b) { return m ? a : b; }
@@ -514,4 +516,5 @@ inline void tangent_axes(const Vec3<F>& n, Vec3<F>& t1, Vec3<F>& t2) {
   t2 = cross(n, t1);
 }
 
+}  // namespace QUIVER_UNIT_NAMESPACE
 }  // namespace quiver

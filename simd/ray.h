@@ -16,6 +16,8 @@ struct Ray {
   F tmax;
 };
 
+inline namespace QUIVER_UNIT_NAMESPACE {
+
 // One ray copied into every lane.
 template <class F>
 inline Ray<F> broadcast_ray(const Ray<float>& r) {
@@ -34,4 +36,5 @@ struct RayAsIs {
   }
 };
 
+}  // namespace QUIVER_UNIT_NAMESPACE
 }  // namespace quiver

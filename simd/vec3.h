@@ -7,6 +7,8 @@
 
 #include <type_traits>
 
+#include "simd/kernel_units.h"
+
 namespace quiver {
 
 template <class F>
@@ -22,6 +24,8 @@ struct Vec3 {
   F& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
   const F& operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
 };
+
+inline namespace QUIVER_UNIT_NAMESPACE {
 
 template <class F>
 inline Vec3<F> operator+(const Vec3<F>& a, const Vec3<F>& b) {
@@ -56,4 +60,6 @@ template <class F>
 inline Vec3<F> cross(const Vec3<F>& a, const Vec3<F>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+
+}  // namespace QUIVER_UNIT_NAMESPACE
 }  // namespace quiver

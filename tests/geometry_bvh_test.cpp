@@ -495,7 +495,7 @@ TYPED_TEST(BvhTraversalTest, TrianglesMatchTheScanBitForBit) {
 // points just above random triangles, in random directions, so most hit a
 // neighbour at a small t. Box planes then lie near ray origins of large
 // |o|, where a slab test that rounds o * (1/d) without a margin culls
-// children it must enter (NodeRay in geometry/bvh_traversal.h).
+// children it must enter (NodeRay in geometry/bvh/node_ray.h).
 std::vector<TriangleDesc> far_sheet(RaySampler& s, const Vec3<float>& corner, int side, float cell) {
   std::vector<float> height(static_cast<std::size_t>((side + 1) * (side + 1)));
   for (float& h : height) h = s.uniform(0.f, 0.6f * cell);

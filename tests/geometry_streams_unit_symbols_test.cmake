@@ -1,7 +1,8 @@
 # Fails when a global function symbol is defined in the objects of two kernel
-# units (geometry/streams.h: the streams are flattened and carry the unit, so
-# no kernel code built with one unit's flags may reach another through the
-# linker). Arguments: NM, UNITS (a list), OBJECTS_<unit> ('|'-separated).
+# units, or of a unit and the baseline-built libraries (the group "host"):
+# no code built with one unit's flags may reach another through the linker
+# (simd/kernel_units.h). Arguments: NM, UNITS (a list), OBJECTS_<unit>
+# ('|'-separated).
 set(owner_of "")
 set(shared "")
 foreach(unit IN LISTS UNITS)

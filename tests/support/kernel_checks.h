@@ -19,8 +19,7 @@ namespace quiver::testing {
 ::testing::AssertionResult occlusion_matches_hits(const OcclusionSoA& occlusion, const HitSoA& hits);
 
 // Every kernel unit; each is compared with the portable scalar unit.
-using KernelUnits = ::testing::Types<Unit<KernelUnit::scalar>, Unit<KernelUnit::scalar_fma>,
-                                     Unit<KernelUnit::sse4>, Unit<KernelUnit::avx2>, Unit<KernelUnit::avx512>>;
+using KernelUnits = OverKernelUnits<::testing::Types>;
 
 // Typed fixture: skips, saying why, only when this CPU cannot run the unit.
 template <class U>

@@ -1,0 +1,178 @@
+// BVH traversal streams through one primitive store, or through the tested
+// stores of a tree over two (a scene's opaque and transmissive layers,
+// BvhStores), written once for every width. Per packet the stream decides:
+// packets travel together (geometry/bvh/packet_walk.h), except that
+// triangle packets whose active lanes' directions span several octants
+// (incoherent) go ray by ray (geometry/bvh/lane_walk.h,
+// geometry/bvh/single_walk.h); rays reaching behind their origin always
+// walk alone. The closest hit is the lexicographic minimum of (t, id) over
+// the stores, as a brute-force scan in id order gives it, so the result
+// does not depend on traversal order, packet or single, or width.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "geometry/bvh/lane_walk.h"
+#include "geometry/bvh/packet_walk.h"
+#include "geometry/bvh/single_walk.h"
+#include "geometry/streams.h"
+
+namespace quiver {
+
+// The BVH streams of one method for node widths 2, 4 and 8, through a tree
+// over one store or through the tested stores of a tree over two.
+template <class S>
+struct BvhStreams {
+  template <int K>
+  using Closest = void (*)(const RaySoA&, BvhStores<S, K>, const Bvh&, HitSoA&, BvhTraversal);
+  template <int K>
+  using Occluded = void (*)(const RaySoA&, BvhStores<S, K>, const Bvh&, OcclusionSoA&, BvhTraversal);
+  std::array<Closest<1>, 3> closest{};
+  std::array<Occluded<1>, 3> occluded{};
+  std::array<Closest<2>, 3> closest_of_two{};
+  std::array<Occluded<2>, 3> occluded_of_two{};
+
+  static constexpr int slot(int width) { return width == 2 ? 0 : (width == 4 ? 1 : 2); }
+  void closest_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
+                    BvhTraversal traversal = BvhTraversal::automatic) const {
+    closest[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, hits, traversal);
+  }
+  void any_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
+                BvhTraversal traversal = BvhTraversal::automatic) const {
+    occluded[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, result, traversal);
+  }
+  void closest_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, HitSoA& hits,
+                    BvhTraversal traversal = BvhTraversal::automatic) const {
+    closest_of_two[slot(bvh.width)](rays, stores, bvh, hits, traversal);
+  }
+  void any_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, OcclusionSoA& result,
+                BvhTraversal traversal = BvhTraversal::automatic) const {
+    occluded_of_two[slot(bvh.width)](rays, stores, bvh, result, traversal);
+  }
+};
+
+inline namespace QUIVER_UNIT_NAMESPACE {
+
+// Every active lane's direction in one octant.
+template <class F>
+inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
+  for (int a = 0; a < 3; ++a) {
+    const Mask<F> negative = ray.direction[a] < F(0.f);
+    if (any(negative && active) && any(and_not(active, negative))) return false;
+  }
+  return true;
+}
+
+// Stores whose incoherent rays traverse faster one by one (scan leaves):
+// triangles. Polygon packets were faster together on every ray set
+// measured (bench/README.md). Spheres stay together too: the octant rule
+// gained 15% on balls-s4's diffuse rays but lost 7% on its reflection rays,
+// and reflections are what a Whitted renderer traces. Cones follow spheres.
+template <class S>
+concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
+
+// Whether the packet's active lanes walk the tree together: never when one
+// reaches behind its origin (the packet walks' slab tests need tmin >= 0),
+// else as the traversal says; automatic: triangles only within one octant.
+// (Any-hit triangle packets one by one won 9% on the bunny's shadow rays
+// and lost 38% on teapot-s12's, so they follow the same rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
+// (Benthin et al. 2012) gained at most 3% (bunny primary rays) and lost up
+// to 23% (gears-s4 shadow rays), so it is not used.)
+template <class S, class F>
+inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
+  if (traversal == BvhTraversal::single || reaches_behind(ray, active)) return false;
+  if (traversal == BvhTraversal::packets) return true;
+  if (lane_count<F> == 1) return false;
+  if constexpr (IncoherentRaysTraverseAlone<S>) {
+    return same_octant(ray, active);
+  } else {
+    return true;
+  }
+}
+
+template <KernelUnit U, class Method, class S, int N, int K>
+[[gnu::flatten]] void closest_bvh(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, HitSoA& hits,
+                                  BvhTraversal traversal) {
+  using F = UnitLanes<U>;
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Mask<F> active = first_lanes<F>(rays.count - first);
+    const Ray<F> ray = rays.load<F>(first);
+    if (travels_together<S>(traversal, ray, active)) {
+      Hit<F> hit = hits.load<F>(first);
+      const PacketSlab<F, N> slab(ray, active);
+      const NodeFrustum<U, N> frustum(slab, ray.tmin, hit.t, active);
+      if (frustum.usable) {
+        closest_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, active, hit);
+      } else {
+        closest_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, active, hit);
+      }
+      hits.store(first, hit);
+      continue;
+    }
+    if constexpr (WalksLanesByFrame<Method, S, F>) {
+      closest_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(active), hits);
+      continue;
+    }
+    const std::size_t end = first + W < rays.count ? first + W : rays.count;
+    for (std::size_t r = first; r < end; ++r) {
+      Hit<float> hit = hits.get(r);
+      closest_bvh_single<U, Method, N>(stores, bvh, rays.get(r), hit);
+      hits.set(r, hit);
+    }
+  }
+}
+
+template <KernelUnit U, class Method, class S, int N, int K>
+[[gnu::flatten]] void occluded_bvh(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh,
+                                   OcclusionSoA& result, BvhTraversal traversal) {
+  using F = UnitLanes<U>;
+  constexpr std::size_t W = lane_count<F>;
+  for (std::size_t first = 0; first < rays.count; first += W) {
+    const Mask<F> valid = first_lanes<F>(rays.count - first);
+    const Ray<F> ray = rays.load<F>(first);
+    const Mask<F> occluded = nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) && valid;
+    const Mask<F> open = and_not(valid, occluded);
+    if (none(open)) continue;
+    if (travels_together<S>(traversal, ray, open)) {
+      // No frustum over two stores: the walk skips the untested store's
+      // children without a box test, which leaves it little to save
+      // (gears-s4: shadow rays -3..-5%, its whole render -5%).
+      const PacketSlab<F, N> slab(ray, open);
+      const NodeFrustum<U, N> frustum =
+          K == 1 ? NodeFrustum<U, N>(slab, ray.tmin, ray.tmax, open) : NodeFrustum<U, N>();
+      const Mask<F> blocked =
+          frustum.usable ? occluded_bvh_packet<true, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid)
+                         : occluded_bvh_packet<false, U, Method>(stores, bvh, ray, slab, frustum, occluded, valid);
+      store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
+      continue;
+    }
+    if constexpr (WalksLanesByFrame<Method, S, F>) {
+      occluded_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(open), result);
+      continue;
+    }
+    const std::size_t end = first + W < rays.count ? first + W : rays.count;
+    for (std::size_t r = first; r < end; ++r) {
+      if (result.occluded[r] == 0 && occluded_bvh_single<U, Method, N>(stores, bvh, rays.get(r))) {
+        result.occluded[r] = 1;
+      }
+    }
+  }
+}
+
+template <KernelUnit U, class Method, class S>
+BvhStreams<S> make_bvh_streams() {
+  BvhStreams<S> s;
+  s.closest = {&closest_bvh<U, Method, S, 2, 1>, &closest_bvh<U, Method, S, 4, 1>, &closest_bvh<U, Method, S, 8, 1>};
+  s.occluded = {&occluded_bvh<U, Method, S, 2, 1>, &occluded_bvh<U, Method, S, 4, 1>,
+                &occluded_bvh<U, Method, S, 8, 1>};
+  s.closest_of_two = {&closest_bvh<U, Method, S, 2, 2>, &closest_bvh<U, Method, S, 4, 2>,
+                      &closest_bvh<U, Method, S, 8, 2>};
+  s.occluded_of_two = {&occluded_bvh<U, Method, S, 2, 2>, &occluded_bvh<U, Method, S, 4, 2>,
+                       &occluded_bvh<U, Method, S, 8, 2>};
+  return s;
+}
+
+}  // namespace QUIVER_UNIT_NAMESPACE
+}  // namespace quiver
