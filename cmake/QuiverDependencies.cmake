@@ -9,6 +9,5 @@ if(_quiver_oiio_includes)
 endif()
 find_package(TBB CONFIG REQUIRED)
 find_package(tomlplusplus CONFIG REQUIRED)
-find_package(tinyobjloader CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)  # app/stats_json.cpp

@@ -1,10 +1,10 @@
-// Reader for Wavefront OBJ meshes and their MTL material libraries, through
-// tinyobjloader. A strict scan of the text runs first and reports bad input
-// as ParseError with file:line:column (numbers, NaN/Inf, index ranges,
-// counts); tinyobjloader then reads the checked text. Faces become
-// triangles (quads and convex n-gons as fans, concave n-gons by ear
-// clipping), with per-vertex normals and uvs when the face gives them. The
-// format rules, the MTL mapping and the bounds are in io/README.md.
+// Reader for Wavefront OBJ meshes and their MTL material libraries: one
+// strict pass over the text that reports bad input as ParseError with
+// file:line:column (numbers, NaN/Inf, index ranges, counts) and builds the
+// scene as it reads. Faces become triangles (quads and convex n-gons as
+// fans, concave n-gons by ear clipping), with per-vertex normals and uvs
+// when the face gives them. The format rules, the MTL mapping and the
+// bounds are in io/README.md.
 #pragma once
 
 #include <array>
@@ -31,7 +31,8 @@ inline constexpr std::size_t kMaxObjVertices = std::size_t{1} << 24;
 inline constexpr std::size_t kMaxObjTriangles = std::size_t{1} << 24;
 // Most corners of `f`, `l` and `p` statements together.
 inline constexpr std::size_t kMaxObjCorners = std::size_t{1} << 26;
-// Most vertices of one face (tinyobjloader stores the count in a byte).
+// Most vertices of one face: this reader's bound, far above what meshes
+// use, so that no single face makes ear clipping (cubic at worst) slow.
 inline constexpr std::size_t kMaxObjFaceVertices = 255;
 
 // An MTL library as the OBJ names it: its text, the name used in error

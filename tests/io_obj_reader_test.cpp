@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "io/obj_reader.h"
@@ -195,7 +197,202 @@ TEST(ObjReader, DissolveWinsOverTrAndZeroIorMeansOne) {
   EXPECT_EQ(scene.materials[0].ior, 1.f);
 }
 
-TEST(ObjReader, LineEndsAsTinyobjloaderSplitsThem) {
+// The material of the one face of a triangle mesh that uses material `name`
+// of the MTL library `mtl`.
+MaterialDesc mtl_material(const std::string& mtl, const std::string& name = "a") {
+  const SceneDesc scene =
+      parse(std::string(kTriangle) + "mtllib m.mtl\nusemtl " + name + "\nf 1 2 3\n", {{"m.mtl", mtl}});
+  EXPECT_EQ(scene.triangles.size(), 1u);
+  return scene.materials.at(scene.triangles.at(0).material);
+}
+
+// A material's weights in one tuple: (kd, ka, ks, shininess, kr, kt, ior).
+std::tuple<float, float, float, float, float, float, float> weights(const MaterialDesc& m) {
+  return {m.kd, m.ka, m.ks, m.shininess, m.kr, m.kt, m.ior};
+}
+
+TEST(ObjReader, MtlKeysLeftOutGiveTheirDefaults) {
+  const MaterialDesc m = mtl_material("newmtl a\n");
+  expect_vec3(m.color, 0.f, 0.f, 0.f);
+  EXPECT_EQ(weights(m), std::tuple(1.f, MaterialDesc{}.ka, 0.f, 1.f, 0.f, 0.f, 1.f));
+  EXPECT_TRUE(m.two_sided);
+  EXPECT_FALSE(m.texture.has_value());
+}
+
+TEST(ObjReader, EachMtlKeyMapsAndItsLastStatementWins) {
+  const MaterialDesc m = mtl_material(
+      "newmtl a\nKa 1 1 1\nKa 0.3 0.6 0.9\nKd 1 1 1\nKd 0.5 0.25 0.125\nKs 0 0 0\nKs 0.2 0.4 0.6\n"
+      "Ns 3\nNs 40\nNi 2\nNi 1.25\nd 0.125\nd 0.5\nillum 2\nillum 4\n"
+      "Ke 1 2 3\nKt 0 0 0\nTf 1 1 1\nPr 0.5\nPm 1\nPs 0\nPc 0\nPcr 0\naniso 0\nanisor 0\nmap_Ks -clamp on spec.png\n"
+      "sharpness 60\n");
+  expect_vec3(m.color, 0.5f, 0.25f, 0.125f);
+  const float ks = (0.2f + 0.4f + 0.6f) / 3.f;
+  // Means of Ka and Ks; illum 4 makes kr = ks.
+  EXPECT_EQ(weights(m), std::tuple(1.f, (0.3f + 0.6f + 0.9f) / 3.f, ks, 40.f, ks, 0.5f, 1.25f));
+  EXPECT_FALSE(m.texture.has_value());  // map_Ks is checked, not used
+}
+
+TEST(ObjReader, TrIsOneMinusDissolveUnlessADCameFirst) {
+  EXPECT_EQ(mtl_material("newmtl a\nTr 0.25\n").kt, 0.25f);
+  EXPECT_EQ(mtl_material("newmtl a\nTr 0.125\nTr 0.625\n").kt, 0.625f);
+  EXPECT_EQ(mtl_material("newmtl a\nd 0.25\nTr 0.875\n").kt, 0.75f);
+  EXPECT_EQ(mtl_material("newmtl a\nTr 0.875\nd 0.25\n").kt, 0.75f);
+  // A d of another material does not count.
+  EXPECT_EQ(mtl_material("newmtl b\nd 0.5\nnewmtl a\nTr 0.25\n").kt, 0.25f);
+}
+
+TEST(ObjReader, IllumThreeToSevenAddTheMirrorWeight) {
+  for (int illum = 0; illum <= 10; ++illum) {
+    const MaterialDesc m = mtl_material("newmtl a\nKs 0.5 0.5 0.5\nillum " + std::to_string(illum) + "\n");
+    EXPECT_EQ(m.kr, illum >= 3 && illum <= 7 ? 0.5f : 0.f) << "illum " << illum;
+  }
+}
+
+TEST(ObjReader, DiffuseTextureBeforeAnyKdMakesTheColourGrey) {
+  expect_vec3(mtl_material("newmtl a\nmap_Kd tex/checker.png\n").color, 0.6f, 0.6f, 0.6f);
+  expect_vec3(mtl_material("newmtl a\nmap_Kd tex/checker.png\nKd 0.25 0.5 1\n").color, 0.25f, 0.5f, 1.f);
+  expect_vec3(mtl_material("newmtl a\nKd 0.25 0.5 1\nmap_Kd tex/checker.png\n").color, 0.25f, 0.5f, 1.f);
+  // The Kd of an earlier material does not count.
+  expect_vec3(mtl_material("newmtl b\nKd 1 1 1\nnewmtl a\nmap_Kd tex/checker.png\n").color, 0.6f, 0.6f, 0.6f);
+}
+
+TEST(ObjReader, TextureWrapFollowsTheLastClampAndTexturesAreShared) {
+  const std::string mtl =
+      "newmtl repeat\nmap_Kd -blendu off -blendv on tex/checker.png\n"
+      "newmtl clamp\nmap_Kd -clamp on tex/checker.png\n"
+      "newmtl clamp_then_off\nmap_Kd -clamp on -clamp off tex/checker.png\n"
+      "newmtl clamp_kept\nmap_Kd -clamp on tex/checker.png\nmap_Kd ../obj/tex/checker.png\n"
+      "newmtl other_clamp\nmap_Ks -clamp on tex/checker.png\nmap_Kd tex/checker.png\n";
+  std::string obj = std::string(kTriangle) + "mtllib m.mtl\n";
+  for (const char* name : {"repeat", "clamp", "clamp_then_off", "clamp_kept", "other_clamp"}) {
+    obj += std::string("usemtl ") + name + "\nf 1 2 3\n";
+  }
+  const SceneDesc scene = parse(obj, {{"m.mtl", mtl}});
+  ASSERT_EQ(scene.materials.size(), 5u);
+  // One texture per path and wrap mode (../obj/tex is tex once normalised).
+  ASSERT_EQ(scene.textures.size(), 2u);
+  EXPECT_EQ(scene.textures[0].path, scene.textures[1].path);
+  EXPECT_TRUE(fs::equivalent(scene.textures[0].path, kTestData / "tex" / "checker.png"));
+  EXPECT_EQ(scene.textures[0].wrap, WrapMode::repeat);
+  EXPECT_EQ(scene.textures[1].wrap, WrapMode::clamp);
+  const std::size_t expected_texture[] = {0, 1, 0, 1, 0};
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(scene.materials[i].texture, expected_texture[i]) << i;
+}
+
+TEST(ObjReader, FirstDefinitionOfAMaterialNameWinsAcrossLibraries) {
+  const std::string obj = std::string(kTriangle) + "mtllib a.mtl b.mtl\nusemtl m\nf 1 2 3\nusemtl n\nf 1 2 3\n";
+  const SceneDesc scene = parse(obj, {{"a.mtl", "newmtl m\nKd 0.25 0.25 0.25\nnewmtl m\nKd 1 1 1\n"},
+                                      {"b.mtl", "newmtl m\nKd 0.5 0.5 0.5\nnewmtl n\nKd 0.75 0 0\n"}});
+  ASSERT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.materials[0].color.x, 0.25f);
+  EXPECT_EQ(scene.materials[1].color.x, 0.75f);
+  // A repeated definition is still checked.
+  EXPECT_TRUE(error_at(obj, {{"a.mtl", "newmtl m\nnewmtl m\nKd 1 x 1\n"}}, "a.mtl", 3, 6, "a number (Kd colour)"));
+}
+
+TEST(ObjReader, UsemtlNeedsAnEarlierMtllib) {
+  EXPECT_TRUE(error_at(std::string(kTriangle) + "usemtl a\nmtllib m.mtl\nf 1 2 3\n", {{"m.mtl", "newmtl a\n"}},
+                       "test.obj", 4, 8, "a material defined in a library named by an earlier 'mtllib'"));
+  // A library named later serves the faces after it.
+  const SceneDesc scene =
+      parse(std::string(kTriangle) + "mtllib a.mtl\nusemtl a\nf 1 2 3\nmtllib b.mtl\nusemtl b\nf 1 2 3\n",
+            {{"a.mtl", "newmtl a\nKd 1 0 0\n"}, {"b.mtl", "newmtl b\nKd 0 1 0\n"}});
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  expect_vec3(scene.materials.at(scene.triangles[0].material).color, 1.f, 0.f, 0.f);
+  expect_vec3(scene.materials.at(scene.triangles[1].material).color, 0.f, 1.f, 0.f);
+}
+
+TEST(ObjReader, MaterialsAreAddedInOrderOfFirstUseByAFace) {
+  const SceneDesc scene = parse(std::string(kTriangle) +
+                                    "mtllib m.mtl\nusemtl unused\nusemtl b\nf 1 2 3\ng group\no object\nf 1 2 3\n"
+                                    "usemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n",
+                                {{"m.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nnewmtl unused\n"}});
+  // No default material (every face follows a usemtl), nothing for a usemtl
+  // without faces; g and o keep the material.
+  ASSERT_EQ(scene.materials.size(), 2u);
+  expect_vec3(scene.materials[0].color, 0.f, 1.f, 0.f);
+  expect_vec3(scene.materials[1].color, 1.f, 0.f, 0.f);
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  const std::size_t expected_material[] = {0, 0, 1, 0};
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(scene.triangles[i].material, expected_material[i]) << i;
+}
+
+TEST(ObjReader, NegativeIndicesCountBackFromTheLastElementDefinedSoFar) {
+  const SceneDesc scene = parse(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
+      "f -3/-3/-1 -2/-2/-1 -1/-1/-1\n"
+      "v 5 0 0\nvt 0.5 0.25\nvn 0 1 0\n"
+      "f -4/-4/-2 3/-1/2 -1/-2/-1\n");
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  const TriangleDesc& first = scene.triangles[0].triangle;
+  expect_vec3(first.p[0], 0.f, 0.f, 0.f);
+  expect_vec3(first.p[2], 0.f, 1.f, 0.f);
+  const TriangleDesc& second = scene.triangles[1].triangle;
+  expect_vec3(second.p[0], 0.f, 0.f, 0.f);
+  expect_vec3(second.p[1], 0.f, 1.f, 0.f);
+  expect_vec3(second.p[2], 5.f, 0.f, 0.f);
+  ASSERT_TRUE(second.uvs.has_value());
+  ASSERT_TRUE(second.normals.has_value());
+  EXPECT_EQ((*second.uvs)[0], (std::array<float, 2>{0.f, 0.f}));
+  EXPECT_EQ((*second.uvs)[1], (std::array<float, 2>{0.5f, 0.25f}));
+  EXPECT_EQ((*second.uvs)[2], (std::array<float, 2>{0.f, 1.f}));
+  expect_vec3((*second.normals)[0], 0.f, 0.f, 1.f);
+  expect_vec3((*second.normals)[1], 0.f, 1.f, 0.f);
+  expect_vec3((*second.normals)[2], 0.f, 1.f, 0.f);
+}
+
+TEST(ObjReader, QuadCornersKeepTheirUvsAndNormalsInEachForm) {
+  // Corner k of the unit square has uv (x, y) and normal (k, 0, 1); the
+  // third face gives the normals in reverse (corner k gets 5 - k).
+  const SceneDesc scene = parse(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 1 0 1\nvn 2 0 1\nvn 3 0 1\nvn 4 0 1\n"
+      "f 1/1/1 2/2/2 3/3/3 4/4/4\nf 1/1 2/2 3/3 4/4\nf 1//4 2//3 3//2 4//1\nf 1 2 3 4\n");
+  ASSERT_EQ(scene.triangles.size(), 8u);
+  const float square[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (std::size_t i = 0; i < 8; ++i) {
+    const TriangleDesc& t = scene.triangles[i].triangle;
+    const std::size_t face = i / 2;
+    ASSERT_EQ(t.uvs.has_value(), face <= 1) << i;
+    ASSERT_EQ(t.normals.has_value(), face == 0 || face == 2) << i;
+    // A fan from corner 1: corners 1 2 3, then 1 3 4.
+    const std::size_t fan[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (std::size_t j = 0; j < 3; ++j) {
+      const std::size_t corner = fan[i % 2][j];
+      expect_vec3(t.p[j], square[corner][0], square[corner][1], 0.f);
+      if (t.uvs) {
+        EXPECT_EQ((*t.uvs)[j], (std::array<float, 2>{square[corner][0], square[corner][1]})) << i;
+      }
+      if (t.normals) {
+        EXPECT_EQ((*t.normals)[j].x, float(face == 2 ? 4 - corner : corner + 1)) << i;
+      }
+    }
+  }
+}
+
+TEST(ObjReader, EarClippedCornersKeepTheirUvsAndNormals) {
+  // The L of polygons.obj; corner k has uv (x, y) / 4 and normal (k, 0, 1).
+  const float corners[6][2] = {{10, 0}, {12, 0}, {12, 1}, {11, 1}, {11, 2}, {10, 2}};
+  std::string obj;
+  for (const auto& c : corners) obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " 0\n";
+  for (const auto& c : corners) obj += "vt " + std::to_string(c[0] / 4) + " " + std::to_string(c[1] / 4) + "\n";
+  for (int k = 1; k <= 6; ++k) obj += "vn " + std::to_string(k) + " 0 1\n";
+  obj += "f 1/1/1 2/2/2 3/3/3 4/4/4 5/5/5 6/6/6\n";
+  const SceneDesc scene = parse(obj);
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  for (const SceneTriangle& t : scene.triangles) {
+    ASSERT_TRUE(t.triangle.uvs.has_value() && t.triangle.normals.has_value());
+    for (std::size_t j = 0; j < 3; ++j) {
+      const Vec3<float>& p = t.triangle.p[j];
+      const auto corner = std::find_if(std::begin(corners), std::end(corners),
+                                       [&](const auto& c) { return c[0] == p.x && c[1] == p.y; });
+      ASSERT_NE(corner, std::end(corners));
+      EXPECT_EQ((*t.triangle.uvs)[j], (std::array<float, 2>{p.x / 4, p.y / 4}));
+      EXPECT_EQ((*t.triangle.normals)[j].x, float(corner - std::begin(corners) + 1));
+    }
+  }
+}
+
+TEST(ObjReader, LinesEndAtLfCrLfOrALoneCr) {
   // CRLF, a lone CR and a final line without a line end; comments and blanks.
   const SceneDesc scene = parse("# c\r\nv 0 0 0\r\n\r\nv 1 0 0\rv 0 1 0\n  \t\nf 1 2 3");
   ASSERT_EQ(scene.triangles.size(), 1u);
@@ -224,22 +421,41 @@ TEST(ObjReader, BadNumbersAreErrorsAtTheirToken) {
   EXPECT_TRUE(obj_error_at("vt 0 0 0 0\n", 1, 10, "end of line after the texture coordinates"));
   EXPECT_TRUE(obj_error_at("v 1 2 3 4 5\n", 1, 12, "a number (vertex colour blue)"));
   EXPECT_TRUE(obj_error_at("v 0 0 0 # comment\n", 1, 9, "a number (vertex w"));
-  // tinyobjloader's exponent would overflow an int (fuzzer find); from_chars reads 0.
+  // An exponent of 10 or more digits is an error whatever its value (these read as 0).
   EXPECT_TRUE(obj_error_at("v 0 0e2147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
   EXPECT_TRUE(obj_error_at("v 0 0.000e-0002147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
   EXPECT_NO_THROW(parse("v 0 1e-000000000000030 0\n"));
-  // tinyobjloader's float conversion must never see a double past FLT_MAX.
+  // Magnitudes over 3.4e38 are errors, also those below FLT_MAX.
   EXPECT_TRUE(obj_error_at("v 0 0 -3.40282346e38\n", 1, 7, "a number from -3.4e38 to 3.4e38"));
   EXPECT_NO_THROW(parse("v 0 0 -3.4e38\n"));
 }
 
-TEST(ObjReader, NumbersTinyobjloaderReadsAsNotFiniteAreFound) {
-  // from_chars reads 0e999 as 0; tinyobjloader computes 0 * 5^999 = NaN.
-  EXPECT_TRUE(obj_error_at("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0e999 0\nf 1 2 3\n", 4, 5,
-                           "a number tinyobjloader reads as finite"));
-  EXPECT_TRUE(error_at(std::string(kTriangle) + "mtllib m.mtl\nusemtl a\nf 1 2 3\n",
-                       {{"m.mtl", "newmtl a\nKd 1 0 0\nKd 0.5 0e999 1\n"}}, "m.mtl", 3, 8,
-                       "a number tinyobjloader reads as finite"));
+TEST(ObjReader, ZeroWithAHugeExponentReadsAsZero) {
+  // 0e999 reads as 0, in the OBJ and in an MTL library.
+  const SceneDesc scene = parse("v 0 0 0\nv 1 0 0\nv 0 0e999 1\nf 1 2 3\n");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  expect_vec3(scene.triangles[0].triangle.p[2], 0.f, 0.f, 1.f);
+  const SceneDesc with_mtl = parse(std::string(kTriangle) + "mtllib m.mtl\nusemtl a\nf 1 2 3\n",
+                                   {{"m.mtl", "newmtl a\nKd 1 0 0\nKd 0.5 0e999 1\n"}});
+  ASSERT_EQ(with_mtl.materials.size(), 1u);
+  expect_vec3(with_mtl.materials[0].color, 0.5f, 0.f, 1.f);
+}
+
+TEST(ObjReader, NumbersAreTheirDecimalValueCorrectlyRounded) {
+  const SceneDesc scene = parse(
+      "v 1.65041e+08 9.053e+08 1.0000000596046447753906250001\nv +.5 5. -0\nv 1e-50 -1e-50 1e-40\nf 1 2 3\n");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  const auto& p = scene.triangles[0].triangle.p;
+  // Exactly halfway between two floats (ties to even), and just above a halfway point.
+  expect_vec3(p[0], 165041000.f, 905300000.f, 1.0000000596046447753906250001f);
+  EXPECT_NE(p[0].z, 1.f);
+  expect_vec3(p[1], 0.5f, 5.f, 0.f);
+  EXPECT_TRUE(std::signbit(p[1].z));
+  // Too small for float: a signed zero; a subnormal stays.
+  EXPECT_EQ(p[2].x, 0.f);
+  EXPECT_FALSE(std::signbit(p[2].x));
+  EXPECT_TRUE(std::signbit(p[2].y));
+  EXPECT_EQ(p[2].z, 1e-40f);
 }
 
 TEST(ObjReader, IndicesOutOfRangeAreErrorsAtTheirPart) {
@@ -276,7 +492,7 @@ TEST(ObjReader, StatementErrors) {
   EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "usemtl nothing\n", 4, 8, "a material defined in a library"));
   EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists"));
   EXPECT_TRUE(obj_error_at("mtllib\n", 1, 7, "an MTL library file name, found end of line"));
-  // tinyobjloader reads lines as C strings: a NUL byte is an error.
+  // A NUL byte is an error, at its position.
   EXPECT_TRUE(obj_error_at(std::string("v 0 0 0\nv 1\0 0 0\n", 18), 2, 4, "text without NUL bytes"));
 }
 

@@ -10,7 +10,7 @@
 // Invariants: on success, those of check_scene plus: no camera and no
 // lights, kt in [0, 1], every texture an image; on a ParseError, a
 // position "FILE:LINE:COLUMN: expected " in the OBJ text (fuzz.obj) or the
-// MTL text (fuzz.mtl), lines split as tinyobjloader splits them. A
+// MTL text (fuzz.mtl), lines ending at "\n", "\r\n" or a lone "\r". A
 // whole-file error (line 0) cannot come from text in memory and is a
 // finding too.
 #include <cstddef>
@@ -18,11 +18,6 @@
 #include <optional>
 #include <string>
 #include <string_view>
-
-// tinyobjloader is compiled into this target (see CMakeLists.txt) so that it
-// is instrumented too.
-#define TINYOBJLOADER_IMPLEMENTATION
-#include <tiny_obj_loader.h>
 
 #include "io/obj_reader.h"
 #include "io/parse_error.h"

@@ -112,7 +112,7 @@ inline bool position_in_message(std::string_view what, std::string_view name, st
 // A positioned error names a line of `text` (or the empty line after a
 // final line end) and a byte column at most one past that line's end.
 // `line_ends` splits lines: "\n" only (TOML) or also "\r\n" and a lone "\r"
-// (OBJ and MTL, as tinyobjloader reads them).
+// (OBJ and MTL).
 inline void check_error_position(const ParseError& error, std::string_view text, bool cr_ends_lines) {
   std::size_t line = 0, column = 0;
   check(position_in_message(error.what(), error.file(), line, column));

@@ -15,11 +15,6 @@
 #include <cstdint>
 #include <string_view>
 
-// toml++ and tinyobjloader are compiled into this target (see CMakeLists.txt)
-// so that they are instrumented too.
-#define TINYOBJLOADER_IMPLEMENTATION
-#include <tiny_obj_loader.h>
-
 #include "io/parse_error.h"
 #include "io/toml_reader.h"
 #include "scene_invariants.h"
