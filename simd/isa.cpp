@@ -1,6 +1,7 @@
 #include "simd/isa.h"
 
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -68,11 +69,13 @@ std::string_view kernel_unit_name(KernelUnit unit) { return spec_of(unit).name; 
 bool kernel_unit_supported(KernelUnit unit) { return supported(spec_of(unit)); }
 
 KernelUnit kernel_unit_for(Isa isa) {
-  KernelUnit chosen = KernelUnit::scalar;
+  // The ISA's first unit, or a later one of the same ISA this CPU supports
+  // (scalar: scalar_fma where the CPU has FMA).
+  std::optional<KernelUnit> chosen;
   for (const KernelUnitSpec& spec : kKernelUnitSpecs) {
-    if (spec.isa == isa && supported(spec)) chosen = spec.unit;
+    if (spec.isa == isa && (!chosen || supported(spec))) chosen = spec.unit;
   }
-  return chosen;
+  return chosen.value_or(KernelUnit::scalar);
 }
 
 Isa isa_of(KernelUnit unit) { return spec_of(unit).isa; }
