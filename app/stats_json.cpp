@@ -62,6 +62,8 @@ json aov_names(const RenderSettings& settings) {
   return names;
 }
 
+double phase_ms(std::uint64_t nanoseconds) { return double(nanoseconds) / 1e6; }
+
 }  // namespace
 
 json render_stats_json(const RenderResult& result, const RenderSettings& settings, const RenderStatsContext& context) {
@@ -107,6 +109,11 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
         {"reflection", rays.reflection},
         {"refraction", rays.refraction},
         {"total", rays.total()}}},
+      {"phases_ms",
+       {{"camera_and_film", phase_ms(stats.phases.camera_and_film)},
+        {"intersection", phase_ms(stats.phases.intersection)},
+        {"shading", phase_ms(stats.phases.shading)},
+        {"shadows", phase_ms(stats.phases.shadows)}}},
       {"mrays_per_s", render_seconds > 0.0 ? json(double(rays.total()) / render_seconds / 1e6) : json(nullptr)},
       {"lane_utilization",
        {{"waves", std::move(waves)},

@@ -29,6 +29,8 @@ struct RenderStatsContext {
 // Keys: version, scene, output, load_ms, build_ms, render_ms, threads, simd,
 // kernel_unit, sphere_method (algebraic or robust, chosen per scene), lanes, width, height, aa, max_depth, min_weight, seed,
 // aovs; rays {primary, eye_hit, shadow, reflection, refraction, total};
+// phases_ms {camera_and_film, intersection, shading, shadows} (thread
+// time summed over threads, integrator/trace_stats.h);
 // mrays_per_s (total rays / render seconds / 1e6; null for a zero time);
 // lane_utilization {waves: [{depth, active, issued_compacted,
 // issued_uncompacted, utilization_compacted, utilization_uncompacted}],

@@ -304,7 +304,14 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         [&](const tbb::blocked_range<std::size_t>& range) {
           Worker& w = workers.local();
           for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            // camera_and_film: the tile's time less what the tracer charged to its phases.
+            const std::uint64_t traced_before = w.stats.phases.total();
+            PhaseClock clock;
+            std::uint64_t tile_time = 0;
             tile_renderer.render(tiles[t], w);
+            clock.charge(tile_time);
+            const std::uint64_t traced = w.stats.phases.total() - traced_before;
+            w.stats.phases.camera_and_film += tile_time > traced ? tile_time - traced : 0;
             const std::size_t finished = ++done;
             if (progress) {
               std::lock_guard lock(progress_mutex);

@@ -6,8 +6,10 @@
 // what quiver issues (every wave packed into full packets: ceil(n / W) * W
 // lanes); "uncompacted" is what a per-packet masked recursion would issue:
 // W lanes for every parent packet and child ray kind with any active lane.
+// Phase times are thread time in nanoseconds, summed over threads.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -22,8 +24,34 @@ struct WaveLanes {
   std::uint64_t active = 0, issued_compacted = 0, issued_uncompacted = 0;
 };
 
+// Where a frame's time goes. camera_and_film: a tile's work outside the
+// tracer (camera samples, anti-aliasing decisions, AOV first hits,
+// writing pixels);
+// intersection: closest hits of the eye and secondary waves; shading:
+// surface points, materials, textures, lights and the rays they spawn;
+// shadows: the shadow waves (any-hit, transparent shadows, adding the light).
+struct PhaseTimes {
+  std::uint64_t camera_and_film = 0, intersection = 0, shading = 0, shadows = 0;
+  std::uint64_t total() const { return camera_and_film + intersection + shading + shadows; }
+};
+
+// Adds the time since the last call (or construction) to a phase's counter.
+class PhaseClock {
+ public:
+  PhaseClock() : last_(std::chrono::steady_clock::now()) {}
+  void charge(std::uint64_t& phase) {
+    const auto now = std::chrono::steady_clock::now();
+    phase += static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now - last_).count());
+    last_ = now;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_;
+};
+
 struct TraceStats {
   RayCounts rays;
+  PhaseTimes phases;
   std::vector<WaveLanes> waves;  // index = bounce depth (0: primary)
   WaveLanes shadow;              // all shadow waves together
 

@@ -72,9 +72,12 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
   primary.issued_compacted += padded_to(samples.size(), width_);
   primary.issued_uncompacted += padded_to(samples.size(), width_);
 
+  PhaseClock clock;
   for (int depth = 0; rays_.count > 0; ++depth) {
     hits_.reset(rays_);
+    clock.charge(stats.phases.shading);
     intersector_.closest(scene_, rays_, hits_);
+    clock.charge(stats.phases.intersection);
     next_rays_.clear();
     next_paths_.clear();
     child_parent_.clear();
@@ -84,7 +87,9 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     shadow_parent_.clear();
     shadow_slot_.clear();
     for (std::size_t i = 0; i < rays_.count; ++i) shade(i, rays_.get(i), hits_.get(i), colors, depth, stats);
+    clock.charge(stats.phases.shading);
     resolve_shadows(colors, stats);
+    clock.charge(stats.phases.shadows);
     if (next_rays_.count > 0) {
       WaveLanes& next = stats.wave(std::size_t(depth) + 1);
       next.active += next_rays_.count;
@@ -95,6 +100,7 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     std::swap(paths_, next_paths_);
     rays_.pad();
   }
+  clock.charge(stats.phases.shading);
 }
 
 void Tracer::shade(std::size_t i, const Ray<float>& ray, const Hit<float>& hit, std::span<Vec3<float>> colors,

@@ -215,6 +215,14 @@ TEST_F(Cli, StatsJsonHasTheKeysAndConsistentCounts) {
   EXPECT_GE(lanes.at("waves").size(), 2u);
   EXPECT_EQ(lanes.at("waves")[0].at("active"), rays.at("primary"));
   EXPECT_GT(stats.at("memory_bytes").at("scene").get<std::uint64_t>(), 0u);
+  // Phases are thread time: each took some, and together at most every thread's share of the render.
+  const json& phases = stats.at("phases_ms");
+  double phase_sum = 0.0;
+  for (const char* phase : {"camera_and_film", "intersection", "shading", "shadows"}) {
+    EXPECT_GT(phases.at(phase).get<double>(), 0.0) << phase;
+    phase_sum += phases.at(phase).get<double>();
+  }
+  EXPECT_LE(phase_sum, stats.at("render_ms").get<double>() * stats.at("threads").get<double>() * 1.01 + 0.1);
 }
 
 TEST_F(Cli, PresetSpdTracesEveryPixelCorner) {

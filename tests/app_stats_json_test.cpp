@@ -109,6 +109,17 @@ TEST(StatsJson, RayCountsAndRate) {
   EXPECT_TRUE(render_stats_json(zero_time.result, zero_time.settings, zero_time.context).at("mrays_per_s").is_null());
 }
 
+TEST(StatsJson, PhaseTimesInMilliseconds) {
+  Example e = example();
+  e.result.stats.phases = {1'500'000, 250'000, 3'000'000, 7};
+  const json phases = render_stats_json(e.result, e.settings, e.context).at("phases_ms");
+  EXPECT_DOUBLE_EQ(phases.at("camera_and_film").get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(phases.at("intersection").get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(phases.at("shading").get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(phases.at("shadows").get<double>(), 7e-6);
+  EXPECT_EQ(phases.size(), 4u);
+}
+
 TEST(StatsJson, LaneUtilizationIsActiveOverIssued) {
   const Example e = example();
   const json lanes = render_stats_json(e.result, e.settings, e.context).at("lane_utilization");
