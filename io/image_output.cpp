@@ -1,16 +1,26 @@
 // Framebuffer to image file: encode the pixels for the format, write them
-// with OpenImageIO to a temporary file beside the target, then rename.
+// to a temporary file beside the target, then rename. PNG goes through
+// libpng and OpenEXR through the OpenEXR library directly; JPEG, HDR and
+// TIFF through OpenImageIO in the quiver_oiio module, loaded on first use.
 #include "io/image_output.h"
 
+#include "io/oiio_loader.h"
 #include "io/output_file.h"
 
-#include <OpenImageIO/imageio.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+#include <png.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <exception>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -28,20 +38,24 @@ constexpr std::string_view kSupportedExtensions = ".png .jpg .jpeg .exr .hdr .ti
 // ends the process instead of reporting an error, so it is checked here.
 constexpr int kMaxJpegSide = 65'500;
 
+// Which library writes a format: libpng, OpenEXR, or OpenImageIO (module).
+enum class Writer { png, openexr, oiio };
+
 struct FormatInfo {
   std::string_view extension;
   std::string_view oiio_format;
   bool eight_bit_srgb;
+  Writer writer;
 };
 
 constexpr std::array<FormatInfo, 7> kFormats{{
-    {".png", "png", true},
-    {".jpg", "jpeg", true},
-    {".jpeg", "jpeg", true},
-    {".exr", "openexr", false},
-    {".hdr", "hdr", false},
-    {".tif", "tiff", false},
-    {".tiff", "tiff", false},
+    {".png", "png", true, Writer::png},
+    {".jpg", "jpeg", true, Writer::oiio},
+    {".jpeg", "jpeg", true, Writer::oiio},
+    {".exr", "openexr", false, Writer::openexr},
+    {".hdr", "hdr", false, Writer::oiio},
+    {".tif", "tiff", false, Writer::oiio},
+    {".tiff", "tiff", false, Writer::oiio},
 }};
 
 [[noreturn]] void fail(const fs::path& path, std::string_view message) {
@@ -125,6 +139,73 @@ std::vector<float> interleaved_floats(const Framebuffer& framebuffer, std::size_
   return values;
 }
 
+// 8-bit RGB through libpng's simplified API, which tags the file sRGB.
+void write_png(const fs::path& path, const fs::path& temporary, int width, int height,
+               const std::vector<std::uint8_t>& rgb) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  if (!png_image_write_to_file(&image, temporary.c_str(), 0, rgb.data(), 0, nullptr)) {
+    fail(path, "cannot write: " + std::string(image.message));
+  }
+}
+
+// 32-bit float channels, zip-compressed scanlines, through OpenEXR. The
+// stream is ours so that a failure to flush it on close is seen.
+void write_openexr(const fs::path& path, const fs::path& temporary, int width, int height,
+                   const std::vector<std::string>& names, const std::vector<float>& interleaved) {
+  std::string error;
+  try {
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer slices;
+    const std::size_t pixel_stride = names.size() * sizeof(float);
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+      // OpenEXR only reads through the slice's pointer when writing.
+      char* first = const_cast<char*>(reinterpret_cast<const char*>(interleaved.data() + c));
+      slices.insert(names[c], Imf::Slice(Imf::FLOAT, first, pixel_stride, pixel_stride * std::size_t(width)));
+    }
+    std::ofstream stream(temporary, std::ios::binary);
+    if (!stream) {
+      error = "cannot create '" + temporary.string() + "'";
+    } else {
+      {
+        Imf::StdOFStream exr_stream(stream, temporary.c_str());
+        Imf::OutputFile file(exr_stream, header);
+        file.setFrameBuffer(slices);
+        file.writePixels(height);
+      }
+      stream.close();
+      if (stream.fail()) error = "cannot finish '" + temporary.string() + "'";
+    }
+  } catch (const std::exception& exception) {
+    error = exception.what();
+  }
+  if (!error.empty()) fail(path, "cannot write: " + error);
+}
+
+// Any other format through OpenImageIO, in the quiver_oiio module.
+void write_with_oiio(const fs::path& path, const fs::path& temporary, const FormatInfo& format, int width,
+                     int height, const std::vector<std::string>& names, const void* pixels) {
+  const OiioModuleApi* oiio = nullptr;
+  try {
+    oiio = &oiio_module();
+  } catch (const std::runtime_error& error) {
+    fail(path, "cannot write: " + std::string(error.what()));
+  }
+  std::vector<const char*> name_pointers;
+  for (const std::string& name : names) name_pointers.push_back(name.c_str());
+  char error[1024] = "";
+  if (!oiio->write_image(temporary.c_str(), std::string(format.oiio_format).c_str(), width, height,
+                         static_cast<int>(names.size()), name_pointers.data(), format.eight_bit_srgb ? 0 : 1, pixels,
+                         format.eight_bit_srgb ? "sRGB" : "Linear", error, sizeof error)) {
+    fail(path, "cannot write: " + std::string(error));
+  }
+}
+
 }  // namespace
 
 void check_output_path(const fs::path& path, bool with_aovs) {
@@ -165,21 +246,18 @@ void write_image(const fs::path& path, const Framebuffer& framebuffer) {
     }
   }
 
-  OIIO::ImageSpec spec(framebuffer.width, framebuffer.height, static_cast<int>(names.size()),
-                       format.eight_bit_srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.alpha_channel = -1;
-  spec.attribute("oiio:ColorSpace", format.eight_bit_srgb ? "sRGB" : "Linear");
-
-  const OIIO::TypeDesc data_type = format.eight_bit_srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-  const void* data = format.eight_bit_srgb ? static_cast<const void*>(bytes.data()) : floats.data();
   write_file_atomically(path, [&](const fs::path& temporary) {
-    auto output = OIIO::ImageOutput::create(std::string(format.oiio_format));
-    if (!output) fail(path, "cannot write: " + OIIO::geterror());
-    if (!output->open(temporary.string(), spec) || !output->write_image(data_type, data) || !output->close()) {
-      std::string message = output->geterror();
-      if (message.empty()) message = OIIO::geterror();
-      fail(path, "cannot write: " + message);
+    switch (format.writer) {
+      case Writer::png:
+        write_png(path, temporary, framebuffer.width, framebuffer.height, bytes);
+        break;
+      case Writer::openexr:
+        write_openexr(path, temporary, framebuffer.width, framebuffer.height, names, floats);
+        break;
+      case Writer::oiio:
+        write_with_oiio(path, temporary, format, framebuffer.width, framebuffer.height, names,
+                        format.eight_bit_srgb ? static_cast<const void*>(bytes.data()) : floats.data());
+        break;
     }
   });
 }

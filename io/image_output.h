@@ -1,4 +1,6 @@
-// Image writers for the framebuffer (OpenImageIO). PNG and JPEG get 8-bit
+// Image writers for the framebuffer: PNG through libpng, OpenEXR through the
+// OpenEXR library, JPEG, HDR and TIFF through OpenImageIO in the quiver_oiio
+// module (io/oiio_loader.h), loaded only when needed. PNG and JPEG get 8-bit
 // sRGB-encoded RGB (exact sRGB OETF, clamped to [0, 1], rounded to nearest);
 // OpenEXR, Radiance HDR and TIFF get 32-bit float linear RGB (RGBE, HDR's
 // encoding, has no sign, NaN or infinity: values are clamped to [0, 1e38]

@@ -1,16 +1,19 @@
-// Texture images read through OpenImageIO into linear RGB floats.
+// Texture images read through OpenImageIO (the quiver_oiio module) into
+// linear RGB floats.
 #include "io/texture_image.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <cctype>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
+#include "io/oiio_loader.h"
 #include "io/parse_error.h"
 
 namespace quiver {
@@ -74,42 +77,49 @@ TextureImage read_texture_image(const fs::path& path) {
   if (!fs::exists(status)) fail(path, "cannot open: no such file");
   if (fs::is_directory(status)) fail(path, "cannot open: it is a directory");
 
-  // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) fail(path, "not an image OpenImageIO can read (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = input->spec();
+  const OiioModuleApi* oiio = nullptr;
+  try {
+    oiio = &oiio_module();
+  } catch (const std::runtime_error& error) {
+    fail(path, error.what());
+  }
+  char error_text[1024] = "";
+  OiioImageHeader header{};
+  void* opened = oiio->open_input(path.c_str(), &header, error_text, sizeof error_text);
+  if (opened == nullptr) fail(path, "not an image OpenImageIO can read (" + std::string(error_text) + ")");
+  const std::unique_ptr<void, void (*)(void*)> input(opened, oiio->close_input);
 
   // Bounds first: nothing is sized from the header before this.
-  const std::int64_t w = spec.width, h = spec.height;
-  if (w < 1 || h < 1 || spec.nchannels < 1) fail(path, "the image is empty");
-  if (spec.depth != 1) fail(path, "volume images (depth " + std::to_string(spec.depth) + ") are not textures");
+  const std::int64_t w = header.width, h = header.height;
+  if (w < 1 || h < 1 || header.channels < 1) fail(path, "the image is empty");
+  if (header.depth != 1) fail(path, "volume images (depth " + std::to_string(header.depth) + ") are not textures");
   if (w > kMaxTextureSide || h > kMaxTextureSide || w * h > kMaxTexturePixels) {
     fail(path, std::to_string(w) + " x " + std::to_string(h) + " texels exceeds " + texture_size_limit_text());
   }
 
   TextureImage image;
-  image.width = spec.width;
-  image.height = spec.height;
+  image.width = header.width;
+  image.height = header.height;
   const std::size_t texels = std::size_t(w * h);
-  const int channels = spec.nchannels >= 3 ? 3 : 1;  // grey (+ alpha) or RGB (+ alpha)
+  const int channels = header.channels >= 3 ? 3 : 1;  // grey (+ alpha) or RGB (+ alpha)
   image.rgb.resize(texels * 3);
 
-  if (spec.format.is_floating_point()) {
+  if (header.is_float) {
     // Linear floats straight into the RGB array; grey lands in the first slot.
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeFloat, image.rgb.data(), 3 * sizeof(float))) {
-      fail(path, "cannot read the pixels (" + input->geterror() + ")");
+    if (!oiio->read_pixels(input.get(), channels, 1, image.rgb.data(), 3 * sizeof(float), error_text,
+                           sizeof error_text)) {
+      fail(path, "cannot read the pixels (" + std::string(error_text) + ")");
     }
     if (channels == 1) replicate_grey(image.rgb);
     check_finite_texels(path, image);
   } else {
     // Integer codes widened to 16 bits (exact), then decoded per code.
     std::vector<std::uint16_t> codes(texels * std::size_t(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT16, codes.data())) {
-      fail(path, "cannot read the pixels (" + input->geterror() + ")");
+    if (!oiio->read_pixels(input.get(), channels, 0, codes.data(), channels * std::ptrdiff_t(sizeof(std::uint16_t)),
+                           error_text, sizeof error_text)) {
+      fail(path, "cannot read the pixels (" + std::string(error_text) + ")");
     }
-    const bool linear = names_linear_space(spec.get_string_attribute("oiio:ColorSpace"));
+    const bool linear = names_linear_space(header.color_space);
     const std::vector<float>& srgb = srgb_uint16_table();
     for (std::size_t t = 0; t < texels; ++t) {
       for (std::size_t c = 0; c < 3; ++c) {
@@ -118,7 +128,6 @@ TextureImage read_texture_image(const fs::path& path) {
       }
     }
   }
-  input->close();
   return image;
 }
 

@@ -1,4 +1,5 @@
-// Texture images from files (OpenImageIO): read into the scene description
+// Texture images from files (OpenImageIO, through the quiver_oiio module of
+// io/oiio_loader.h, loaded on the first read): read into the scene description
 // before the scene is built, so that the layers above io/ read no file.
 #pragma once
 

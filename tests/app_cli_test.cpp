@@ -2,8 +2,9 @@
 // on tiny scenes: exit codes (0 success, 1 failure, 2 usage), images and
 // stats written only on success, error messages with file:line:column, the
 // SPD preset's ray count, `quiver info`, byte-identical pixels from every
-// SIMD width, and `quiver trace` (its JSON line, the same hits for every
-// width and thread count, its errors).
+// SIMD width, `quiver trace` (its JSON line, the same hits for every
+// width and thread count, its errors), and OpenImageIO loaded only when a
+// format or texture needs it, with a clear error when its module is missing.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,6 +34,7 @@ using nlohmann::json;
 const fs::path kCli = QUIVER_CLI_PATH;
 const fs::path kTiny = fs::path(QUIVER_TEST_DATA_DIR) / "scenes" / "tiny.nff";
 const fs::path kQuadObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "quad.obj";
+const fs::path kTexturedObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "materials.obj";  // tex/checker.png
 
 struct Outcome {
   int exit_code = -1;
@@ -97,10 +99,13 @@ class Cli : public ::testing::Test {
   fs::path work() const { return root_ / "work"; }
   fs::path io() const { return root_ / "io"; }
 
-  Outcome run(const std::vector<std::string>& args) const {
+  // Runs the program in work() with args; environment (e.g.
+  // "LD_DEBUG=files") is set for the program alone.
+  Outcome run(const std::vector<std::string>& args, const std::string& environment = "") const {
     std::string command("cd ");
     command += shell_quoted(work().string());
     command += " && ";
+    if (!environment.empty()) command += "env " + shell_quoted(environment) + " ";
     command += shell_quoted(kCli.string());
     for (const std::string& arg : args) {
       command += ' ';
@@ -372,6 +377,56 @@ TEST_F(Cli, InfoPrintsTheCounts) {
   EXPECT_NE(r.out.find("materials       4"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("resolution 32x24"), std::string::npos) << r.out;
   EXPECT_TRUE(work_files().empty());
+}
+
+// The dynamic loader's trace (LD_DEBUG=files, on stderr) names every shared
+// library a run maps; OpenImageIO must appear only when a run needs it.
+bool maps_openimageio(const Outcome& r) { return r.err.find("libOpenImageIO") != std::string::npos; }
+
+TEST_F(Cli, StartAndPngOrExrRendersDoNotLoadOpenImageIO) {
+  const std::string trace = "LD_DEBUG=files";
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"--version"},
+           {"--help"},
+           {"info", kTiny.string()},
+           {"render", kTiny.string(), "-o", "out.png", "--width", "8", "--height", "6", "-q"},
+           {"render", kTiny.string(), "-o", "out.exr", "--aov", "depth,normal,id", "--width", "8", "-q"}}) {
+    const Outcome r = run(args, trace);
+    EXPECT_EQ(r.exit_code, 0) << args[0] << "\n" << r.err;
+    EXPECT_NE(r.err.find("file="), std::string::npos) << "no loader trace: the check would pass blindly";
+    EXPECT_FALSE(maps_openimageio(r)) << args[0] << " " << (args.size() > 1 ? args.back() : "");
+  }
+  // The check does see OpenImageIO where it is needed: JPEG output and texture files.
+  EXPECT_TRUE(maps_openimageio(run({"render", kTiny.string(), "-o", "out.jpg", "--width", "8", "-q"}, trace)));
+  EXPECT_TRUE(maps_openimageio(run({"render", kTexturedObj.string(), "-o", "tex.png", "--width", "8", "-q"}, trace)));
+}
+
+TEST_F(Cli, AMissingOpenImageIOModuleIsAClearErrorOnlyWhereItIsNeeded) {
+  const std::string missing = (io() / "nowhere" / "quiver_oiio.so").string();
+  const std::string environment = "QUIVER_OIIO_MODULE=" + missing;
+  const Outcome png = run({"render", kTiny.string(), "-o", "out.png", "--width", "8", "-q"}, environment);
+  EXPECT_EQ(png.exit_code, 0) << png.err;
+
+  const Outcome jpeg = run({"render", kTiny.string(), "-o", "out.jpg", "--width", "8", "-q"}, environment);
+  EXPECT_EQ(jpeg.exit_code, 1);
+  EXPECT_EQ(jpeg.err.rfind("quiver: out.jpg: cannot write: cannot load quiver's OpenImageIO module", 0), 0u)
+      << jpeg.err;
+  EXPECT_NE(jpeg.err.find(missing + ": "), std::string::npos) << jpeg.err;
+  EXPECT_NE(jpeg.err.find("No such file"), std::string::npos) << jpeg.err;  // dlerror()'s reason
+
+  const Outcome texture = run({"render", kTexturedObj.string(), "-o", "tex.png", "--width", "8", "-q"}, environment);
+  EXPECT_EQ(texture.exit_code, 1);
+  EXPECT_NE(texture.err.find("checker.png: cannot load quiver's OpenImageIO module"), std::string::npos)
+      << texture.err;
+
+  // A file that is not a module at all: the loader's reason, not a crash.
+  const fs::path not_a_module = io() / "not_a_module.so";
+  std::ofstream(not_a_module) << "text\n";
+  const Outcome wrong = run({"render", kTiny.string(), "-o", "out.tif", "--width", "8", "-q"},
+                            "QUIVER_OIIO_MODULE=" + not_a_module.string());
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_NE(wrong.err.find(not_a_module.string() + ": "), std::string::npos) << wrong.err;
+  EXPECT_EQ(work_files(), std::vector<std::string>{"out.png"});
 }
 
 // `quiver trace`: one JSON line on stdout, nothing else, and no files.

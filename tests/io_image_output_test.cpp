@@ -1,12 +1,15 @@
 // Tests of io/image_output.h: each format written and read back with
-// OpenImageIO (sRGB bytes, float exactness, AOV channels by name), path
-// checks, and failed writes that leave the directory as it was.
+// OpenImageIO (sRGB bytes, float exactness, AOV channels by name; PNG and
+// OpenEXR come from the direct libpng and OpenEXR writers, the others from
+// the quiver_oiio module), path checks, and failed writes that leave the
+// directory as it was.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -34,6 +37,7 @@ using testing::TemporaryDirectory;
 struct ReadBack {
   int width = 0, height = 0;
   std::vector<std::string> channel_names;
+  std::string color_space, compression;  // OpenImageIO's "oiio:ColorSpace" and "compression"
   std::vector<float> floats;        // as float
   std::vector<std::uint8_t> bytes;  // as 8-bit codes
 };
@@ -49,6 +53,8 @@ ReadBack read_back(const fs::path& path) {
   image.width = spec.width;
   image.height = spec.height;
   image.channel_names = spec.channelnames;
+  image.color_space = spec.get_string_attribute("oiio:ColorSpace");
+  image.compression = spec.get_string_attribute("compression");
   const std::size_t values = spec.image_pixels() * std::size_t(spec.nchannels);
   image.floats.resize(values);
   image.bytes.resize(values);
@@ -131,6 +137,72 @@ TEST(ImageOutput, PngIsSrgbEncodedClampedAndRounded) {
   EXPECT_EQ(image.bytes[3], 255);
   EXPECT_EQ(image.bytes[4], 0);
   EXPECT_EQ(directory_entries(directory.path()), (std::set<std::string>{"image.png"}));
+}
+
+TEST(ImageOutput, PngHoldsEveryByteCodeExactlyAndIsTaggedSrgb) {
+  TemporaryDirectory directory;
+  // Each code's own linear value, and the midpoints between neighbouring
+  // codes' linear values, which must round to the nearer code.
+  auto decoded = [](int code) {  // the sRGB EOTF of an 8-bit code
+    const double c = code / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  Framebuffer framebuffer(256, 2);
+  for (int code = 0; code < 256; ++code) {
+    const double linear = decoded(code), linear_next = decoded(std::min(code + 1, 255));
+    for (int k = 0; k < 3; ++k) {
+      framebuffer.rgb[std::size_t(code) * 3 + std::size_t(k)] = float(linear);
+      framebuffer.rgb[std::size_t(256 + code) * 3 + std::size_t(k)] = float(0.25 * linear + 0.75 * linear_next);
+    }
+  }
+  const fs::path path = directory.path() / "codes.png";
+  write_image(path, framebuffer);
+  const ReadBack image = read_back(path);
+  ASSERT_EQ(image.width, 256);
+  ASSERT_EQ(image.height, 2);
+  ASSERT_EQ(image.bytes.size(), framebuffer.rgb.size());
+  for (std::size_t i = 0; i < 256 * 3; ++i) EXPECT_EQ(int(image.bytes[i]), int(i / 3)) << i;
+  for (std::size_t i = 0; i < image.bytes.size(); ++i) {
+    EXPECT_EQ(int(image.bytes[i]), srgb_byte(framebuffer.rgb[i])) << i;
+  }
+  EXPECT_EQ(image.color_space, "sRGB");
+  EXPECT_EQ(directory_entries(directory.path()), (std::set<std::string>{"codes.png"}));
+}
+
+TEST(ImageOutput, ExrKeepsEveryFloatBitZipCompressed) {
+  TemporaryDirectory directory;
+  const std::vector<float> special{-0.f,
+                                   std::numeric_limits<float>::denorm_min(),
+                                   -std::numeric_limits<float>::denorm_min(),
+                                   std::numeric_limits<float>::max(),
+                                   -std::numeric_limits<float>::max(),
+                                   kInf,
+                                   -kInf,
+                                   std::bit_cast<float>(0x7fc0'0001u),  // a NaN with a payload
+                                   std::nextafter(1.f, 2.f),
+                                   0.1f,
+                                   -123.456f,
+                                   1e-38f};
+  Framebuffer framebuffer(2, 2);
+  framebuffer.rgb = special;
+  framebuffer.depth = {kInf, 0.5f, std::numeric_limits<float>::denorm_min(), 7.f};
+  const fs::path path = directory.path() / "bits.exr";
+  write_image(path, framebuffer);
+  const ReadBack image = read_back(path);
+  ASSERT_EQ(image.width, 2);
+  ASSERT_EQ(image.height, 2);
+  EXPECT_EQ(image.compression, "zip");
+  const std::vector<float> red = channel(image, "R"), green = channel(image, "G"), blue = channel(image, "B");
+  const std::vector<float> depth = channel(image, "Z");
+  ASSERT_EQ(red.size(), 4u);
+  ASSERT_EQ(depth.size(), 4u);
+  for (std::size_t p = 0; p < 4; ++p) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(red[p]), std::bit_cast<std::uint32_t>(special[p * 3])) << p;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(green[p]), std::bit_cast<std::uint32_t>(special[p * 3 + 1])) << p;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(blue[p]), std::bit_cast<std::uint32_t>(special[p * 3 + 2])) << p;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(depth[p]), std::bit_cast<std::uint32_t>(framebuffer.depth[p])) << p;
+  }
+  EXPECT_EQ(directory_entries(directory.path()), (std::set<std::string>{"bits.exr"}));
 }
 
 TEST(ImageOutput, JpegIsReadableAtTheRightSize) {

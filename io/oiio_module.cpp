@@ -1,0 +1,113 @@
+// The quiver_oiio module: OpenImageIO behind the plain function table of
+// io/oiio_module.h (JPEG/HDR/TIFF output and texture input). Built as a
+// shared module that quiver dlopens on first use; nothing here throws.
+#include "io/oiio_module.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace quiver {
+
+namespace {
+
+// Copies message into the caller's buffer, cut to fit, NUL-terminated.
+void copy_message(const std::string& message, char* error, std::size_t error_size) {
+  if (error == nullptr || error_size == 0) return;
+  const std::size_t length = std::min(message.size(), error_size - 1);
+  std::memcpy(error, message.data(), length);
+  error[length] = '\0';
+}
+
+// The error of an ImageInput or ImageOutput, else OpenImageIO's global one.
+template <class ImageFile>
+std::string error_of(ImageFile* file) {
+  std::string message = file != nullptr ? file->geterror() : std::string();
+  if (message.empty()) message = OIIO::geterror();
+  return message.empty() ? std::string("unknown OpenImageIO error") : message;
+}
+
+int write_image(const char* path, const char* format, int width, int height, int channel_count,
+                const char* const* channel_names, int is_float, const void* pixels, const char* color_space,
+                char* error, std::size_t error_size) {
+  try {
+    const OIIO::TypeDesc type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+    OIIO::ImageSpec spec(width, height, channel_count, type);
+    spec.channelnames.assign(channel_names, channel_names + channel_count);
+    spec.alpha_channel = -1;
+    spec.attribute("oiio:ColorSpace", color_space);
+    auto output = OIIO::ImageOutput::create(format);
+    if (!output) {
+      copy_message(error_of<OIIO::ImageOutput>(nullptr), error, error_size);
+      return 0;
+    }
+    if (!output->open(path, spec) || !output->write_image(type, pixels) || !output->close()) {
+      copy_message(error_of(output.get()), error, error_size);
+      return 0;
+    }
+    return 1;
+  } catch (const std::exception& exception) {
+    copy_message(exception.what(), error, error_size);
+    return 0;
+  }
+}
+
+void* open_input(const char* path, OiioImageHeader* header, char* error, std::size_t error_size) {
+  try {
+    // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, &config);
+    if (!input) {
+      copy_message(error_of<OIIO::ImageInput>(nullptr), error, error_size);
+      return nullptr;
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    header->width = spec.width;
+    header->height = spec.height;
+    header->depth = spec.depth;
+    header->channels = spec.nchannels;
+    header->is_float = spec.format.is_floating_point() ? 1 : 0;
+    copy_message(spec.get_string_attribute("oiio:ColorSpace"), header->color_space, sizeof header->color_space);
+    return input.release();
+  } catch (const std::exception& exception) {
+    copy_message(exception.what(), error, error_size);
+    return nullptr;
+  }
+}
+
+int read_pixels(void* handle, int channel_count, int as_float, void* pixels, std::ptrdiff_t pixel_stride, char* error,
+                std::size_t error_size) {
+  auto* input = static_cast<OIIO::ImageInput*>(handle);
+  try {
+    const OIIO::TypeDesc type = as_float ? OIIO::TypeFloat : OIIO::TypeDesc::UINT16;
+    if (!input->read_image(0, 0, 0, channel_count, type, pixels, pixel_stride)) {
+      copy_message(error_of(input), error, error_size);
+      return 0;
+    }
+    return 1;
+  } catch (const std::exception& exception) {
+    copy_message(exception.what(), error, error_size);
+    return 0;
+  }
+}
+
+void close_input(void* handle) {
+  std::unique_ptr<OIIO::ImageInput> input(static_cast<OIIO::ImageInput*>(handle));
+  input->close();
+}
+
+constexpr OiioModuleApi kApi{kOiioModuleVersion, write_image, open_input, read_pixels, close_input};
+
+}  // namespace
+
+}  // namespace quiver
+
+extern "C" __attribute__((visibility("default"))) const quiver::OiioModuleApi* quiver_oiio_module_api() {
+  return &quiver::kApi;
+}
