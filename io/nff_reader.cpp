@@ -7,12 +7,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <string>
-#include <system_error>
 
 #include "io/parse_error.h"
+#include "io/text_file.h"
 
 namespace quiver {
 
@@ -408,25 +407,7 @@ SceneDesc parse_nff(std::string_view text, std::string_view file_name) {
 }
 
 SceneDesc read_nff(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw ParseError::whole_file(name, "cannot read an NFF scene: it is a directory");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ParseError::whole_file(name, "cannot open the NFF scene for reading");
-  std::string text;
-  std::string chunk(std::size_t{1} << 16, '\0');
-  while (in) {
-    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    const auto got = static_cast<std::size_t>(in.gcount());
-    if (text.size() + got > kMaxNffBytes) {
-      throw ParseError::whole_file(name, too_large_message());
-    }
-    text.append(chunk.data(), got);
-  }
-  if (in.bad()) throw ParseError::whole_file(name, "read error in the NFF scene");
-  return parse_nff(text, name);
+  return parse_nff(read_text_file(path, kMaxNffBytes, "an NFF scene"), path.string());
 }
 
 }  // namespace quiver

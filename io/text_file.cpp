@@ -20,6 +20,8 @@ std::string read_text_file(const std::filesystem::path& path, std::size_t max_by
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (!std::filesystem::exists(status)) fail("no such file");
   if (std::filesystem::is_directory(status)) fail("it is a directory");
+  // A FIFO, socket or device could block or never end.
+  if (!std::filesystem::is_regular_file(status)) fail("not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("cannot open it");
   std::string text;

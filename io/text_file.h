@@ -10,8 +10,10 @@
 
 namespace quiver {
 
-// The bytes of `path`. Throws ParseError ("file: message") when it is a
-// directory, cannot be opened or read, or holds more than max_bytes; `what`
+// The bytes of `path`. Throws ParseError ("file: message") when it is
+// missing, a directory or not a regular file (a FIFO, socket or device,
+// which could block or never end), cannot be opened or read, or holds more
+// than max_bytes; `what`
 // names the file's role in messages ("an OBJ mesh", "a TOML scene").
 std::string read_text_file(const std::filesystem::path& path, std::size_t max_bytes, std::string_view what);
 

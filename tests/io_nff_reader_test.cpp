@@ -10,9 +10,11 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "io/nff_reader.h"
 #include "io/parse_error.h"
+#include "tests/support/temporary_directory.h"
 
 // Largest single request to the global operator new while tracking is on.
 // The test binary's non-aligned operator new/delete family is replaced here
@@ -373,7 +375,7 @@ TEST(NffErrors, UnreadableFile) {
     read_nff(missing);
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& error) {
-    EXPECT_EQ(std::string(error.what()), missing.string() + ": cannot open the NFF scene for reading");
+    EXPECT_EQ(std::string(error.what()), missing.string() + ": cannot read an NFF scene: no such file");
     EXPECT_EQ(error.line(), 0u);
   }
   try {
@@ -381,6 +383,18 @@ TEST(NffErrors, UnreadableFile) {
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& error) {
     EXPECT_EQ(std::string(error.what()), kTestData.string() + ": cannot read an NFF scene: it is a directory");
+  }
+}
+
+TEST(NffErrors, AFifoIsRefusedWithoutBlocking) {
+  const testing::TemporaryDirectory folder("quiver_nff_fifo");
+  const fs::path fifo = folder.path() / "scene.nff";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    read_nff(fifo);  // opening a FIFO with no writer would block
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), fifo.string() + ": cannot read an NFF scene: not a regular file");
   }
 }
 
