@@ -46,6 +46,10 @@ using Clock = std::chrono::steady_clock;
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
+// A file option given an empty value is a mistake, not a request for the default.
+const CLI::Validator kNonEmptyFileName(
+    [](std::string& value) { return value.empty() ? std::string("an empty file name") : std::string(); }, "");
+
 // What `quiver render` was given, as parsed.
 struct RenderArgs {
   std::string scene;   // empty: the built-in scene
@@ -294,7 +298,8 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "
                     "Default: <scene name>.png in the current directory, quiver.png for the built-in scene. "
                     "Checked before the scene is read; written only when everything succeeds")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(kNonEmptyFileName);
   raw.width_option = render.add_option("--width", raw.width,
                                        "Image width in pixels, 1..65536 (at most 2^28 pixels in all). Default: the "
                                        "scene camera's; with --height alone, the camera's aspect is kept; 512 "
@@ -333,7 +338,8 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("--stats", args.stats,
                     "Also write render statistics as JSON: timings (ms), settings, ray counts by kind, Mrays/s, "
                     "lane utilisation per wave, memory (bytes). Written only when everything succeeds")
-      ->type_name("FILE.json");
+      ->type_name("FILE.json")
+      ->check(kNonEmptyFileName);
   raw.aov_option = render.add_option("--aov", raw.aov,
                                      "Extra channels through each pixel centre, a comma list of depth (Z: distance, "
                                      "inf on a miss), normal (N.X N.Y N.Z), id (kind and id: primitive kind and "

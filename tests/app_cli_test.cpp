@@ -256,6 +256,8 @@ TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
       {"render", scene, "-o", "out.png", "--preset", "spd", "--aa", "grid:2"},
       {"render", scene, "-o", "out.txt"},
       {"render", scene, "-o", "out.png", "--stats", "out.png"},
+      {"render", scene, "-o", ""},
+      {"render", scene, "-o", "out.png", "--stats", ""},
   };
   for (const auto& args : cases) {
     std::string joined;
