@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -295,6 +296,9 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
   result.threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+  // oneTBB caps workers at the core count unless told otherwise (and warns on stderr): allow what was asked.
+  const tbb::global_control allowed(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(result.threads));
   tbb::task_arena arena(result.threads);
 
   const auto start = std::chrono::steady_clock::now();

@@ -270,6 +270,14 @@ TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
   }
 }
 
+TEST_F(Cli, MoreThreadsThanCoresAreQuietUnderQuiet) {
+  const Outcome r = run({"render", kTiny.string(), "-o", "out.png", "--width", "8", "--height", "6", "--threads", "64",
+                         "--stats", "stats.json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // oneTBB's worker-limit warning used to appear here
+  EXPECT_EQ(read_json(work() / "stats.json").at("threads"), 64);
+}
+
 TEST_F(Cli, AovsNeedAnExrFile) {
   const Outcome r = run({"render", kTiny.string(), "-o", "out.png", "--aov", "depth", "--width", "8", "--height", "6"});
   EXPECT_EQ(r.exit_code, 2);
