@@ -6,11 +6,10 @@
 
 #include <nlohmann/json.hpp>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/info.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "integrator/scene_intersector.h"
+#include "integrator/thread_arena.h"
 
 namespace quiver {
 
@@ -65,8 +64,8 @@ PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa 
   const std::vector<PixelTile> tiles = pixel_tiles(width, height, kTraceTileSide);
   PrimaryTraceResult result;
   result.isa = isa;
-  result.threads = threads > 0 ? threads : tbb::info::default_concurrency();
-  tbb::task_arena arena(result.threads);
+  ThreadArena arena(threads);
+  result.threads = arena.threads();
 
   // Rays before timing; per tile, the hit count and t sum of the last repeat.
   std::vector<RaySoA> tile_rays(tiles.size());

@@ -8,12 +8,10 @@
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "integrator/camera.h"
+#include "integrator/thread_arena.h"
 
 namespace quiver {
 
@@ -295,11 +293,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
       [&] { return Worker(scene, intersector, settings.trace); });
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
-  result.threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
-  // oneTBB caps workers at the core count unless told otherwise (and warns on stderr): allow what was asked.
-  const tbb::global_control allowed(tbb::global_control::max_allowed_parallelism,
-                                    static_cast<std::size_t>(result.threads));
-  tbb::task_arena arena(result.threads);
+  ThreadArena arena(settings.threads);
+  result.threads = arena.threads();
 
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] {

@@ -276,6 +276,10 @@ TEST_F(Cli, MoreThreadsThanCoresAreQuietUnderQuiet) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");  // oneTBB's worker-limit warning used to appear here
   EXPECT_EQ(read_json(work() / "stats.json").at("threads"), 64);
+  const Outcome traced = run({"trace", kTiny.string(), "--width", "8", "--height", "6", "--threads", "64"});
+  ASSERT_EQ(traced.exit_code, 0) << traced.err;
+  EXPECT_EQ(traced.err, "");
+  EXPECT_NE(traced.out.find("\"threads\":64"), std::string::npos) << traced.out;
 }
 
 TEST_F(Cli, AovsNeedAnExrFile) {
