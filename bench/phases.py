@@ -25,12 +25,12 @@ Run from anywhere: /usr/bin/python3 bench/phases.py [--runs 5]
 import argparse
 import json
 import os
-import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+from headline import cpu_model, run  # bench/headline.py, beside this script
 
 REPO = Path(__file__).resolve().parent.parent
 SCENES = {
@@ -44,19 +44,8 @@ RESULTS = REPO / "bench" / "results" / "phases.json"
 CHART = REPO / "bench" / "phases.png"
 
 
-def cpu_name():
-    try:
-        for line in subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout.splitlines():
-            if line.startswith("Model name:"):
-                return line.split(":", 1)[1].strip()
-    except (OSError, subprocess.CalledProcessError):
-        pass
-    return platform.processor() or "unknown CPU"
-
-
 def run_json(command):
-    env = {k: v for k, v in os.environ.items() if k != "QUIVER_SIMD"}
-    done = subprocess.run(command, capture_output=True, text=True, env=env)
+    done, _ = run(command)  # without QUIVER_SIMD: quiver picks its widest unit
     if done.returncode != 0:
         sys.exit(f"phases.py: {' '.join(map(str, command))} failed:\n{done.stderr}")
     return done
@@ -145,7 +134,7 @@ def main():
             path, _, label = spec.partition("=")
             binaries.append((Path(path), label or Path(path).parent.parent.name))
         runs, size = (1, 64) if args.quick else (args.runs, 512)
-        data = {"cpu": cpu_name(), "size": size, "runs": runs,
+        data = {"cpu": cpu_model(), "size": size, "runs": runs,
                 "scenes": measure(binaries, args.shared, runs, size)}
         if not args.quick:
             RESULTS.write_text(json.dumps(data, indent=1) + "\n")
