@@ -34,10 +34,13 @@ struct RenderStatsContext {
 // mrays_per_s (total rays / render seconds / 1e6; null for a zero time);
 // lane_utilization {waves: [{depth, active, issued_compacted,
 // issued_uncompacted, utilization_compacted, utilization_uncompacted}],
-// shadow: {the same without depth}, overall: {active, issued_compacted,
-// issued_uncompacted, compacted, uncompacted}} where utilisation is
-// active / issued (null when nothing was issued) and overall sums every
-// wave and the shadow rays; memory_bytes {scene, acceleration (the BVHs),
+// shadow: {the same without depth}, shading: {the same, for the packets
+// that shade the hits: active = lanes with a hit}, light_samples: {active,
+// issued, utilization} (lanes casting a shadow ray per light sample
+// iteration), overall: {active, issued_compacted, issued_uncompacted,
+// compacted, uncompacted}} where utilisation is active / issued (null when
+// nothing was issued) and overall sums every wave and the shadow rays;
+// memory_bytes {scene, acceleration (the BVHs),
 // framebuffer}.
 nlohmann::json render_stats_json(const RenderResult& result, const RenderSettings& settings,
                                  const RenderStatsContext& context);

@@ -1,8 +1,10 @@
-// Ray directions at a surface and safe origins for the rays leaving it.
+// Ray directions at a surface and safe origins for the rays leaving it, one
+// formula for every width (F = float, the reference, or a batch):
 //   reflect: R = I - 2 (I.N) N (Whitted 1980).
 //   refract: Snell's law in the seed's vector form: with eta = n1 / n2,
 //     c1 = -I.N and k = 1 - eta^2 (1 - c1^2), T = eta I + (eta c1 - sqrt k) N;
-//     k < 0 is total internal reflection (no T, never a NaN).
+//     k < 0 is total internal reflection: the lane's mask is off and its T
+//     is finite garbage (sqrt of 0), never a NaN.
 //   offset_origin: the hit point moved off the surface by a bound on its own
 //     rounding error, along the side's normal, then one more ulp outward per
 //     component (after pbrt-v4's OffsetRayOrigin). The bound scales with the
@@ -10,7 +12,6 @@
 // I and N are unit vectors, N on the side I comes from (I.N <= 0).
 #pragma once
 
-#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -20,16 +21,27 @@ namespace quiver {
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
-inline Vec3<float> reflect(const Vec3<float>& incident, const Vec3<float>& normal) {
-  const float two_cos = 2.f * dot(incident, normal);
+template <class F>
+inline Vec3<F> reflect(const Vec3<F>& incident, const Vec3<F>& normal) {
+  const F two_cos = F(2.f) * dot(incident, normal);
   return incident - normal * two_cos;
 }
 
+// T, with `transmitted` set in the lanes without total internal reflection.
+template <class F>
+inline Vec3<F> refract(const Vec3<F>& incident, const Vec3<F>& normal, const F& eta, Mask<F>& transmitted) {
+  const F c1 = -dot(incident, normal);
+  const F k = F(1.f) - eta * eta * (F(1.f) - c1 * c1);
+  transmitted = !(k < F(0.f));
+  return incident * eta + normal * (eta * c1 - sqrt(select(transmitted, k, F(0.f))));
+}
+
+// One ray: T, or nothing on total internal reflection.
 inline std::optional<Vec3<float>> refract(const Vec3<float>& incident, const Vec3<float>& normal, float eta) {
-  const float c1 = -dot(incident, normal);
-  const float k = 1.f - eta * eta * (1.f - c1 * c1);
-  if (k < 0.f) return std::nullopt;  // total internal reflection
-  return incident * eta + normal * (eta * c1 - std::sqrt(k));
+  bool transmitted = false;
+  const Vec3<float> t = refract(incident, normal, eta, transmitted);
+  if (!transmitted) return std::nullopt;
+  return t;
 }
 
 // Rounding error of p = o + t d per component, from |o| and |t d|: a few
@@ -38,24 +50,28 @@ inline std::optional<Vec3<float>> refract(const Vec3<float>& incident, const Vec
 // a margin, still ~4e-6 of the magnitudes involved.
 inline constexpr float kOffsetErrorUlps = 64.f;
 
-inline Vec3<float> hit_point_error(const Vec3<float>& origin, const Vec3<float>& direction, float t) {
-  const float e = kOffsetErrorUlps * std::numeric_limits<float>::epsilon();
-  return {e * (std::fabs(origin.x) + std::fabs(t * direction.x)),
-          e * (std::fabs(origin.y) + std::fabs(t * direction.y)),
-          e * (std::fabs(origin.z) + std::fabs(t * direction.z))};
+template <class F>
+inline Vec3<F> hit_point_error(const Vec3<F>& origin, const Vec3<F>& direction, const F& t) {
+  const F e(kOffsetErrorUlps * std::numeric_limits<float>::epsilon());
+  return {e * (abs(origin.x) + abs(t * direction.x)), e * (abs(origin.y) + abs(t * direction.y)),
+          e * (abs(origin.z) + abs(t * direction.z))};
+}
+
+// The next float from x toward the sign of `toward` (std::nextafter(x,
+// +-inf)); x itself where toward is 0.
+template <class F>
+inline F next_float_away(const F& x, const F& toward) {
+  const F up = next_float_up(x), down = -next_float_up(-x);
+  return select(toward > F(0.f), up, select(toward < F(0.f), down, x));
 }
 
 // p moved to the side `side_normal` (unit) points to, clear of its error.
-inline Vec3<float> offset_origin(const Vec3<float>& p, const Vec3<float>& error, const Vec3<float>& side_normal) {
-  const float distance = std::fabs(side_normal.x) * error.x + std::fabs(side_normal.y) * error.y +
-                         std::fabs(side_normal.z) * error.z;
-  Vec3<float> moved = p + side_normal * distance;
-  for (int a = 0; a < 3; ++a) {
-    const float away = side_normal[a] > 0.f ? std::numeric_limits<float>::infinity()
-                                            : -std::numeric_limits<float>::infinity();
-    if (side_normal[a] != 0.f) moved[a] = std::nextafter(moved[a], away);
-  }
-  return moved;
+template <class F>
+inline Vec3<F> offset_origin(const Vec3<F>& p, const Vec3<F>& error, const Vec3<F>& side_normal) {
+  const F distance = abs(side_normal.x) * error.x + abs(side_normal.y) * error.y + abs(side_normal.z) * error.z;
+  const Vec3<F> moved = p + side_normal * distance;
+  return {next_float_away(moved.x, side_normal.x), next_float_away(moved.y, side_normal.y),
+          next_float_away(moved.z, side_normal.z)};
 }
 
 }  // namespace QUIVER_UNIT_NAMESPACE

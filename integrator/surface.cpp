@@ -44,26 +44,34 @@ void inverse_bilinear(const double q[4][2], double px, double py, float& s_out, 
 
 }  // namespace
 
-SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
-  SurfacePoint s;
+namespace {
+
+Vec3<float> material_color(const Scene& scene, const MaterialDesc& m, float u, float v, const Vec3<float>& p) {
+  if (!m.texture) return m.color;
+  const Vec3<float> t = evaluate(scene.textures[*m.texture], u, v, p);
+  return {t.x * m.color.x, t.y * m.color.y, t.z * m.color.z};
+}
+
+}  // namespace
+
+SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
+  SurfaceDetail s;
   s.ref = scene.locate(hit.id);
   const GeometryLayer& g = scene.layer(s.ref.transmissive);
   const std::uint32_t i = s.ref.local;
-  s.position = ray.origin + ray.direction * hit.t;
-  s.error = hit_point_error(ray.origin, ray.direction, hit.t);
-  const Vec3<float> outward = normalize(hit.ng);
-  Vec3<float> shading = outward;
+  s.smooth = false;
   s.u = hit.u;
   s.v = hit.v;
   s.material_index = scene.origin(s.ref).material;
   s.material = &scene.materials[s.material_index];
   // Texture coordinates only for textured materials (atan2 and asin are dear).
   const bool textured = s.material->texture.has_value();
+  const Vec3<float> position = textured ? hit_position(ray, hit) : Vec3<float>(0.f, 0.f, 0.f);
   switch (s.ref.kind) {
     case PrimitiveKind::sphere: {
       if (!textured) break;
       const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
-      const Vec3<float> d = normalize(s.position - c);
+      const Vec3<float> d = normalize(position - c);
       s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
       s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
       break;
@@ -71,9 +79,9 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
     case PrimitiveKind::plane: {
       if (!textured) break;
       Vec3<float> t1, t2;
-      tangent_axes(outward, t1, t2);
-      s.u = dot(s.position, t1);
-      s.v = dot(s.position, t2);
+      tangent_axes(normalize(hit.ng), t1, t2);
+      s.u = dot(position, t1);
+      s.v = dot(position, t2);
       break;
     }
     case PrimitiveKind::triangle: {
@@ -86,7 +94,10 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       }
       if (tri.has_normals()) {
         const Vec3<float> n = tri.normal(i, 0) * w0 + tri.normal(i, 1) * hit.u + tri.normal(i, 2) * hit.v;
-        if (dot(n, n) > 0.f) shading = normalize(n);
+        if (dot(n, n) > 0.f) {
+          s.smooth = true;
+          s.shading = normalize(n);
+        }
       }
       break;
     }
@@ -107,7 +118,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       const ConeSoA& c = g.cones;
       const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
       const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
-      const Vec3<float> radial = s.position - base - axis * dot(s.position - base, axis);
+      const Vec3<float> radial = position - base - axis * dot(position - base, axis);
       Vec3<float> t1, t2;
       tangent_axes(axis, t1, t2);
       s.u = 0.5f + std::atan2(dot(radial, t2), dot(radial, t1)) * kInvTwoPi;
@@ -115,6 +126,22 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
       break;
     }
   }
+  s.color = material_color(scene, *s.material, s.u, s.v, position);
+  return s;
+}
+
+SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
+  const SurfaceDetail d = surface_detail(scene, ray, hit);
+  SurfacePoint s;
+  s.ref = d.ref;
+  s.material_index = d.material_index;
+  s.material = d.material;
+  s.u = d.u;
+  s.v = d.v;
+  s.position = hit_position(ray, hit);
+  s.error = hit_point_error(ray.origin, ray.direction, hit.t);
+  const Vec3<float> outward = normalize(hit.ng);
+  const Vec3<float> shading = d.smooth ? d.shading : outward;
   s.entering = dot(ray.direction, outward) < 0.f;
   s.geometric = s.entering ? outward : -outward;
   s.shading = dot(shading, s.geometric) < 0.f ? -shading : shading;
@@ -122,10 +149,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<flo
 }
 
 Vec3<float> surface_color(const Scene& scene, const SurfacePoint& s) {
-  const MaterialDesc& m = *s.material;
-  if (!m.texture) return m.color;
-  const Vec3<float> t = evaluate(scene.textures[*m.texture], s.u, s.v, s.position);
-  return {t.x * m.color.x, t.y * m.color.y, t.z * m.color.z};
+  return material_color(scene, *s.material, s.u, s.v, s.position);
 }
 
 }  // namespace quiver

@@ -28,6 +28,29 @@ struct SurfacePoint {
   PrimitiveRef ref;
 };
 
+// What a hit needs beyond its point and geometric normal, which the wave's
+// lanes compute (integrator/wave_shading.h): the primitive, its material,
+// the interpolated shading normal where the primitive has one, and the
+// texture coordinates and colour.
+struct SurfaceDetail {
+  PrimitiveRef ref;
+  std::uint32_t material_index;
+  const MaterialDesc* material;
+  bool smooth;          // the shading normal is interpolated, not the geometric one
+  Vec3<float> shading;  // unit, the primitive's orientation; set where smooth
+  float u, v;           // texture coordinates (the kernel's u, v when untextured)
+  Vec3<float> color;    // the material's colour at the point (texture times colour)
+};
+
+// The point of a hit and its unit outward (primitive-oriented) normal, as
+// every width computes them.
+inline Vec3<float> hit_position(const Ray<float>& ray, const Hit<float>& hit) {
+  return ray.origin + ray.direction * hit.t;
+}
+
+// The detail of hit (id != kNoHit) of ray (unit or not; t in its units).
+SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
+
 // The surface at hit (id != kNoHit) of ray (unit or not; t in its units).
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
 

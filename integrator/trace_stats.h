@@ -6,6 +6,8 @@
 // what quiver issues (every wave packed into full packets: ceil(n / W) * W
 // lanes); "uncompacted" is what a per-packet masked recursion would issue:
 // W lanes for every parent packet and child ray kind with any active lane.
+// Shading lanes: the same ratio for the packets that shade the waves'
+// hits and for their light sample iterations.
 // Phase times are thread time in nanoseconds, summed over threads.
 #pragma once
 
@@ -54,6 +56,12 @@ struct TraceStats {
   PhaseTimes phases;
   std::vector<WaveLanes> waves;  // index = bounce depth (0: primary)
   WaveLanes shadow;              // all shadow waves together
+  // The shading packets: active = lanes with a hit; uncompacted = the
+  // waves' uncompacted lanes (a recursion shades the packets it traced).
+  WaveLanes shading;
+  // Light sample iterations (packet x sample, packets with a lit lane):
+  // active = lanes casting a shadow ray; no uncompacted form.
+  std::uint64_t light_sample_active = 0, light_sample_issued = 0;
 
   void add(const TraceStats& other);
   WaveLanes& wave(std::size_t depth);

@@ -2,59 +2,53 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
-#include <numbers>
-
-#include "integrator/optics.h"
 
 namespace quiver {
 
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-// Shadow rays toward a point stop this fraction short of it (relative, so
-// scale-free): a light sample lying on a surface is not hidden by it.
-constexpr float kShadowEndFraction = 1.f - 1e-4f;
-
-std::uint64_t mix64(std::uint64_t z) {
-  // SplitMix64's finaliser.
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-std::uint64_t float_bits(double x) {
-  std::uint64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  return b;
-}
 
 Vec3<float> mul(const Vec3<float>& a, const Vec3<float>& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 float max_component(const Vec3<float>& a) { return std::max(a.x, std::max(a.y, a.z)); }
 std::size_t padded_to(std::size_t n, std::size_t w) { return (n + w - 1) / w * w; }
 
-// Shadow rays per side of a light's sample grid: n x n for area lights, one ray otherwise.
-int samples_per_side(const LightDesc& light) {
-  const bool area = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
-  return area ? light.samples : 1;
+std::size_t light_slot_count(const Scene& scene) {
+  std::size_t slots = 0;
+  for (const LightDesc& l : scene.lights) slots += std::size_t(samples_per_side(l) * samples_per_side(l));
+  return slots;
 }
 
 }  // namespace
 
-std::uint64_t sample_key(double x, double y, std::uint64_t seed) {
-  return mix64(mix64(mix64(seed) ^ float_bits(x)) ^ float_bits(y));
-}
-
-float hash_uniform(std::uint64_t key, std::uint64_t a, std::uint64_t b) {
-  const std::uint64_t h = mix64(mix64(key ^ mix64(a + 0x9e3779b97f4a7c15ULL)) ^ b);
-  return float(h >> 40) * 0x1p-24f;  // 24 bits: exactly representable, < 1
-}
-
 Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
-    : scene_(scene), intersector_(intersector), settings_(settings), width_(std::size_t(intersector.lanes())) {
-  light_slots_ = 0;
-  for (const LightDesc& l : scene.lights) light_slots_ += samples_per_side(l) * samples_per_side(l);
+    : scene_(scene),
+      intersector_(intersector),
+      settings_(settings),
+      width_(std::size_t(intersector.lanes())),
+      materials_(scene.materials),
+      shade_wave_(with_kernel_unit(intersector.unit(),
+                                   [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
+      slots_(light_slot_count(scene)),
+      occlusion_(slots_.size()),
+      transmittance_(slots_.size()) {
+  material_by_id_.resize(scene.primitive_count());
+  detail_by_id_.resize(scene.primitive_count());
+  auto number = [&](std::int32_t id_base, const std::vector<PrimitiveOrigin>& origins, bool smooth) {
+    for (std::size_t k = 0; k < origins.size(); ++k) {
+      const std::size_t id = std::size_t(id_base) + k;
+      material_by_id_[id] = static_cast<std::int32_t>(origins[k].material);
+      detail_by_id_[id] = smooth || scene.materials[origins[k].material].texture.has_value() ? 1 : 0;
+    }
+  };
+  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    number(g->spheres.id_base, g->sphere_origin, false);
+    number(g->planes.id_base, g->plane_origin, false);
+    number(g->triangles.id_base, g->triangle_origin, g->triangles.has_normals());
+    number(g->polygons.id_base, g->polygon_origin, false);
+    number(g->cones.id_base, g->cone_origin, false);
+  }
 }
 
 void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats) {
@@ -63,15 +57,17 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
   paths_.clear();
   for (std::size_t i = 0; i < samples.size(); ++i) {
     rays_.push(samples[i].ray);
-    paths_.push_back({static_cast<std::uint32_t>(i), {1.f, 1.f, 1.f}, samples[i].key});
+    paths_.push(static_cast<std::uint32_t>(i), {1.f, 1.f, 1.f}, samples[i].key);
   }
   rays_.pad();
+  paths_.pad();
   stats.rays.primary += samples.size();
   WaveLanes& primary = stats.wave(0);
   primary.active += samples.size();
   primary.issued_compacted += padded_to(samples.size(), width_);
   primary.issued_uncompacted += padded_to(samples.size(), width_);
 
+  std::uint64_t wave_uncompacted = padded_to(samples.size(), width_);
   PhaseClock clock;
   for (int depth = 0; rays_.count > 0; ++depth) {
     hits_.reset(rays_);
@@ -80,243 +76,149 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     clock.charge(stats.phases.intersection);
     next_rays_.clear();
     next_paths_.clear();
-    child_parent_.clear();
-    child_kind_.clear();
-    shadow_rays_.clear();
-    shadow_paths_.clear();
-    shadow_parent_.clear();
-    shadow_slot_.clear();
-    for (std::size_t i = 0; i < rays_.count; ++i) shade(i, rays_.get(i), hits_.get(i), colors, depth, stats);
+    for (ShadowSlot& slot : slots_) slot.clear();
+    resolve_surfaces();
+    shaded_.slots = &slots_;
+    shaded_.next_rays = &next_rays_;
+    shaded_.next_paths = &next_paths_;
+    shaded_.hits = shaded_.reflection = shaded_.refraction = 0;
+    shaded_.shadow_uncompacted = shaded_.next_uncompacted = 0;
+    shaded_.shading_issued = shaded_.light_active = shaded_.light_issued = 0;
+    const WaveShadingInput in{&scene_,           &materials_,         &rays_,         &hits_,
+                              &paths_,           &surfaces_,          depth < settings_.max_depth,
+                              settings_.min_weight, settings_.seed};
+    shade_wave_(in, shaded_);
+    // The ambient terms (the background on a miss), in ray order.
+    for (std::size_t i = 0; i < rays_.count; ++i) {
+      Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
+      out = out + Vec3<float>(shaded_.emitted_r[i], shaded_.emitted_g[i], shaded_.emitted_b[i]);
+    }
+    if (depth == 0) stats.rays.primary_hits += shaded_.hits;
+    stats.shading.active += shaded_.hits;
+    stats.shading.issued_compacted += shaded_.shading_issued;
+    stats.shading.issued_uncompacted += wave_uncompacted;
+    stats.light_sample_active += shaded_.light_active;
+    stats.light_sample_issued += shaded_.light_issued;
+    stats.rays.reflection += shaded_.reflection;
+    stats.rays.refraction += shaded_.refraction;
     clock.charge(stats.phases.shading);
-    resolve_shadows(colors, stats);
+    resolve_shadows(colors, shaded_.shadow_uncompacted, stats);
     clock.charge(stats.phases.shadows);
     if (next_rays_.count > 0) {
       WaveLanes& next = stats.wave(std::size_t(depth) + 1);
       next.active += next_rays_.count;
       next.issued_compacted += padded_to(next_rays_.count, width_);
-      count_uncompacted(next);
+      next.issued_uncompacted += shaded_.next_uncompacted;
     }
+    wave_uncompacted = shaded_.next_uncompacted;
     std::swap(rays_, next_rays_);
     std::swap(paths_, next_paths_);
     rays_.pad();
+    paths_.pad();
   }
   clock.charge(stats.phases.shading);
 }
 
-void Tracer::shade(std::size_t i, const Ray<float>& ray, const Hit<float>& hit, std::span<Vec3<float>> colors,
-                   int depth, TraceStats& stats) {
-  const Path& path = paths_[i];  // a reference: children record its index
-  Vec3<float>& out = colors[path.sample];
-  if (hit.id == kNoHit) {
-    out = out + mul(path.weight, scene_.background);
-    return;
+void Tracer::resolve_surfaces() {
+  surfaces_.resize(rays_.ox.size());
+  for (std::size_t i = 0; i < rays_.count; ++i) {
+    const std::int32_t id = hits_.id[i];
+    if (id == kNoHit) continue;
+    if (detail_by_id_[std::size_t(id)] == 0) {
+      // A flat, untextured surface: its material's colour.
+      const std::int32_t material = material_by_id_[std::size_t(id)];
+      const Vec3<float>& color = scene_.materials[std::size_t(material)].color;
+      surfaces_.material[i] = material;
+      surfaces_.color_r[i] = color.x;
+      surfaces_.color_g[i] = color.y;
+      surfaces_.color_b[i] = color.z;
+      continue;
+    }
+    const SurfaceDetail d = surface_detail(scene_, rays_.get(i), hits_.get(i));
+    surfaces_.material[i] = static_cast<std::int32_t>(d.material_index);
+    if (d.smooth) {
+      surfaces_.smooth[i] = 1;
+      surfaces_.nx[i] = d.shading.x;
+      surfaces_.ny[i] = d.shading.y;
+      surfaces_.nz[i] = d.shading.z;
+    }
+    surfaces_.color_r[i] = d.color.x;
+    surfaces_.color_g[i] = d.color.y;
+    surfaces_.color_b[i] = d.color.z;
   }
-  if (depth == 0) ++stats.rays.primary_hits;
-  const SurfacePoint s = surface_at(scene_, ray, hit);
-  const MaterialDesc& m = *s.material;
-  const Vec3<float> color = surface_color(scene_, s);
-  const Vec3<float> incident = normalize(ray.direction);
-  // Ambient: ka * Ia * colour.
-  out = out + mul(path.weight, mul(scene_.ambient, color) * m.ka);
-  // A one-sided surface seen from behind gets the ambient term only.
-  if ((m.two_sided || s.entering) && (m.kd > 0.f || m.ks > 0.f)) add_direct_light(path, s, color, -incident);
-  if (depth < settings_.max_depth) spawn_secondary(path, s, color, incident, stats);
 }
 
-void Tracer::add_direct_light(const Path& path, const SurfacePoint& s, const Vec3<float>& color,
-                              const Vec3<float>& to_eye) {
-  const MaterialDesc& m = *s.material;
-  const Vec3<float> origin = offset_origin(s.position, s.error, s.geometric);
-  int slot = 0;
-  for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
-    const LightDesc& light = scene_.lights[l];
-    const int n = samples_per_side(light);
-    const Vec3<float> intensity = light.color / float(n * n);
-    for (int j = 0; j < n * n; ++j, ++slot) {
-      // Stratified jitter for area lights: a point in cell (j % n, j / n) of an n x n grid.
-      auto jittered = [&](int cell, std::uint64_t dimension) {
-        return (float(cell) + hash_uniform(path.key ^ settings_.seed, l, dimension)) / float(n);
-      };
-      Vec3<float> direction;
-      float tmax = kShadowEndFraction;
-      switch (light.kind) {
-        case LightDesc::Kind::point: direction = light.position - origin; break;
-        case LightDesc::Kind::directional:
-          direction = -light.direction;
-          tmax = kInfinity;
-          break;
-        case LightDesc::Kind::rectangle: {
-          const float a = jittered(j % n, 2 * j), b = jittered(j / n, 2 * j + 1);
-          direction = light.position + light.edge_u * a + light.edge_v * b - origin;
-          break;
-        }
-        case LightDesc::Kind::sphere: {
-          // The silhouette disk facing the point, by the concentric map.
-          const Vec3<float> axis = normalize(light.position - origin);
-          Vec3<float> t1, t2;
-          tangent_axes(axis, t1, t2);
-          const float sx = 2.f * jittered(j % n, 2 * j) - 1.f, sy = 2.f * jittered(j / n, 2 * j + 1) - 1.f;
-          float r = 0.f, phi = 0.f;
-          if (sx != 0.f || sy != 0.f) {
-            const float quarter = float(std::numbers::pi / 4.0);
-            if (std::fabs(sx) > std::fabs(sy)) {
-              r = sx;
-              phi = quarter * (sy / sx);
-            } else {
-              r = sy;
-              phi = 2.f * quarter - quarter * (sx / sy);
-            }
-          }
-          const Vec3<float> on_disk =
-              light.position + (t1 * (r * std::cos(phi)) + t2 * (r * std::sin(phi))) * light.radius;
-          direction = on_disk - origin;
-          break;
-        }
+void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats) {
+  std::size_t total = 0;
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    ShadowSlot& slot = slots_[s];
+    const std::size_t n = slot.rays.count;
+    if (n == 0) continue;
+    slot.rays.pad();
+    total += n;
+    stats.shadow.issued_compacted += padded_to(n, width_);
+    occlusion_[s].reset(slot.rays);
+    intersector_.occluded(scene_, slot.rays, occlusion_[s], Layers::opaque);
+    transmittance_[s].assign(n, Vec3<float>(1.f, 1.f, 1.f));
+    if (scene_.transmissive.primitive_count() > 0) transmit(s);
+  }
+  stats.rays.shadow += total;
+  stats.shadow.active += total;
+  stats.shadow.issued_uncompacted += uncompacted;
+  if (total == 0) return;
+  // The light seen, by ray and then slot (each slot's rays are in ray order).
+  cursor_.assign(slots_.size(), 0);
+  for (std::size_t i = 0; i < rays_.count; ++i) {
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      const ShadowSlot& slot = slots_[s];
+      std::size_t& k = cursor_[s];
+      if (k >= slot.rays.count || std::size_t(slot.point[k]) != i) continue;
+      if (occlusion_[s].occluded[k] == 0) {
+        Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
+        out = out + mul(Vec3<float>(slot.light_r[k], slot.light_g[k], slot.light_b[k]), transmittance_[s][k]);
       }
-      const Vec3<float> to_light = normalize(direction);
-      const float n_dot_l = dot(s.shading, to_light);
-      // No shadow ray where the surface faces away from the light.
-      if (!(n_dot_l > 0.f) || !(dot(s.geometric, to_light) > 0.f)) continue;
-      const Vec3<float> half = normalize(to_light + to_eye);
-      const float n_dot_h = std::max(dot(s.shading, half), 0.f);
-      const float specular = m.ks > 0.f && n_dot_h > 0.f ? m.ks * std::pow(n_dot_h, m.shininess) : 0.f;
-      // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
-      const Vec3<float> reflected = color * (m.kd * n_dot_l) + Vec3<float>(specular, specular, specular);
-      const Vec3<float> contribution = mul(path.weight, mul(intensity, reflected));
-      if (!(max_component(contribution) > 0.f)) continue;
-      shadow_rays_.push({origin, direction, 0.f, tmax});
-      shadow_paths_.push_back({path.sample, contribution});
-      shadow_parent_.push_back(static_cast<std::uint32_t>(&path - paths_.data()));
-      shadow_slot_.push_back(static_cast<std::uint16_t>(std::min(slot, 65535)));
+      ++k;
     }
   }
 }
 
-void Tracer::spawn_secondary(const Path& path, const SurfacePoint& s, const Vec3<float>& color,
-                             const Vec3<float>& incident, TraceStats& stats) {
-  const MaterialDesc& m = *s.material;
-  Vec3<float> reflect_weight = path.weight * m.kr;
-  Vec3<float> refract_weight = mul(path.weight, color * m.kt);
-  std::optional<Vec3<float>> refracted;
-  if (m.kt > 0.f) {
-    const float eta = s.entering ? 1.f / m.ior : m.ior;
-    refracted = refract(incident, s.shading, eta);
-    if (refracted && !(dot(*refracted, s.geometric) < 0.f)) refracted = refract(incident, s.geometric, eta);
-    if (!refracted) {
-      // Total internal reflection: the transmitted share is reflected.
-      reflect_weight = reflect_weight + refract_weight;
-      refract_weight = {0.f, 0.f, 0.f};
+void Tracer::transmit(std::size_t s) {
+  // Each transmissive surface crossed scales the light by its kt times its
+  // colour, until none is left.
+  const ShadowSlot& slot = slots_[s];
+  std::vector<Vec3<float>>& transmittance = transmittance_[s];
+  AlignedInts& occluded = occlusion_[s].occluded;
+  transit_index_.clear();
+  for (std::size_t k = 0; k < slot.rays.count; ++k) {
+    if (occluded[k] == 0) transit_index_.push_back(static_cast<std::uint32_t>(k));
+  }
+  transit_tmin_.assign(slot.rays.count, 0.f);
+  while (!transit_index_.empty()) {
+    transit_rays_.clear();
+    for (std::uint32_t k : transit_index_) {
+      Ray<float> r = slot.rays.get(k);
+      r.tmin = transit_tmin_[k];
+      transit_rays_.push(r);
     }
-  }
-  auto worth_casting = [&](const Vec3<float>& w) {
-    const float largest = max_component(w);
-    return largest > 0.f && largest >= settings_.min_weight;
-  };
-  const auto parent = static_cast<std::uint32_t>(&path - paths_.data());
-  if (worth_casting(reflect_weight)) {
-    Vec3<float> direction = reflect(incident, s.shading);
-    if (!(dot(direction, s.geometric) > 0.f)) direction = reflect(incident, s.geometric);
-    next_rays_.push({offset_origin(s.position, s.error, s.geometric), direction, 0.f, kInfinity});
-    next_paths_.push_back({path.sample, reflect_weight, mix64(path.key ^ 0x5265666cULL)});
-    child_parent_.push_back(parent);
-    child_kind_.push_back(static_cast<std::uint8_t>(RayKind::reflection));
-    ++stats.rays.reflection;
-  }
-  if (refracted && worth_casting(refract_weight)) {
-    next_rays_.push({offset_origin(s.position, s.error, -s.geometric), *refracted, 0.f, kInfinity});
-    next_paths_.push_back({path.sample, refract_weight, mix64(path.key ^ 0x52667263ULL)});
-    child_parent_.push_back(parent);
-    child_kind_.push_back(static_cast<std::uint8_t>(RayKind::refraction));
-    ++stats.rays.refraction;
-  }
-}
-
-void Tracer::resolve_shadows(std::span<Vec3<float>> colors, TraceStats& stats) {
-  const std::size_t n = shadow_rays_.count;
-  if (n == 0) return;
-  shadow_rays_.pad();
-  stats.rays.shadow += n;
-  stats.shadow.active += n;
-  stats.shadow.issued_compacted += padded_to(n, width_);
-  // Uncompacted: W lanes per parent packet and light sample slot in use.
-  {
-    std::vector<std::uint64_t> seen;
-    std::uint64_t issued = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint64_t tag = (std::uint64_t(shadow_parent_[k] / width_) << 16) | shadow_slot_[k];
-      if (std::find(seen.begin(), seen.end(), tag) == seen.end()) {
-        // Tags arrive grouped by parent packet: forget older packets.
-        if (!seen.empty() && (seen.back() >> 16) != (tag >> 16)) seen.clear();
-        seen.push_back(tag);
-        issued += width_;
+    transit_rays_.pad();
+    transit_hits_.reset(transit_rays_);
+    intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive);
+    std::size_t kept = 0;
+    for (std::size_t j = 0; j < transit_index_.size(); ++j) {
+      const std::uint32_t k = transit_index_[j];
+      const Hit<float> h = transit_hits_.get(j);
+      if (h.id == kNoHit) continue;
+      const SurfacePoint p = surface_at(scene_, transit_rays_.get(j), h);
+      transmittance[k] = mul(transmittance[k], surface_color(scene_, p) * p.material->kt);
+      if (!(max_component(transmittance[k]) > 0.f)) {
+        occluded[k] = 1;
+        continue;
       }
+      transit_tmin_[k] = h.t;
+      transit_index_[kept++] = k;
     }
-    stats.shadow.issued_uncompacted += issued;
+    transit_index_.resize(kept);
   }
-  occlusion_.reset(shadow_rays_);
-  intersector_.occluded(scene_, shadow_rays_, occlusion_, Layers::opaque);
-
-  transmittance_.assign(n, Vec3<float>(1.f, 1.f, 1.f));
-  if (scene_.transmissive.primitive_count() > 0) {
-    // Transparent shadows: each transmissive surface crossed scales the
-    // light by its kt times its colour, until none is left.
-    transit_index_.clear();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (occlusion_.occluded[k] == 0) transit_index_.push_back(static_cast<std::uint32_t>(k));
-    }
-    std::vector<float> tmin(n, 0.f);
-    while (!transit_index_.empty()) {
-      transit_rays_.clear();
-      for (std::uint32_t k : transit_index_) {
-        Ray<float> r = shadow_rays_.get(k);
-        r.tmin = tmin[k];
-        transit_rays_.push(r);
-      }
-      transit_rays_.pad();
-      transit_hits_.reset(transit_rays_);
-      intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive);
-      std::size_t kept = 0;
-      for (std::size_t j = 0; j < transit_index_.size(); ++j) {
-        const std::uint32_t k = transit_index_[j];
-        const Hit<float> h = transit_hits_.get(j);
-        if (h.id == kNoHit) continue;
-        const SurfacePoint s = surface_at(scene_, transit_rays_.get(j), h);
-        transmittance_[k] = mul(transmittance_[k], surface_color(scene_, s) * s.material->kt);
-        if (!(max_component(transmittance_[k]) > 0.f)) {
-          occlusion_.occluded[k] = 1;
-          continue;
-        }
-        tmin[k] = h.t;
-        transit_index_[kept++] = k;
-      }
-      transit_index_.resize(kept);
-    }
-  }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (occlusion_.occluded[k] != 0) continue;
-    Vec3<float>& out = colors[shadow_paths_[k].sample];
-    out = out + mul(shadow_paths_[k].contribution, transmittance_[k]);
-  }
-}
-
-void Tracer::count_uncompacted(WaveLanes& lanes) {
-  // W lanes per parent packet and child kind with any ray.
-  std::uint64_t issued = 0;
-  std::size_t last_packet = std::numeric_limits<std::size_t>::max();
-  bool kinds[3] = {false, false, false};
-  for (std::size_t k = 0; k < child_parent_.size(); ++k) {
-    const std::size_t packet = child_parent_[k] / width_;
-    if (packet != last_packet) {
-      kinds[0] = kinds[1] = kinds[2] = false;
-      last_packet = packet;
-    }
-    bool& seen = kinds[child_kind_[k]];
-    if (!seen) {
-      seen = true;
-      issued += width_;
-    }
-  }
-  lanes.issued_uncompacted += issued;
 }
 
 void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out) {

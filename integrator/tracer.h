@@ -1,15 +1,19 @@
 // The Whitted integrator as a masked iterative loop over wavefronts, no
 // recursion and no per-ray virtual calls. For one batch of camera samples:
 //   wave 0 = the primary rays; each wave: closest hits of the whole wave
-//   (packets of the kernel unit's width) -> shade every hit (ambient now,
-//   direct light as shadow rays collected for the whole wave) -> any-hit
-//   the shadow wave against the opaque layer, then walk the survivors
-//   through the transmissive layer hit by hit (transparent shadows) ->
-//   the reflection and refraction rays spawned are appended densely, which
-//   compacts them into full packets for the next wave.
+//   (packets of the kernel unit's width) -> the scalar pass resolves each
+//   hit's primitive, material, interpolated normal and texture colour ->
+//   the lanes shade the wave (integrator/wave_shading.h): ambient terms,
+//   one shadow ray per light sample into that sample slot's stream, and the
+//   reflection and refraction rays appended densely, which compacts them
+//   into full packets for the next wave -> each slot's shadow stream (rays
+//   toward one light sample: coherent packets) is any-hit against the
+//   opaque layer, and its survivors walk the transmissive layer hit by hit
+//   (transparent shadows).
 // A ray carries the sample it adds to and its weight; contributions are
-// added in wave order, so a sample's colour is the same for every width,
-// tile and thread count. Shading is scalar code shared by every width.
+// added in wave order (ambient terms in ray order, then the light seen, by
+// ray and slot), so a sample's colour is the same for every width, tile and
+// thread count.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +21,12 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "integrator/sample_hash.h"
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
 #include "integrator/trace_stats.h"
+#include "integrator/wave.h"
+#include "integrator/wave_shading.h"
 
 namespace quiver {
 
@@ -33,11 +40,6 @@ struct CameraSample {
   Ray<float> ray;
   std::uint64_t key;  // identifies the sample for random numbers (see sample_key)
 };
-
-// A key for the camera sample at film point (x, y) (same point, same key).
-std::uint64_t sample_key(double x, double y, std::uint64_t seed);
-// A uniform number in [0, 1) from a key and two indices.
-float hash_uniform(std::uint64_t key, std::uint64_t a, std::uint64_t b);
 
 // First-hit data for AOVs: distance along the unit ray, shading normal
 // facing the ray, and the primitive's kind and index in the SceneDesc.
@@ -59,43 +61,37 @@ class Tracer {
   void first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out);
 
  private:
-  enum class RayKind : std::uint8_t { primary, reflection, refraction };
-  struct Path {
-    std::uint32_t sample;
-    Vec3<float> weight;
-    std::uint64_t key;
-  };
-  struct ShadowPath {
-    std::uint32_t sample;
-    Vec3<float> contribution;  // added when the light is seen, times transmittance
-  };
-
-  void shade(std::size_t i, const Ray<float>& ray, const Hit<float>& hit, std::span<Vec3<float>> colors,
-             int depth, TraceStats& stats);
-  void add_direct_light(const Path& path, const SurfacePoint& s, const Vec3<float>& color,
-                        const Vec3<float>& to_eye);
-  void spawn_secondary(const Path& path, const SurfacePoint& s, const Vec3<float>& color,
-                       const Vec3<float>& incident, TraceStats& stats);
-  void resolve_shadows(std::span<Vec3<float>> colors, TraceStats& stats);
-  void count_uncompacted(WaveLanes& lanes);
+  // The scalar pass: surface_detail of every hit of the wave into surfaces_.
+  void resolve_surfaces();
+  // Traces every slot's shadow stream and adds the light seen to colors.
+  void resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats);
+  // Transparent shadows: scales the slot's transmittance by each
+  // transmissive surface its unoccluded rays cross.
+  void transmit(std::size_t slot);
 
   const Scene& scene_;
   const SceneIntersector& intersector_;
   TraceSettings settings_;
   std::size_t width_;
-  int light_slots_;  // shadow rays per shading point at most (sum of light samples)
+  MaterialTable materials_;
+  ShadeWaveFunction shade_wave_;
+  // Per hit id: its material, and 1 where the scalar pass needs
+  // surface_detail (a textured material or interpolated normals).
+  std::vector<std::int32_t> material_by_id_;
+  std::vector<std::uint8_t> detail_by_id_;
 
-  RaySoA rays_, next_rays_, shadow_rays_, transit_rays_;
+  RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;
-  OcclusionSoA occlusion_;
-  std::vector<Path> paths_, next_paths_;
-  std::vector<ShadowPath> shadow_paths_;
-  // Per spawned ray: its parent's index and kind / slot, for the uncompacted lane count.
-  std::vector<std::uint32_t> child_parent_, shadow_parent_;
-  std::vector<std::uint8_t> child_kind_;
-  std::vector<std::uint16_t> shadow_slot_;
-  std::vector<Vec3<float>> transmittance_;
+  PathColumns paths_, next_paths_;
+  SurfaceColumns surfaces_;
+  WaveShadingOutput shaded_;
+  // Per light sample slot (sum of the lights' sample counts).
+  std::vector<ShadowSlot> slots_;
+  std::vector<OcclusionSoA> occlusion_;
+  std::vector<std::vector<Vec3<float>>> transmittance_;
+  std::vector<std::size_t> cursor_;
   std::vector<std::uint32_t> transit_index_;
+  std::vector<float> transit_tmin_;
 };
 
 }  // namespace quiver

@@ -315,6 +315,16 @@ inline void store_int_lanes(const IntLanes<F>& v, std::int32_t* p) {
   }
 }
 
+// table[index] per lane (a gather; the indices must be in range in every lane).
+template <class F>
+inline F gather_lanes(const float* table, const IntLanes<F>& index) {
+  if constexpr (lane_count<F> == 1) {
+    return table[index];
+  } else {
+    return F::gather(table, index);
+  }
+}
+
 // Loads from any float address (a leaf of a primitive store starts anywhere).
 template <class F>
 inline F load_lanes_unaligned(const float* p) {

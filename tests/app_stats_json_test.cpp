@@ -39,6 +39,9 @@ Example example() {
   rays.refraction = 111;
   e.result.stats.waves = {{1000, 1000, 1000}, {411, 416, 600}, {0, 0, 0}};
   e.result.stats.shadow = {700, 704, 1200};
+  e.result.stats.shading = {1100, 1416, 1600};
+  e.result.stats.light_sample_active = 700;
+  e.result.stats.light_sample_issued = 960;
   e.settings.width = 4;
   e.settings.height = 3;
   e.settings.aa = parse_anti_aliasing("adaptive:0.125:3");
@@ -146,6 +149,16 @@ TEST(StatsJson, LaneUtilizationIsActiveOverIssued) {
   EXPECT_EQ(shadow.at("issued_uncompacted"), s.issued_uncompacted);
   expect_utilization(shadow.at("utilization_compacted"), s.active, s.issued_compacted);
   expect_utilization(shadow.at("utilization_uncompacted"), s.active, s.issued_uncompacted);
+  const WaveLanes& sh = e.result.stats.shading;
+  const json& shading = lanes.at("shading");
+  EXPECT_EQ(shading.at("active"), sh.active);
+  EXPECT_EQ(shading.at("issued_compacted"), sh.issued_compacted);
+  EXPECT_EQ(shading.at("issued_uncompacted"), sh.issued_uncompacted);
+  expect_utilization(shading.at("utilization_compacted"), sh.active, sh.issued_compacted);
+  const json& light = lanes.at("light_samples");
+  EXPECT_EQ(light.at("active"), 700u);
+  EXPECT_EQ(light.at("issued"), 960u);
+  expect_utilization(light.at("utilization"), 700u, 960u);
   const json& all = lanes.at("overall");
   EXPECT_EQ(all.at("active"), overall.active);
   EXPECT_EQ(all.at("issued_compacted"), overall.issued_compacted);

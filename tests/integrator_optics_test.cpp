@@ -1,6 +1,8 @@
 // Reflection and Snell refraction against hand-computed directions, total
 // internal reflection, and the ray-origin offset.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -18,8 +20,8 @@ void expect_near(const Vec3<float>& a, double x, double y, double z, double tol 
 
 TEST(Optics, ReflectionMirrorsTheNormalComponent) {
   const float s = float(std::sqrt(0.5));
-  expect_near(reflect({s, -s, 0.f}, {0.f, 1.f, 0.f}), s, s, 0.0);
-  expect_near(reflect({0.f, 0.f, -1.f}, {0.f, 0.f, 1.f}), 0.0, 0.0, 1.0);
+  expect_near(reflect(Vec3<float>{s, -s, 0.f}, Vec3<float>{0.f, 1.f, 0.f}), s, s, 0.0);
+  expect_near(reflect(Vec3<float>{0.f, 0.f, -1.f}, Vec3<float>{0.f, 0.f, 1.f}), 0.0, 0.0, 1.0);
 }
 
 TEST(Optics, SnellIntoGlassAt45Degrees) {
@@ -63,6 +65,17 @@ TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
     // Clear of the surface by at least the bound, not by a scene epsilon.
     EXPECT_GE(offset_origin(p, err, {0.f, 1.f, 0.f}).y, err.y) << scale;
     EXPECT_LT(offset_origin(p, err, {0.f, 1.f, 0.f}).y, 1e-3f * scale) << scale;
+  }
+}
+
+TEST(Optics, NextFloatAwayIsNextafterTowardTheSign) {
+  const float inf = std::numeric_limits<float>::infinity();
+  for (float x : {0.f, -0.f, 1.f, -1.f, 1e-38f, -3e38f, std::numeric_limits<float>::max(), inf, -inf}) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(next_float_away(x, 1.f)),
+              std::bit_cast<std::uint32_t>(std::nextafter(x, inf))) << x;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(next_float_away(x, -0.5f)),
+              std::bit_cast<std::uint32_t>(std::nextafter(x, -inf))) << x;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(next_float_away(x, 0.f)), std::bit_cast<std::uint32_t>(x)) << x;
   }
 }
 

@@ -53,10 +53,18 @@ void add_octahedron(SceneDesc& scene, const Vec3<float>& c, float r, std::size_t
   }
 }
 
-// The default scene plus a textured smooth triangle mesh: every kind but planes... and planes too.
+// The default scene (every kind, a rectangle light) plus a textured smooth
+// triangle mesh and a sphere light: every primitive and light kind.
 SceneDesc every_kind_scene() {
   SceneDesc scene = default_scene();
   add_octahedron(scene, {2.6f, 0.6f, 0.5f}, 0.6f, 3);
+  LightDesc bulb;
+  bulb.kind = LightDesc::Kind::sphere;
+  bulb.position = {-2.f, 3.f, 2.f};
+  bulb.radius = 0.4f;
+  bulb.color = {0.3f, 0.3f, 0.25f};
+  bulb.samples = 2;
+  scene.lights.push_back(bulb);
   return scene;
 }
 
@@ -198,6 +206,20 @@ TEST(Render, LaneStatisticsAddUp) {
   }
   EXPECT_EQ(secondary, r.stats.rays.reflection + r.stats.rays.refraction);
   EXPECT_EQ(r.stats.shadow.active, r.stats.rays.shadow);
+  // The shading packets are the waves' packets; a lane is active where it hit.
+  std::uint64_t compacted = 0, uncompacted = 0;
+  for (const WaveLanes& w : r.stats.waves) {
+    compacted += w.issued_compacted;
+    uncompacted += w.issued_uncompacted;
+  }
+  EXPECT_EQ(r.stats.shading.issued_compacted, compacted);
+  EXPECT_EQ(r.stats.shading.issued_uncompacted, uncompacted);
+  EXPECT_GE(r.stats.shading.active, r.stats.rays.primary_hits);
+  EXPECT_LE(r.stats.shading.active, r.stats.shading.issued_compacted);
+  // Every shadow ray is one active lane of a light sample iteration.
+  EXPECT_EQ(r.stats.light_sample_active, r.stats.rays.shadow);
+  EXPECT_LE(r.stats.light_sample_active, r.stats.light_sample_issued);
+  EXPECT_EQ(r.stats.light_sample_issued % lanes, 0u);
 }
 
 // ---- depth 0, 1, 2 -----------------------------------------------------------

@@ -1,0 +1,311 @@
+// Whitted shading of a wave in packets (the contract: wave_shading.h).
+// Compiled once per kernel unit; F is the unit's lane type.
+#include "integrator/wave_shading.h"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "integrator/optics.h"
+#include "integrator/sample_hash.h"
+#include "simd/power.h"
+
+namespace quiver {
+
+inline namespace QUIVER_UNIT_NAMESPACE {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// Shadow rays toward a point stop this fraction short of it (relative, so
+// scale-free): a light sample lying on a surface is not hidden by it.
+constexpr float kShadowEndFraction = 1.f - 1e-4f;
+// Keys of the reflection and refraction rays a path spawns: mix64(key ^ tag).
+constexpr std::uint64_t kReflectionTag = 0x5265666cULL, kRefractionTag = 0x52667263ULL;
+
+template <class F>
+Vec3<F> mul(const Vec3<F>& a, const Vec3<F>& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+template <class F>
+F max_component(const Vec3<F>& a) {
+  return max(a.x, max(a.y, a.z));
+}
+
+// A packet's lanes in memory, for the per-lane appends.
+struct LaneArray {
+  alignas(64) float v[kMaxLanes];
+};
+template <class F>
+struct Vec3Lanes {
+  LaneArray x, y, z;
+  explicit Vec3Lanes(const Vec3<F>& a) {
+    store_lanes(a.x, x.v);
+    store_lanes(a.y, y.v);
+    store_lanes(a.z, z.v);
+  }
+};
+
+// Columns grown by n unset entries (a stream being built: size == count);
+// returns the first new index.
+template <class Column, class... Columns>
+std::size_t grow(std::size_t n, Column& first_column, Columns&... columns) {
+  const std::size_t first = first_column.size();
+  first_column.resize(first + n);
+  (columns.resize(first + n), ...);
+  return first;
+}
+
+void set_vec3(AlignedFloats& x, AlignedFloats& y, AlignedFloats& z, std::size_t i, const LaneArray& lx,
+              const LaneArray& ly, const LaneArray& lz, int k) {
+  x[i] = lx.v[k];
+  y[i] = ly.v[k];
+  z[i] = lz.v[k];
+}
+
+template <class F>
+void set_ray(RaySoA& rays, std::size_t i, const Vec3Lanes<F>& origin, const Vec3Lanes<F>& direction, int k,
+             float tmax) {
+  set_vec3(rays.ox, rays.oy, rays.oz, i, origin.x, origin.y, origin.z, k);
+  set_vec3(rays.dx, rays.dy, rays.dz, i, direction.x, direction.y, direction.z, k);
+  rays.tmin[i] = 0.f;
+  rays.tmax[i] = tmax;
+}
+
+// Appends the shadow rays of the lanes in `bits`, in lane order.
+template <class F>
+void append_shadow_rays(ShadowSlot& slot, unsigned bits, std::size_t first, const Vec3<F>& origin,
+                        const Vec3<F>& direction, float tmax, const Vec3<F>& light) {
+  const Vec3Lanes<F> from(origin), toward(direction), carried(light);
+  RaySoA& r = slot.rays;
+  std::size_t i = grow(std::size_t(std::popcount(bits)), r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax,
+                       slot.point, slot.light_r, slot.light_g, slot.light_b);
+  r.count = r.ox.size();
+  for (; bits != 0; bits &= bits - 1, ++i) {
+    const int k = std::countr_zero(bits);
+    set_ray(r, i, from, toward, k, tmax);
+    slot.point[i] = static_cast<std::int32_t>(first + std::size_t(k));
+    set_vec3(slot.light_r, slot.light_g, slot.light_b, i, carried.x, carried.y, carried.z, k);
+  }
+}
+
+// The surface of a packet's hits, as surface_at computes it for one.
+template <class F>
+struct SurfaceLanes {
+  Vec3<F> position, error, geometric, shading, color;
+  Mask<F> entering;
+};
+
+template <class F>
+SurfaceLanes<F> surface_lanes(const Ray<F>& ray, const Hit<F>& hit, const SurfaceColumns& columns,
+                              std::size_t first) {
+  SurfaceLanes<F> s;
+  s.position = ray.origin + ray.direction * hit.t;
+  s.error = hit_point_error(ray.origin, ray.direction, hit.t);
+  const Vec3<F> outward = normalize(hit.ng);
+  const Mask<F> smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
+  const Vec3<F> interpolated = select(smooth, load_vec3<F>(columns.nx, columns.ny, columns.nz, first), outward);
+  s.entering = dot(ray.direction, outward) < F(0.f);
+  s.geometric = select(s.entering, outward, -outward);
+  s.shading = select(dot(interpolated, s.geometric) < F(0.f), -interpolated, interpolated);
+  s.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
+  return s;
+}
+
+// The light sample's direction from each lane's origin (not unit) and the
+// end of its shadow ray, for sample j of n x n (area lights: stratified).
+template <class F>
+Vec3<F> light_sample_direction(const WaveShadingInput& in, std::size_t light_index, int j, int n,
+                               const Vec3<F>& origin, std::size_t first, float& tmax) {
+  const LightDesc& light = in.scene->lights[light_index];
+  tmax = kShadowEndFraction;
+  switch (light.kind) {
+    case LightDesc::Kind::point: return Vec3<F>(light.position) - origin;
+    case LightDesc::Kind::directional: tmax = kInfinity; return Vec3<F>(-light.direction);
+    case LightDesc::Kind::rectangle:
+    case LightDesc::Kind::sphere: break;
+  }
+  // Stratified jitter: a point in cell (j % n, j / n) of an n x n grid, per
+  // lane from its path's key (64-bit hashes, one lane at a time).
+  LaneArray a, b;
+  for (int k = 0; k < lane_count<F>; ++k) {
+    const std::uint64_t key = in.paths->key[first + std::size_t(k)] ^ in.seed;
+    a.v[k] = (float(j % n) + hash_uniform(key, light_index, 2 * std::uint64_t(j))) / float(n);
+    b.v[k] = (float(j / n) + hash_uniform(key, light_index, 2 * std::uint64_t(j) + 1)) / float(n);
+  }
+  if (light.kind == LightDesc::Kind::rectangle) {
+    return Vec3<F>(light.position) + Vec3<F>(light.edge_u) * load_lanes<F>(a.v) +
+           Vec3<F>(light.edge_v) * load_lanes<F>(b.v) - origin;
+  }
+  // Sphere: the silhouette disk facing the point, by the concentric map
+  // (Shirley and Chiu 1997); cos and sin from libm, one lane at a time.
+  LaneArray along_t1, along_t2;
+  for (int k = 0; k < lane_count<F>; ++k) {
+    const float sx = 2.f * a.v[k] - 1.f, sy = 2.f * b.v[k] - 1.f;
+    float r = 0.f, phi = 0.f;
+    if (sx != 0.f || sy != 0.f) {
+      const float quarter = float(std::numbers::pi / 4.0);
+      if (std::fabs(sx) > std::fabs(sy)) {
+        r = sx;
+        phi = quarter * (sy / sx);
+      } else {
+        r = sy;
+        phi = 2.f * quarter - quarter * (sx / sy);
+      }
+    }
+    along_t1.v[k] = r * std::cos(phi);
+    along_t2.v[k] = r * std::sin(phi);
+  }
+  const Vec3<F> center(light.position);
+  const Vec3<F> axis = normalize(center - origin);
+  Vec3<F> t1, t2;
+  tangent_axes(axis, t1, t2);
+  const Vec3<F> on_disk =
+      center + (t1 * load_lanes<F>(along_t1.v) + t2 * load_lanes<F>(along_t2.v)) * F(light.radius);
+  return on_disk - origin;
+}
+
+// Largest weight above 0 and at least the cut-off.
+template <class F>
+Mask<F> worth_casting(const Vec3<F>& weight, float min_weight) {
+  const F largest = max_component(weight);
+  return (largest > F(0.f)) & (largest >= F(min_weight));
+}
+
+template <class F>
+void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first) {
+  constexpr int W = lane_count<F>;
+  const Scene& scene = *in.scene;
+  const MaterialTable& table = *in.materials;
+  const Mask<F> active = first_lanes<F>(in.rays->count - first);
+  const Ray<F> ray = in.rays->load<F>(first);
+  const Hit<F> hit = in.hits->load<F>(first);
+  const Mask<F> hit_mask = active & nonzero_lanes(hit.id - IntLanes<F>(kNoHit));
+  const Vec3<F> weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
+  const SurfaceLanes<F> s = surface_lanes(ray, hit, *in.surfaces, first);
+  const IntLanes<F> material = load_int_lanes<F>(in.surfaces->material.data() + first);
+  out.hits += std::popcount(lane_bits(hit_mask));
+  out.shading_issued += W;
+
+  // Ambient ka Ia colour where a surface is hit; the background on a miss.
+  const F ka = gather_lanes<F>(table.ka.data(), material);
+  const Vec3<F> ambient = mul(weight, mul(Vec3<F>(scene.ambient), s.color) * ka);
+  const Vec3<F> emitted = select(hit_mask, ambient, mul(weight, Vec3<F>(scene.background)));
+  store_lanes(emitted.x, out.emitted_r.data() + first);
+  store_lanes(emitted.y, out.emitted_g.data() + first);
+  store_lanes(emitted.z, out.emitted_b.data() + first);
+  if (none(hit_mask)) return;
+
+  const Vec3<F> incident = normalize(ray.direction);
+  const F kd = gather_lanes<F>(table.kd.data(), material);
+  const F ks = gather_lanes<F>(table.ks.data(), material);
+  const Vec3<F> origin = offset_origin(s.position, s.error, s.geometric);
+  // A one-sided surface seen from behind gets the ambient term only.
+  const Mask<F> two_sided = gather_lanes<F>(table.two_sided.data(), material) > F(0.f);
+  const Mask<F> lit = hit_mask & (two_sided | s.entering) & ((kd > F(0.f)) | (ks > F(0.f)));
+  if (any(lit)) {
+    const F shininess = gather_lanes<F>(table.shininess.data(), material);
+    const Vec3<F> to_eye = -incident;
+    std::size_t slot = 0;
+    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+      const int n = samples_per_side(scene.lights[l]);
+      const Vec3<F> intensity(scene.lights[l].color / float(n * n));
+      for (int j = 0; j < n * n; ++j, ++slot) {
+        float tmax;
+        const Vec3<F> direction = light_sample_direction(in, l, j, n, origin, first, tmax);
+        const Vec3<F> to_light = normalize(direction);
+        const F n_dot_l = dot(s.shading, to_light);
+        // No shadow ray where the surface faces away from the light.
+        Mask<F> cast = lit & (n_dot_l > F(0.f)) & (dot(s.geometric, to_light) > F(0.f));
+        const Vec3<F> half = normalize(to_light + to_eye);
+        const F n_dot_h = max(dot(s.shading, half), F(0.f));
+        const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
+        // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
+        const Vec3<F> reflected = s.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
+        const Vec3<F> contribution = mul(weight, mul(intensity, reflected));
+        cast = cast & (max_component(contribution) > F(0.f));
+        const unsigned bits = lane_bits(cast);
+        out.light_issued += W;
+        out.light_active += std::popcount(bits);
+        if (bits == 0) continue;
+        out.shadow_uncompacted += W;
+        append_shadow_rays((*out.slots)[slot], bits, first, origin, direction, tmax, contribution);
+      }
+    }
+  }
+  if (!in.spawn) return;
+
+  const F kr = gather_lanes<F>(table.kr.data(), material);
+  const F kt = gather_lanes<F>(table.kt.data(), material);
+  const F ior = gather_lanes<F>(table.ior.data(), material);
+  Vec3<F> reflect_weight = weight * kr;
+  Vec3<F> refract_weight = mul(weight, s.color * kt);
+  // Snell through the shading normal, else (bent behind the surface) the geometric one.
+  const Mask<F> transmissive = kt > F(0.f);
+  const F eta = select(s.entering, F(1.f) / ior, ior);
+  Mask<F> through_shading, through_geometric;
+  const Vec3<F> along_shading = refract(incident, s.shading, eta, through_shading);
+  const Mask<F> retry = and_not(through_shading, dot(along_shading, s.geometric) < F(0.f));
+  const Vec3<F> along_geometric = refract(incident, s.geometric, eta, through_geometric);
+  const Vec3<F> refracted = select(retry, along_geometric, along_shading);
+  const Mask<F> transmitted = (retry & through_geometric) | and_not(through_shading, retry);
+  // Total internal reflection: the transmitted share is reflected.
+  const Mask<F> total_internal = and_not(transmissive, transmitted);
+  reflect_weight = select(total_internal, reflect_weight + refract_weight, reflect_weight);
+  refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), refract_weight);
+  const Mask<F> cast_reflection = hit_mask & worth_casting(reflect_weight, in.min_weight);
+  const Mask<F> cast_refraction = hit_mask & transmissive & transmitted & worth_casting(refract_weight, in.min_weight);
+  const unsigned reflection_bits = lane_bits(cast_reflection), refraction_bits = lane_bits(cast_refraction);
+  if ((reflection_bits | refraction_bits) == 0) return;
+
+  const Vec3<F> mirrored = reflect(incident, s.shading);
+  const Vec3<F> reflected = select(dot(mirrored, s.geometric) > F(0.f), mirrored, reflect(incident, s.geometric));
+  if (reflection_bits != 0) out.next_uncompacted += W;
+  if (refraction_bits != 0) out.next_uncompacted += W;
+  out.reflection += std::popcount(reflection_bits);
+  out.refraction += std::popcount(refraction_bits);
+  // Appended by lane, a lane's reflection before its refraction.
+  const Vec3Lanes<F> outside(origin), inside(offset_origin(s.position, s.error, -s.geometric));
+  const Vec3Lanes<F> reflected_lanes(reflected), refracted_lanes(refracted);
+  const Vec3Lanes<F> reflect_weights(reflect_weight), refract_weights(refract_weight);
+  RaySoA& r = *out.next_rays;
+  PathColumns& p = *out.next_paths;
+  std::size_t i = grow(std::size_t(std::popcount(reflection_bits) + std::popcount(refraction_bits)), r.ox, r.oy,
+                       r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax, p.sample, p.weight_r, p.weight_g, p.weight_b, p.key);
+  r.count = p.count = r.ox.size();
+  auto append = [&](std::size_t parent, int k, const Vec3Lanes<F>& from, const Vec3Lanes<F>& direction,
+                    const Vec3Lanes<F>& weights, std::uint64_t tag) {
+    set_ray(r, i, from, direction, k, kInfinity);
+    p.sample[i] = in.paths->sample[parent];
+    set_vec3(p.weight_r, p.weight_g, p.weight_b, i, weights.x, weights.y, weights.z, k);
+    p.key[i] = mix64(in.paths->key[parent] ^ tag);
+    ++i;
+  };
+  for (unsigned bits = reflection_bits | refraction_bits; bits != 0; bits &= bits - 1) {
+    const int k = std::countr_zero(bits);
+    const std::size_t parent = first + std::size_t(k);
+    if ((reflection_bits >> k & 1u) != 0) append(parent, k, outside, reflected_lanes, reflect_weights, kReflectionTag);
+    if ((refraction_bits >> k & 1u) != 0) append(parent, k, inside, refracted_lanes, refract_weights, kRefractionTag);
+  }
+}
+
+}  // namespace
+
+}  // namespace QUIVER_UNIT_NAMESPACE
+
+template <KernelUnit U>
+void shade_wave(const WaveShadingInput& in, WaveShadingOutput& out) {
+  using F = UnitLanes<U>;
+  const std::size_t padded = in.rays->ox.size();
+  out.emitted_r.resize(padded);
+  out.emitted_g.resize(padded);
+  out.emitted_b.resize(padded);
+  for (std::size_t first = 0; first < in.rays->count; first += std::size_t(lane_count<F>)) {
+    shade_packet<F>(in, out, first);
+  }
+}
+
+template void shade_wave<kThisUnit>(const WaveShadingInput&, WaveShadingOutput&);
+
+}  // namespace quiver

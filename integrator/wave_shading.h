@@ -1,0 +1,59 @@
+// Shading a wave in packets: for every hit, the surface in lanes (point,
+// error bound, geometric and shading normals, side), the materials gathered
+// from their columns, the ambient term (the background for misses), every
+// light sample (point, directional, stratified rectangle and sphere
+// samples) with its Phong diffuse and specular terms and its shadow ray,
+// and the reflection and refraction rays (Snell, total internal
+// reflection), weights and the min-weight cut-off. Written once as templates
+// over the lane type; integrator/wave_shading.cpp is compiled per kernel
+// unit, the scalar unit being the reference, so every width gives the same
+// bits. Masks: padding lanes and misses cast nothing; a packet with no
+// lit lane skips the lights, one with no lane to append skips the append.
+// What lanes cannot do alone is done per lane by the same scalar code at
+// every width: the random numbers (64-bit hashes) and a sphere light's
+// cos/sin. Appends keep lane order, so the rays a wave spawns and the
+// order their light is added in do not depend on the width.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "integrator/wave.h"
+#include "scene/scene.h"
+
+namespace quiver {
+
+struct WaveShadingInput {
+  const Scene* scene;
+  const MaterialTable* materials;
+  const RaySoA* rays;
+  const HitSoA* hits;
+  const PathColumns* paths;
+  const SurfaceColumns* surfaces;  // from surface_detail, per ray
+  bool spawn;                      // below the maximum depth
+  float min_weight;
+  std::uint64_t seed;
+};
+
+struct WaveShadingOutput {
+  // Per ray: the light it adds at once (the ambient term, or the background on a miss).
+  AlignedFloats emitted_r, emitted_g, emitted_b;
+  std::vector<ShadowSlot>* slots;  // one per light sample slot; appended to
+  RaySoA* next_rays;               // the spawned rays, appended densely
+  PathColumns* next_paths;
+  std::uint64_t hits = 0, reflection = 0, refraction = 0;
+  // Lanes a per-packet masked recursion would issue (trace_stats.h).
+  std::uint64_t shadow_uncompacted = 0, next_uncompacted = 0;
+  // Lanes issued by the shading packets (hits are the active ones), and by
+  // the light sample iterations of packets with a lit lane (active: the
+  // lanes that cast a shadow ray).
+  std::uint64_t shading_issued = 0, light_active = 0, light_issued = 0;
+};
+
+// out.emitted_* are sized by the call; slots, next_rays and next_paths are appended to.
+template <KernelUnit U>
+void shade_wave(const WaveShadingInput& in, WaveShadingOutput& out);
+
+using ShadeWaveFunction = void (*)(const WaveShadingInput&, WaveShadingOutput&);
+
+}  // namespace quiver
