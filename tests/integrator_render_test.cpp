@@ -104,7 +104,13 @@ TEST(Render, PixelGroupsVisitEveryPixelOnceInFourByFourGroups) {
   EXPECT_EQ(order[order.size() - 2], std::make_pair(18, 11));
 }
 
-TEST(Render, EveryUnitGivesTheSameBits) {
+// Each unit against the scalar reference, one test per unit (skipped, with
+// the reason, where this CPU cannot run it).
+class RenderUnits : public ::testing::TestWithParam<KernelUnit> {};
+
+TEST_P(RenderUnits, GiveTheScalarReferenceBits) {
+  const KernelUnit unit = GetParam();
+  if (!kernel_unit_supported(unit)) GTEST_SKIP() << "this CPU cannot run " << kernel_unit_name(unit);
   const struct {
     const char* name;
     SceneDesc desc;
@@ -115,27 +121,26 @@ TEST(Render, EveryUnitGivesTheSameBits) {
   SceneBuildOptions every_store_indexed;
   every_store_indexed.bvh_min_primitives = 1;
   for (const auto& c : cases) {
-   for (const SceneBuildOptions& options : {SceneBuildOptions{}, every_store_indexed}) {
-    const Scene scene = build_scene(c.desc, options);
-    RenderSettings settings = small_settings(48, 36, c.aa);
-    settings.isa = Isa::scalar;
-    settings.threads = 1;
-    const RenderResult reference = render(scene, settings);
-    ASSERT_GT(reference.stats.rays.primary_hits, 0u) << c.name;
-    for (KernelUnit unit : kUnits) {
-      if (!kernel_unit_supported(unit)) {
-        std::printf("[ skipped ] %s: this CPU cannot run %s\n", c.name, std::string(kernel_unit_name(unit)).c_str());
-        continue;
-      }
+    for (const SceneBuildOptions& options : {SceneBuildOptions{}, every_store_indexed}) {
+      const Scene scene = build_scene(c.desc, options);
+      RenderSettings settings = small_settings(48, 36, c.aa);
+      settings.isa = Isa::scalar;
+      settings.threads = 1;
+      const RenderResult reference = render(scene, settings);
+      ASSERT_GT(reference.stats.rays.primary_hits, 0u) << c.name;
       settings.isa = isa_of(unit);
       settings.threads = 2;
       const RenderResult r = render(scene, settings);
       expect_same_image(reference.image, r.image, std::string(c.name) + " at " + std::string(kernel_unit_name(unit)));
       EXPECT_EQ(r.stats.rays.total(), reference.stats.rays.total()) << c.name;
     }
-   }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(EveryUnit, RenderUnits, ::testing::ValuesIn(kUnits),
+                         [](const ::testing::TestParamInfo<KernelUnit>& info) {
+                           return std::string(kernel_unit_name(info.param));
+                         });
 
 TEST(Render, BvhGivesTheSameImageAsScanning) {
   // Hit ids differ (a BVH reorders its store); everything seen does not.

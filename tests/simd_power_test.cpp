@@ -1,7 +1,7 @@
 // The lane-generic power (simd/power.h) against libm in double: relative
 // error within its stated bound over the shininess range scenes use, exact
 // at the edges the shading relies on. (Every width runs the same formula; the
-// whole-image test Render.EveryUnitGivesTheSameBits checks their bits.)
+// whole-image test RenderUnits.GiveTheScalarReferenceBits checks their bits.)
 #include <cmath>
 #include <limits>
 
