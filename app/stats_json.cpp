@@ -71,16 +71,22 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
   const RayCounts& rays = stats.rays;
 
   json waves = json::array();
-  WaveLanes overall = stats.shadow;
+  WaveLanes every_wave;
   for (std::size_t depth = 0; depth < stats.waves.size(); ++depth) {
     const WaveLanes& wave = stats.waves[depth];
     json entry = lane_entry(wave);
     entry["depth"] = depth;
     waves.push_back(std::move(entry));
-    overall.active += wave.active;
-    overall.issued_compacted += wave.issued_compacted;
-    overall.issued_uncompacted += wave.issued_uncompacted;
+    every_wave.active += wave.active;
+    every_wave.issued_compacted += wave.issued_compacted;
+    every_wave.issued_uncompacted += wave.issued_uncompacted;
   }
+  // The shading packets are the waves' packets; their active lanes are the hits.
+  const WaveLanes shading{stats.shading_active, every_wave.issued_compacted, every_wave.issued_uncompacted};
+  WaveLanes overall = every_wave;
+  overall.active += stats.shadow.active;
+  overall.issued_compacted += stats.shadow.issued_compacted;
+  overall.issued_uncompacted += stats.shadow.issued_uncompacted;
 
   const double render_seconds = result.render_ms / 1000.0;
   return {
@@ -118,7 +124,7 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
       {"lane_utilization",
        {{"waves", std::move(waves)},
         {"shadow", lane_entry(stats.shadow)},
-        {"shading", lane_entry(stats.shading)},
+        {"shading", lane_entry(shading)},
         {"light_samples",
          {{"active", stats.light_sample_active},
           {"issued", stats.light_sample_issued},

@@ -13,7 +13,6 @@
 #pragma once
 
 #include <limits>
-#include <optional>
 
 #include "simd/lanes.h"
 
@@ -34,14 +33,6 @@ inline Vec3<F> refract(const Vec3<F>& incident, const Vec3<F>& normal, const F& 
   const F k = F(1.f) - eta * eta * (F(1.f) - c1 * c1);
   transmitted = !(k < F(0.f));
   return incident * eta + normal * (eta * c1 - sqrt(select(transmitted, k, F(0.f))));
-}
-
-// One ray: T, or nothing on total internal reflection.
-inline std::optional<Vec3<float>> refract(const Vec3<float>& incident, const Vec3<float>& normal, float eta) {
-  bool transmitted = false;
-  const Vec3<float> t = refract(incident, normal, eta, transmitted);
-  if (!transmitted) return std::nullopt;
-  return t;
 }
 
 // Rounding error of p = o + t d per component, from |o| and |t d|: a few

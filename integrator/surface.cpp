@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "integrator/optics.h"
 #include "integrator/texture.h"
 
 namespace quiver {
@@ -48,8 +47,7 @@ namespace {
 
 Vec3<float> material_color(const Scene& scene, const MaterialDesc& m, float u, float v, const Vec3<float>& p) {
   if (!m.texture) return m.color;
-  const Vec3<float> t = evaluate(scene.textures[*m.texture], u, v, p);
-  return {t.x * m.color.x, t.y * m.color.y, t.z * m.color.z};
+  return mul(evaluate(scene.textures[*m.texture], u, v, p), m.color);
 }
 
 }  // namespace
@@ -66,7 +64,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   s.material = &scene.materials[s.material_index];
   // Texture coordinates only for textured materials (atan2 and asin are dear).
   const bool textured = s.material->texture.has_value();
-  const Vec3<float> position = textured ? hit_position(ray, hit) : Vec3<float>(0.f, 0.f, 0.f);
+  const Vec3<float> position = textured ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f);
   switch (s.ref.kind) {
     case PrimitiveKind::sphere: {
       if (!textured) break;
@@ -96,7 +94,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
         const Vec3<float> n = tri.normal(i, 0) * w0 + tri.normal(i, 1) * hit.u + tri.normal(i, 2) * hit.v;
         if (dot(n, n) > 0.f) {
           s.smooth = true;
-          s.shading = normalize(n);
+          s.interpolated = normalize(n);
         }
       }
       break;
@@ -132,24 +130,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
 
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
   const SurfaceDetail d = surface_detail(scene, ray, hit);
-  SurfacePoint s;
-  s.ref = d.ref;
-  s.material_index = d.material_index;
-  s.material = d.material;
-  s.u = d.u;
-  s.v = d.v;
-  s.position = hit_position(ray, hit);
-  s.error = hit_point_error(ray.origin, ray.direction, hit.t);
-  const Vec3<float> outward = normalize(hit.ng);
-  const Vec3<float> shading = d.smooth ? d.shading : outward;
-  s.entering = dot(ray.direction, outward) < 0.f;
-  s.geometric = s.entering ? outward : -outward;
-  s.shading = dot(shading, s.geometric) < 0.f ? -shading : shading;
-  return s;
-}
-
-Vec3<float> surface_color(const Scene& scene, const SurfacePoint& s) {
-  return material_color(scene, *s.material, s.u, s.v, s.position);
+  return {surface_frame(ray, hit, d.smooth, d.interpolated), d};
 }
 
 }  // namespace quiver

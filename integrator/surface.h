@@ -12,49 +12,32 @@
 #include <cstdint>
 
 #include "geometry/hit.h"
+#include "integrator/surface_frame.h"
 #include "scene/scene.h"
 
 namespace quiver {
 
-struct SurfacePoint {
-  Vec3<float> position;
-  Vec3<float> error;            // bound on |position - exact hit| per component
-  Vec3<float> geometric;        // unit geometric normal facing the incoming ray
-  Vec3<float> shading;          // unit shading normal on the same side
-  bool entering;                // the ray arrives on the primitive's outward side
-  float u, v;                   // texture coordinates (the kernel's u, v when untextured)
-  const MaterialDesc* material;
-  std::uint32_t material_index;
-  PrimitiveRef ref;
-};
-
-// What a hit needs beyond its point and geometric normal, which the wave's
-// lanes compute (integrator/wave_shading.h): the primitive, its material,
-// the interpolated shading normal where the primitive has one, and the
-// texture coordinates and colour.
+// What a hit needs beyond its frame (integrator/surface_frame.h), which the
+// wave's lanes compute: the primitive, its material, the interpolated
+// shading normal where the primitive has one, and the texture coordinates
+// and colour.
 struct SurfaceDetail {
   PrimitiveRef ref;
   std::uint32_t material_index;
   const MaterialDesc* material;
-  bool smooth;          // the shading normal is interpolated, not the geometric one
-  Vec3<float> shading;  // unit, the primitive's orientation; set where smooth
-  float u, v;           // texture coordinates (the kernel's u, v when untextured)
-  Vec3<float> color;    // the material's colour at the point (texture times colour)
+  bool smooth;               // the shading normal is interpolated, not the geometric one
+  Vec3<float> interpolated;  // unit, the primitive's orientation; set where smooth
+  float u, v;                // texture coordinates (the kernel's u, v when untextured)
+  Vec3<float> color;         // the material's colour at the point (texture times colour)
 };
 
-// The point of a hit and its unit outward (primitive-oriented) normal, as
-// every width computes them.
-inline Vec3<float> hit_position(const Ray<float>& ray, const Hit<float>& hit) {
-  return ray.origin + ray.direction * hit.t;
-}
+// One ray's surface: its frame and its detail.
+struct SurfacePoint : SurfaceFrame<float>, SurfaceDetail {};
 
 // The detail of hit (id != kNoHit) of ray (unit or not; t in its units).
 SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
 
 // The surface at hit (id != kNoHit) of ray (unit or not; t in its units).
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
-
-// The material's colour at the point: texture(u, v, p) times colour.
-Vec3<float> surface_color(const Scene& scene, const SurfacePoint& s);
 
 }  // namespace quiver

@@ -23,7 +23,7 @@ void TraceStats::add(const TraceStats& o) {
   rays.refraction += o.rays.refraction;
   for (std::size_t d = 0; d < o.waves.size(); ++d) add_lanes(wave(d), o.waves[d]);
   add_lanes(shadow, o.shadow);
-  add_lanes(shading, o.shading);
+  shading_active += o.shading_active;
   light_sample_active += o.light_sample_active;
   light_sample_issued += o.light_sample_issued;
   phases.camera_and_film += o.phases.camera_and_film;

@@ -56,9 +56,9 @@ struct TraceStats {
   PhaseTimes phases;
   std::vector<WaveLanes> waves;  // index = bounce depth (0: primary)
   WaveLanes shadow;              // all shadow waves together
-  // The shading packets: active = lanes with a hit; uncompacted = the
-  // waves' uncompacted lanes (a recursion shades the packets it traced).
-  WaveLanes shading;
+  // Lanes of the shading packets with a hit. The shading packets are the
+  // waves' packets, so they issue what the waves issue.
+  std::uint64_t shading_active = 0;
   // Light sample iterations (packet x sample, packets with a lit lane):
   // active = lanes casting a shadow ray; no uncompacted form.
   std::uint64_t light_sample_active = 0, light_sample_issued = 0;

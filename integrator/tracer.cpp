@@ -10,8 +10,6 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-Vec3<float> mul(const Vec3<float>& a, const Vec3<float>& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-float max_component(const Vec3<float>& a) { return std::max(a.x, std::max(a.y, a.z)); }
 std::size_t padded_to(std::size_t n, std::size_t w) { return (n + w - 1) / w * w; }
 
 std::size_t light_slot_count(const Scene& scene) {
@@ -32,24 +30,7 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
       slots_(light_slot_count(scene)),
       occlusion_(slots_.size()),
-      transmittance_(slots_.size()) {
-  material_by_id_.resize(scene.primitive_count());
-  detail_by_id_.resize(scene.primitive_count());
-  auto number = [&](std::int32_t id_base, const std::vector<PrimitiveOrigin>& origins, bool smooth) {
-    for (std::size_t k = 0; k < origins.size(); ++k) {
-      const std::size_t id = std::size_t(id_base) + k;
-      material_by_id_[id] = static_cast<std::int32_t>(origins[k].material);
-      detail_by_id_[id] = smooth || scene.materials[origins[k].material].texture.has_value() ? 1 : 0;
-    }
-  };
-  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    number(g->spheres.id_base, g->sphere_origin, false);
-    number(g->planes.id_base, g->plane_origin, false);
-    number(g->triangles.id_base, g->triangle_origin, g->triangles.has_normals());
-    number(g->polygons.id_base, g->polygon_origin, false);
-    number(g->cones.id_base, g->cone_origin, false);
-  }
-}
+      transmittance_(slots_.size()) {}
 
 void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats) {
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
@@ -67,7 +48,6 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
   primary.issued_compacted += padded_to(samples.size(), width_);
   primary.issued_uncompacted += padded_to(samples.size(), width_);
 
-  std::uint64_t wave_uncompacted = padded_to(samples.size(), width_);
   PhaseClock clock;
   for (int depth = 0; rays_.count > 0; ++depth) {
     hits_.reset(rays_);
@@ -81,9 +61,7 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     shaded_.slots = &slots_;
     shaded_.next_rays = &next_rays_;
     shaded_.next_paths = &next_paths_;
-    shaded_.hits = shaded_.reflection = shaded_.refraction = 0;
-    shaded_.shadow_uncompacted = shaded_.next_uncompacted = 0;
-    shaded_.shading_issued = shaded_.light_active = shaded_.light_issued = 0;
+    shaded_.counts = {};
     const WaveShadingInput in{&scene_,           &materials_,         &rays_,         &hits_,
                               &paths_,           &surfaces_,          depth < settings_.max_depth,
                               settings_.min_weight, settings_.seed};
@@ -93,24 +71,21 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
       Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
       out = out + Vec3<float>(shaded_.emitted_r[i], shaded_.emitted_g[i], shaded_.emitted_b[i]);
     }
-    if (depth == 0) stats.rays.primary_hits += shaded_.hits;
-    stats.shading.active += shaded_.hits;
-    stats.shading.issued_compacted += shaded_.shading_issued;
-    stats.shading.issued_uncompacted += wave_uncompacted;
-    stats.light_sample_active += shaded_.light_active;
-    stats.light_sample_issued += shaded_.light_issued;
-    stats.rays.reflection += shaded_.reflection;
-    stats.rays.refraction += shaded_.refraction;
+    if (depth == 0) stats.rays.primary_hits += shaded_.counts.hits;
+    stats.shading_active += shaded_.counts.hits;
+    stats.light_sample_active += shaded_.counts.light_active;
+    stats.light_sample_issued += shaded_.counts.light_issued;
+    stats.rays.reflection += shaded_.counts.reflection;
+    stats.rays.refraction += shaded_.counts.refraction;
     clock.charge(stats.phases.shading);
-    resolve_shadows(colors, shaded_.shadow_uncompacted, stats);
+    resolve_shadows(colors, shaded_.counts.shadow_uncompacted, stats);
     clock.charge(stats.phases.shadows);
     if (next_rays_.count > 0) {
       WaveLanes& next = stats.wave(std::size_t(depth) + 1);
       next.active += next_rays_.count;
       next.issued_compacted += padded_to(next_rays_.count, width_);
-      next.issued_uncompacted += shaded_.next_uncompacted;
+      next.issued_uncompacted += shaded_.counts.next_uncompacted;
     }
-    wave_uncompacted = shaded_.next_uncompacted;
     std::swap(rays_, next_rays_);
     std::swap(paths_, next_paths_);
     rays_.pad();
@@ -124,11 +99,11 @@ void Tracer::resolve_surfaces() {
   for (std::size_t i = 0; i < rays_.count; ++i) {
     const std::int32_t id = hits_.id[i];
     if (id == kNoHit) continue;
-    if (detail_by_id_[std::size_t(id)] == 0) {
-      // A flat, untextured surface: its material's colour.
-      const std::int32_t material = material_by_id_[std::size_t(id)];
-      const Vec3<float>& color = scene_.materials[std::size_t(material)].color;
-      surfaces_.material[i] = material;
+    if (scene_.plain_of_id[std::size_t(id)] != 0) {
+      // A plain surface: its material's colour.
+      const std::uint32_t material = scene_.material_of_id[std::size_t(id)];
+      const Vec3<float>& color = scene_.materials[material].color;
+      surfaces_.material[i] = static_cast<std::int32_t>(material);
       surfaces_.color_r[i] = color.x;
       surfaces_.color_g[i] = color.y;
       surfaces_.color_b[i] = color.z;
@@ -138,9 +113,9 @@ void Tracer::resolve_surfaces() {
     surfaces_.material[i] = static_cast<std::int32_t>(d.material_index);
     if (d.smooth) {
       surfaces_.smooth[i] = 1;
-      surfaces_.nx[i] = d.shading.x;
-      surfaces_.ny[i] = d.shading.y;
-      surfaces_.nz[i] = d.shading.z;
+      surfaces_.nx[i] = d.interpolated.x;
+      surfaces_.ny[i] = d.interpolated.y;
+      surfaces_.nz[i] = d.interpolated.z;
     }
     surfaces_.color_r[i] = d.color.x;
     surfaces_.color_g[i] = d.color.y;
@@ -208,8 +183,8 @@ void Tracer::transmit(std::size_t s) {
       const std::uint32_t k = transit_index_[j];
       const Hit<float> h = transit_hits_.get(j);
       if (h.id == kNoHit) continue;
-      const SurfacePoint p = surface_at(scene_, transit_rays_.get(j), h);
-      transmittance[k] = mul(transmittance[k], surface_color(scene_, p) * p.material->kt);
+      const SurfaceDetail d = surface_detail(scene_, transit_rays_.get(j), h);
+      transmittance[k] = mul(transmittance[k], d.color * d.material->kt);
       if (!(max_component(transmittance[k]) > 0.f)) {
         occluded[k] = 1;
         continue;

@@ -75,10 +75,6 @@ class Tracer {
   std::size_t width_;
   MaterialTable materials_;
   ShadeWaveFunction shade_wave_;
-  // Per hit id: its material, and 1 where the scalar pass needs
-  // surface_detail (a textured material or interpolated normals).
-  std::vector<std::int32_t> material_by_id_;
-  std::vector<std::uint8_t> detail_by_id_;
 
   RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;

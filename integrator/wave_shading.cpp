@@ -9,6 +9,7 @@
 
 #include "integrator/optics.h"
 #include "integrator/sample_hash.h"
+#include "integrator/surface_frame.h"
 #include "simd/power.h"
 
 namespace quiver {
@@ -23,15 +24,6 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr float kShadowEndFraction = 1.f - 1e-4f;
 // Keys of the reflection and refraction rays a path spawns: mix64(key ^ tag).
 constexpr std::uint64_t kReflectionTag = 0x5265666cULL, kRefractionTag = 0x52667263ULL;
-
-template <class F>
-Vec3<F> mul(const Vec3<F>& a, const Vec3<F>& b) {
-  return {a.x * b.x, a.y * b.y, a.z * b.z};
-}
-template <class F>
-F max_component(const Vec3<F>& a) {
-  return max(a.x, max(a.y, a.z));
-}
 
 // A packet's lanes in memory, for the per-lane appends.
 struct LaneArray {
@@ -88,29 +80,6 @@ void append_shadow_rays(ShadowSlot& slot, unsigned bits, std::size_t first, cons
     slot.point[i] = static_cast<std::int32_t>(first + std::size_t(k));
     set_vec3(slot.light_r, slot.light_g, slot.light_b, i, carried.x, carried.y, carried.z, k);
   }
-}
-
-// The surface of a packet's hits, as surface_at computes it for one.
-template <class F>
-struct SurfaceLanes {
-  Vec3<F> position, error, geometric, shading, color;
-  Mask<F> entering;
-};
-
-template <class F>
-SurfaceLanes<F> surface_lanes(const Ray<F>& ray, const Hit<F>& hit, const SurfaceColumns& columns,
-                              std::size_t first) {
-  SurfaceLanes<F> s;
-  s.position = ray.origin + ray.direction * hit.t;
-  s.error = hit_point_error(ray.origin, ray.direction, hit.t);
-  const Vec3<F> outward = normalize(hit.ng);
-  const Mask<F> smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
-  const Vec3<F> interpolated = select(smooth, load_vec3<F>(columns.nx, columns.ny, columns.nz, first), outward);
-  s.entering = dot(ray.direction, outward) < F(0.f);
-  s.geometric = select(s.entering, outward, -outward);
-  s.shading = select(dot(interpolated, s.geometric) < F(0.f), -interpolated, interpolated);
-  s.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
-  return s;
 }
 
 // The light sample's direction from each lane's origin (not unit) and the
@@ -183,14 +152,16 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const Hit<F> hit = in.hits->load<F>(first);
   const Mask<F> hit_mask = active & nonzero_lanes(hit.id - IntLanes<F>(kNoHit));
   const Vec3<F> weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
-  const SurfaceLanes<F> s = surface_lanes(ray, hit, *in.surfaces, first);
-  const IntLanes<F> material = load_int_lanes<F>(in.surfaces->material.data() + first);
-  out.hits += std::popcount(lane_bits(hit_mask));
-  out.shading_issued += W;
+  const SurfaceColumns& columns = *in.surfaces;
+  const SurfaceFrame<F> s = surface_frame(ray, hit, nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first)),
+                                          load_vec3<F>(columns.nx, columns.ny, columns.nz, first));
+  const Vec3<F> color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
+  const IntLanes<F> material = load_int_lanes<F>(columns.material.data() + first);
+  out.counts.hits += std::popcount(lane_bits(hit_mask));
 
   // Ambient ka Ia colour where a surface is hit; the background on a miss.
   const F ka = gather_lanes<F>(table.ka.data(), material);
-  const Vec3<F> ambient = mul(weight, mul(Vec3<F>(scene.ambient), s.color) * ka);
+  const Vec3<F> ambient = mul(weight, mul(Vec3<F>(scene.ambient), color) * ka);
   const Vec3<F> emitted = select(hit_mask, ambient, mul(weight, Vec3<F>(scene.background)));
   store_lanes(emitted.x, out.emitted_r.data() + first);
   store_lanes(emitted.y, out.emitted_g.data() + first);
@@ -222,14 +193,14 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
         const F n_dot_h = max(dot(s.shading, half), F(0.f));
         const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
         // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
-        const Vec3<F> reflected = s.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
+        const Vec3<F> reflected = color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
         const Vec3<F> contribution = mul(weight, mul(intensity, reflected));
         cast = cast & (max_component(contribution) > F(0.f));
         const unsigned bits = lane_bits(cast);
-        out.light_issued += W;
-        out.light_active += std::popcount(bits);
+        out.counts.light_issued += W;
+        out.counts.light_active += std::popcount(bits);
         if (bits == 0) continue;
-        out.shadow_uncompacted += W;
+        out.counts.shadow_uncompacted += W;
         append_shadow_rays((*out.slots)[slot], bits, first, origin, direction, tmax, contribution);
       }
     }
@@ -240,7 +211,7 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const F kt = gather_lanes<F>(table.kt.data(), material);
   const F ior = gather_lanes<F>(table.ior.data(), material);
   Vec3<F> reflect_weight = weight * kr;
-  Vec3<F> refract_weight = mul(weight, s.color * kt);
+  Vec3<F> refract_weight = mul(weight, color * kt);
   // Snell through the shading normal, else (bent behind the surface) the geometric one.
   const Mask<F> transmissive = kt > F(0.f);
   const F eta = select(s.entering, F(1.f) / ior, ior);
@@ -261,10 +232,10 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
 
   const Vec3<F> mirrored = reflect(incident, s.shading);
   const Vec3<F> reflected = select(dot(mirrored, s.geometric) > F(0.f), mirrored, reflect(incident, s.geometric));
-  if (reflection_bits != 0) out.next_uncompacted += W;
-  if (refraction_bits != 0) out.next_uncompacted += W;
-  out.reflection += std::popcount(reflection_bits);
-  out.refraction += std::popcount(refraction_bits);
+  if (reflection_bits != 0) out.counts.next_uncompacted += W;
+  if (refraction_bits != 0) out.counts.next_uncompacted += W;
+  out.counts.reflection += std::popcount(reflection_bits);
+  out.counts.refraction += std::popcount(refraction_bits);
   // Appended by lane, a lane's reflection before its refraction.
   const Vec3Lanes<F> outside(origin), inside(offset_origin(s.position, s.error, -s.geometric));
   const Vec3Lanes<F> reflected_lanes(reflected), refracted_lanes(refracted);

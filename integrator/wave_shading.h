@@ -35,19 +35,23 @@ struct WaveShadingInput {
   std::uint64_t seed;
 };
 
+// What shading a wave counted, for TraceStats.
+struct WaveShadingCounts {
+  std::uint64_t hits = 0, reflection = 0, refraction = 0;
+  // Lanes a per-packet masked recursion would issue (trace_stats.h).
+  std::uint64_t shadow_uncompacted = 0, next_uncompacted = 0;
+  // Lanes issued by the light sample iterations of packets with a lit lane
+  // (active: the lanes that cast a shadow ray).
+  std::uint64_t light_active = 0, light_issued = 0;
+};
+
 struct WaveShadingOutput {
   // Per ray: the light it adds at once (the ambient term, or the background on a miss).
   AlignedFloats emitted_r, emitted_g, emitted_b;
   std::vector<ShadowSlot>* slots;  // one per light sample slot; appended to
   RaySoA* next_rays;               // the spawned rays, appended densely
   PathColumns* next_paths;
-  std::uint64_t hits = 0, reflection = 0, refraction = 0;
-  // Lanes a per-packet masked recursion would issue (trace_stats.h).
-  std::uint64_t shadow_uncompacted = 0, next_uncompacted = 0;
-  // Lanes issued by the shading packets (hits are the active ones), and by
-  // the light sample iterations of packets with a lit lane (active: the
-  // lanes that cast a shadow ray).
-  std::uint64_t shading_issued = 0, light_active = 0, light_issued = 0;
+  WaveShadingCounts counts;        // added to
 };
 
 // out.emitted_* are sized by the call; slots, next_rays and next_paths are appended to.

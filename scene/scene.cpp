@@ -146,7 +146,8 @@ const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
 }
 
 std::size_t Scene::memory_bytes() const {
-  std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes();
+  std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes() + bytes_of(material_of_id) +
+                      bytes_of(plain_of_id);
   for (const Texture& t : textures) bytes += bytes_of(t.image.rgb);
   return bytes;
 }
@@ -256,6 +257,22 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
     number(g->triangles);
     number(g->polygons);
     number(g->cones);
+  }
+  scene.material_of_id.resize(scene.primitive_count());
+  scene.plain_of_id.resize(scene.primitive_count());
+  auto tabulate = [&](std::int32_t id_base, const std::vector<PrimitiveOrigin>& origins, bool interpolated) {
+    for (std::size_t k = 0; k < origins.size(); ++k) {
+      const std::size_t id = std::size_t(id_base) + k;
+      scene.material_of_id[id] = origins[k].material;
+      scene.plain_of_id[id] = !interpolated && !scene.materials[origins[k].material].texture ? 1 : 0;
+    }
+  };
+  for (const GeometryLayer* g : {&o, &t}) {
+    tabulate(g->spheres.id_base, g->sphere_origin, false);
+    tabulate(g->planes.id_base, g->plane_origin, false);
+    tabulate(g->triangles.id_base, g->triangle_origin, g->triangles.has_normals());
+    tabulate(g->polygons.id_base, g->polygon_origin, false);
+    tabulate(g->cones.id_base, g->cone_origin, false);
   }
 
   Box bounds = empty_box();

@@ -87,13 +87,18 @@ struct Scene {
   // transmissive); empty when the kind is scanned (see SceneBuildOptions).
   Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
   SceneCounts counts;
+  // Per hit id (a store's id_base + index): the primitive's material, and 1
+  // where its surface is plain (no interpolated normals, no texture), so
+  // the material alone says how it looks.
+  std::vector<std::uint32_t> material_of_id;
+  std::vector<std::uint8_t> plain_of_id;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
 
   PrimitiveRef locate(std::int32_t id) const;
   const GeometryLayer& layer(bool transmissive_layer) const { return transmissive_layer ? transmissive : opaque; }
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
   std::size_t primitive_count() const { return opaque.primitive_count() + transmissive.primitive_count(); }
-  std::size_t memory_bytes() const;  // geometry stores and textures
+  std::size_t memory_bytes() const;  // geometry stores, per-id tables and textures
   std::size_t acceleration_bytes() const;  // BVH nodes
 };
 

@@ -500,6 +500,16 @@ template <class F>
 inline Vec3<F> select(const Mask<F>& m, const Vec3<F>& a, const Vec3<F>& b) {
   return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
 }
+// Component by component (colours and weights).
+template <class F>
+inline Vec3<F> mul(const Vec3<F>& a, const Vec3<F>& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+// The largest component (max's NaN rule).
+template <class F>
+inline F max_component(const Vec3<F>& a) {
+  return max(a.x, max(a.y, a.z));
+}
 // Cross product with each component from difference_of_products (error <= 1.5 ulp).
 template <class F>
 inline Vec3<F> cross_accurate(const Vec3<F>& a, const Vec3<F>& b) {
