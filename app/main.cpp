@@ -3,8 +3,11 @@
 // a scene holds, `quiver trace SCENE` times the primary rays' closest hits
 // and prints one JSON line (app/trace_command.h). Exit codes: 0 success,
 // 1 failure (unreadable or invalid scene, render or write error), 2 usage
-// error (bad flag or value). Errors go to stderr as "quiver: <message>"; no
-// output file is left on failure.
+// error (bad flag or value, an output naming an input or another output),
+// 130 / 143 interrupted by SIGINT / SIGTERM (app/interrupt.h). Errors go to
+// stderr as "quiver: <message>". A render's outputs are staged and renamed
+// over their targets together once all were written: on any failure or
+// interruption no output file is created or changed.
 // The only translation unit that includes CLI11 (it is slow to compile).
 #include <CLI/CLI.hpp>
 
@@ -16,10 +19,10 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
-#include <optional>
 #include <stdexcept>
 #include <string>
-#include <system_error>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -28,8 +31,11 @@
 #include "scene/scene.h"
 #include "scene/auto_view.h"
 #include "io/image_output.h"
+#include "io/output_file.h"
 #include "io/parse_error.h"
+#include "app/interrupt.h"
 #include "app/progress_bar.h"
+#include "app/render_outputs.h"
 #include "app/render_options.h"
 #include "app/scene_info.h"
 #include "io/scene_loader.h"
@@ -108,14 +114,6 @@ fs::path default_output(const std::string& scene) {
   return fs::path(scene).stem().string() + ".png";
 }
 
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code error;
-  const fs::path ca = fs::weakly_canonical(a, error);
-  if (error) return false;
-  const fs::path cb = fs::weakly_canonical(b, error);
-  return !error && ca == cb;
-}
-
 // The scene, as read, with the time it took.
 quiver::SceneDesc load(const std::string& scene, double& load_ms) {
   const Clock::time_point start = Clock::now();
@@ -150,38 +148,61 @@ void print_summary(const quiver::RenderResult& result, const quiver::RenderSetti
                output.string().c_str());
 }
 
+// "interrupted by SIGINT <when>; nothing written", exit 130 (143 for SIGTERM).
+int report_interrupted(std::string_view when) {
+  const int signal = quiver::interrupting_signal();
+  return report("interrupted by " + quiver::signal_name(signal) + " " + std::string(when) +
+                    "; nothing written, existing files unchanged",
+                quiver::interrupted_exit_code(signal));
+}
+
 int run_render(const RenderArgs& args) {
   // Everything the flags alone decide, before the scene is read.
   quiver::Isa isa;
-  fs::path output = args.output.empty() ? default_output(args.scene) : fs::path(args.output);
+  const fs::path output = args.output.empty() ? default_output(args.scene) : fs::path(args.output);
+  std::vector<quiver::RoleFile> outputs{{"--output", output}};
+  if (!args.stats.empty()) outputs.push_back({"--stats", args.stats});
   try {
     quiver::check_render_options(args.options);
     isa = quiver::choose_isa(args.options.simd, std::getenv("QUIVER_SIMD"));
     const bool has_aovs = args.options.aov && quiver::parse_aov_list(*args.options.aov).any();
     quiver::check_output_path(output, has_aovs);
-    if (!args.stats.empty()) {
-      quiver::check_stats_path(args.stats);
-      if (same_file(args.stats, output)) throw UsageError("--stats and --output name the same file");
-    }
+    if (!args.stats.empty()) quiver::check_stats_path(args.stats);
+    std::vector<quiver::RoleFile> scene_file;
+    if (!args.scene.empty()) scene_file.push_back({"the scene file", args.scene});
+    quiver::check_outputs_spare_inputs(outputs, scene_file);
   } catch (const std::exception& error) {
     return report(error.what(), kExitUsage);
   }
 
+  quiver::install_interrupt_handlers();
   try {
     double load_ms = 0.0;
     quiver::SceneDesc desc = load(args.scene, load_ms);
+    try {
+      quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
+    } catch (const UsageError& error) {
+      return report(error.what(), kExitUsage);
+    }
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
     if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
 
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, plan.build, args.scene, build_ms);
 
+    quiver::set_interrupt_phase(quiver::InterruptPhase::rendering);
     quiver::ProgressBar progress(stderr, !args.quiet && quiver::is_terminal(stderr));
     const quiver::RenderResult result = quiver::render(
-        scene, plan.settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+        scene, plan.settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); },
+        &quiver::stop_requested());
     progress.finish();
+    if (result.stopped) {
+      return report_interrupted("during the render, after " + std::to_string(result.tiles_done) + " of " +
+                                std::to_string(result.tiles_total) + " tiles");
+    }
 
-    std::optional<nlohmann::json> stats;
+    quiver::StagedOutputs staged;
+    quiver::stage_image(staged, output, result.image);
     if (!args.stats.empty()) {
       quiver::RenderStatsContext context;
       context.version = QUIVER_VERSION;
@@ -191,18 +212,10 @@ int run_render(const RenderArgs& args) {
       context.build_ms = build_ms;
       context.scene_memory_bytes = scene.memory_bytes();
       context.acceleration_memory_bytes = scene.acceleration_bytes();
-      stats = quiver::render_stats_json(result, plan.settings, context);
+      quiver::stage_json_file(staged, args.stats, quiver::render_stats_json(result, plan.settings, context));
     }
-    quiver::write_image(output, result.image);
-    if (stats) {
-      try {
-        quiver::write_json_file(args.stats, *stats);
-      } catch (...) {
-        std::error_code ignored;
-        fs::remove(output, ignored);  // no output on failure
-        throw;
-      }
-    }
+    if (quiver::stop_requested()) return report_interrupted("while writing the outputs");
+    staged.commit();
     if (!args.quiet) print_summary(result, plan.settings, load_ms, build_ms, output);
     return 0;
   } catch (...) {
@@ -380,7 +393,9 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
 int main(int argc, char** argv) {
   CLI::App app{"quiver: a data-oriented SIMD packet ray tracer (Whitted: Phong shading, shadows, reflection, "
                "refraction, textures, anti-aliasing).\nExit codes: 0 success, 1 failure (bad scene, render or "
-               "write error), 2 usage error.",
+               "write error), 2 usage error (also: an output naming a file the render reads or another output), "
+               "130/143 interrupted by SIGINT/SIGTERM (the render stops at its next tile; no output is written "
+               "or changed).",
                "quiver"};
   app.footer("Run 'quiver render --help', 'quiver info --help' or 'quiver trace --help' for the options of each "
              "command.");

@@ -147,10 +147,10 @@ void check_stats_path(const fs::path& path) {
   check_output_directory(path);
 }
 
-void write_json_file(const fs::path& path, const json& value) {
+void stage_json_file(StagedOutputs& outputs, const fs::path& path, const json& value) {
   check_stats_path(path);
   const std::string text = value.dump(2) + "\n";
-  write_file_atomically(path, [&](const fs::path& temporary) {
+  outputs.stage(path, [&](const fs::path& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) fail(path, "cannot create '" + temporary.string() + "'");
     out.write(text.data(), std::streamsize(text.size()));

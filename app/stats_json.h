@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "integrator/render.h"
+#include "io/output_file.h"
 
 namespace quiver {
 
@@ -49,8 +50,8 @@ nlohmann::json render_stats_json(const RenderResult& result, const RenderSetting
 // directory and not a directory itself. Throws std::runtime_error("<path>: ...").
 void check_stats_path(const std::filesystem::path& path);
 
-// Writes json (indented) to path atomically. Throws std::runtime_error
-// ("<path>: <message>") on failure.
-void write_json_file(const std::filesystem::path& path, const nlohmann::json& json);
+// Writes json (indented) to a temporary staged in outputs for path.
+// Throws std::runtime_error ("<path>: <message>") on failure.
+void stage_json_file(StagedOutputs& outputs, const std::filesystem::path& path, const nlohmann::json& json);
 
 }  // namespace quiver

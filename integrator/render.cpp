@@ -266,7 +266,8 @@ std::vector<PixelTile> pixel_tiles(int width, int height, int side) {
   return tiles;
 }
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress) {
+RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress,
+                    const std::atomic<bool>* stop) {
   if (settings.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
   const Camera camera(scene.camera, settings.width, settings.height);
   RenderResult result;
@@ -303,6 +304,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         [&](const tbb::blocked_range<std::size_t>& range) {
           Worker& w = workers.local();
           for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            if (stop != nullptr && stop->load(std::memory_order_relaxed)) return;
             // camera_and_film: the tile's time less what the tracer charged to its phases.
             const std::uint64_t traced_before = w.stats.phases.total();
             PhaseClock clock;
@@ -320,7 +322,10 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         },
         tbb::simple_partitioner());
   });
-  if (settings.aa.mode == AntiAliasing::Mode::corners) average_corners(corners, image);
+  result.tiles_total = tiles.size();
+  result.tiles_done = done.load();
+  result.stopped = result.tiles_done < result.tiles_total;
+  if (settings.aa.mode == AntiAliasing::Mode::corners && !result.stopped) average_corners(corners, image);
   result.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const Worker& w : workers) result.stats.add(w.stats);
   return result;

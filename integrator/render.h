@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -37,6 +38,8 @@ struct RenderResult {
   double render_ms = 0.0;
   int threads = 0;  // threads actually used
   SphereMethod sphere_method = SphereMethod::robust;  // the one the render used
+  std::size_t tiles_done = 0, tiles_total = 0;
+  bool stopped = false;  // the stop flag was seen: tiles not yet started were skipped, the image is incomplete
 };
 
 // A rectangle of pixels: the renderer's unit of work.
@@ -69,6 +72,9 @@ std::vector<PixelTile> pixel_tiles(int width, int height, int side);
 // threads one at a time.
 using RenderProgress = std::function<void(std::size_t done, std::size_t total)>;
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress = {});
+// stop, when given, is read before each tile: once it is true no further
+// tile starts and the result says stopped (a signal handler may set it).
+RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress = {},
+                    const std::atomic<bool>* stop = nullptr);
 
 }  // namespace quiver

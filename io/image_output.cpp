@@ -222,7 +222,7 @@ void check_output_path(const fs::path& path, bool with_aovs) {
   check_output_directory(path);
 }
 
-void write_image(const fs::path& path, const Framebuffer& framebuffer) {
+void stage_image(StagedOutputs& outputs, const fs::path& path, const Framebuffer& framebuffer) {
   const bool with_aovs = has_aovs(framebuffer);
   check_output_path(path, with_aovs);
   check_sizes(path, framebuffer);
@@ -246,7 +246,7 @@ void write_image(const fs::path& path, const Framebuffer& framebuffer) {
     }
   }
 
-  write_file_atomically(path, [&](const fs::path& temporary) {
+  outputs.stage(path, [&](const fs::path& temporary) {
     switch (format.writer) {
       case Writer::png:
         write_png(path, temporary, framebuffer.width, framebuffer.height, bytes);
@@ -260,6 +260,12 @@ void write_image(const fs::path& path, const Framebuffer& framebuffer) {
         break;
     }
   });
+}
+
+void write_image(const fs::path& path, const Framebuffer& framebuffer) {
+  StagedOutputs outputs;
+  stage_image(outputs, path, framebuffer);
+  outputs.commit();
 }
 
 }  // namespace quiver

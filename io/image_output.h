@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "integrator/framebuffer.h"
+#include "io/output_file.h"
 
 namespace quiver {
 
@@ -24,10 +25,14 @@ namespace quiver {
 // Throws std::runtime_error("<path>: <message>").
 void check_output_path(const std::filesystem::path& path, bool has_aovs);
 
-// Writes the framebuffer as described above. Throws std::runtime_error
-// ("<path>: <message>") when the path fails check_output_path or writing
-// fails, and std::invalid_argument when the framebuffer's arrays do not
-// match its size.
+// Writes the framebuffer as described above to a temporary staged in
+// outputs for path (committed with the other outputs). Throws
+// std::runtime_error ("<path>: <message>") when the path fails
+// check_output_path or writing fails, and std::invalid_argument when the
+// framebuffer's arrays do not match its size.
+void stage_image(StagedOutputs& outputs, const std::filesystem::path& path, const Framebuffer& framebuffer);
+
+// stage_image and commit for one image on its own.
 void write_image(const std::filesystem::path& path, const Framebuffer& framebuffer);
 
 }  // namespace quiver

@@ -652,6 +652,7 @@ class ObjReader {
       mtl_bytes_ += library->text.size();
       read_mtl(*library, materials_);
       library_names_.emplace_back(name.text);
+      scene_.source_files.push_back(library->file_name);
     }
   }
 
@@ -756,6 +757,11 @@ void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transfor
   // Nothing below throws except on allocation: the scene changes only here.
   const std::size_t material_base = scene.materials.size();
   const std::size_t texture_base = scene.textures.size();
+  mesh.source_files.insert(mesh.source_files.begin(), name);
+  for (std::string& file : mesh.source_files) {
+    const auto& known = scene.source_files;
+    if (std::find(known.begin(), known.end(), file) == known.end()) scene.source_files.push_back(std::move(file));
+  }
   if (!material_override) {
     for (TextureDesc& texture : mesh.textures) scene.textures.push_back(std::move(texture));
     for (MaterialDesc material : mesh.materials) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -17,34 +18,39 @@ namespace {
   throw std::runtime_error(path.string() + ": " + message);
 }
 
-fs::path temporary_path(const fs::path& target) {
+// ".<name>.<kind>-<pid>-<n><extension>" beside target.
+fs::path sibling_path(const fs::path& target, const char* kind) {
   static std::atomic<unsigned long> counter{0};
   std::string name = ".";
   name += target.filename().string();
-  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  name += std::string(".") + kind + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
   name += target.extension().string();
   return target.parent_path() / name;
 }
 
-// Removes the file on scope exit unless committed.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(path_, ignored);
-    }
-  }
-  const fs::path& path() const { return path_; }
-  void commit() { committed_ = true; }
+void remove_quietly(const fs::path& path) noexcept {
+  std::error_code ignored;
+  fs::remove(path, ignored);
+}
 
- private:
-  fs::path path_;
-  bool committed_ = false;
+// A committed target: whether it existed, and its earlier file kept as a hard link.
+struct Replaced {
+  fs::path target;
+  bool existed = false;
+  std::optional<fs::path> earlier;
 };
+
+// Puts back what the targets held before the commit began.
+void restore(const std::vector<Replaced>& replaced) noexcept {
+  for (auto it = replaced.rbegin(); it != replaced.rend(); ++it) {
+    std::error_code ignored;
+    if (it->earlier) {
+      fs::rename(*it->earlier, it->target, ignored);
+    } else if (!it->existed) {
+      fs::remove(it->target, ignored);
+    }  // else: a file system without hard links; the new file stays
+  }
+}
 
 }  // namespace
 
@@ -57,13 +63,58 @@ void check_output_directory(const fs::path& path) {
   if (fs::is_directory(fs::status(path, error))) fail(path, "is a directory");
 }
 
-void write_file_atomically(const fs::path& path, const std::function<void(const fs::path& temporary)>& write) {
-  TemporaryFile temporary(temporary_path(path));
-  write(temporary.path());
-  std::error_code error;
-  fs::rename(temporary.path(), path, error);
-  if (error) fail(path, "cannot replace the file: " + error.message());
-  temporary.commit();
+StagedOutputs::~StagedOutputs() { discard(); }
+
+void StagedOutputs::stage(const fs::path& target, const Writer& write) {
+  const fs::path temporary = sibling_path(target, "tmp");
+  staged_.reserve(staged_.size() + 1);  // the push below cannot throw once the file exists
+  try {
+    write(temporary);
+  } catch (...) {
+    remove_quietly(temporary);
+    throw;
+  }
+  staged_.push_back({target, temporary});
+}
+
+void StagedOutputs::commit() {
+  std::vector<Replaced> replaced;
+  replaced.reserve(staged_.size());
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    const Staged s = staged_[i];
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(s.target, error);
+    Replaced entry{s.target, fs::exists(status), std::nullopt};
+    if (fs::is_regular_file(status)) {
+      const fs::path earlier = sibling_path(s.target, "old");
+      fs::create_hard_link(s.target, earlier, error);
+      if (!error) entry.earlier = earlier;  // without hard links, the old file cannot be put back
+    }
+    fs::rename(s.temporary, s.target, error);
+    if (error) {
+      if (entry.earlier) remove_quietly(*entry.earlier);
+      restore(replaced);
+      staged_.erase(staged_.begin(), staged_.begin() + std::ptrdiff_t(i));
+      discard();
+      fail(s.target, "cannot replace the file: " + error.message());
+    }
+    replaced.push_back(std::move(entry));
+  }
+  for (const Replaced& r : replaced) {
+    if (r.earlier) remove_quietly(*r.earlier);
+  }
+  staged_.clear();
+}
+
+void StagedOutputs::discard() noexcept {
+  for (const Staged& s : staged_) remove_quietly(s.temporary);
+  staged_.clear();
+}
+
+void write_file_atomically(const fs::path& path, const StagedOutputs::Writer& write) {
+  StagedOutputs outputs;
+  outputs.stage(path, write);
+  outputs.commit();
 }
 
 }  // namespace quiver

@@ -1,10 +1,12 @@
-// Output files that are never left half-written: checks made before a long
-// render, and writing through a temporary file beside the target that is
-// renamed over it only after it was written and closed.
+// Output files that are never left half-written and never lost: checks made
+// before a long render, and writing through temporary files beside the
+// targets that are renamed over them only after every one of them was
+// written and closed.
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 namespace quiver {
 
@@ -12,12 +14,44 @@ namespace quiver {
 // is missing or not a directory, or the target is a directory.
 void check_output_directory(const std::filesystem::path& path);
 
-// Calls write(temporary) for a temporary name beside path (unique in and
-// among processes, keeping path's extension), then renames it over path.
-// If write throws or the rename fails, the temporary is removed, an
-// existing target is untouched, and the error propagates (the rename
-// failure as std::runtime_error("<path>: cannot replace the file: ...")).
-void write_file_atomically(const std::filesystem::path& path,
-                           const std::function<void(const std::filesystem::path& temporary)>& write);
+// Outputs written together: stage() writes each to a temporary name beside
+// its target (unique in and among processes, keeping the target's
+// extension); commit() renames them over their targets in staging order.
+// While committing, a target that existed is kept as a hard link, so when a
+// rename fails the targets already replaced get their old files back and
+// the ones that did not exist are removed (on a file system without hard
+// links a replaced file cannot be put back). Temporaries not committed are
+// removed by discard() and the destructor. Not copyable.
+class StagedOutputs {
+ public:
+  using Writer = std::function<void(const std::filesystem::path& temporary)>;
+
+  StagedOutputs() = default;
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+  ~StagedOutputs();
+
+  // Calls write(temporary). If it throws, that temporary is removed and the
+  // error propagates; what was staged before stays staged.
+  void stage(const std::filesystem::path& target, const Writer& write);
+
+  // Renames every staged temporary over its target. On a failed rename the
+  // targets are put back as described above, the remaining temporaries are
+  // removed, and std::runtime_error("<path>: cannot replace the file: ...")
+  // is thrown.
+  void commit();
+
+  // Removes the temporaries not committed.
+  void discard() noexcept;
+
+ private:
+  struct Staged {
+    std::filesystem::path target, temporary;
+  };
+  std::vector<Staged> staged_;
+};
+
+// One output on its own: StagedOutputs with a single stage and commit.
+void write_file_atomically(const std::filesystem::path& path, const StagedOutputs::Writer& write);
 
 }  // namespace quiver

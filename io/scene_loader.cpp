@@ -27,6 +27,7 @@ SceneDesc load_scene(const std::filesystem::path& path) {
     throw ParseError::whole_file(path.string(),
                                  "unknown scene format (" + shown + "): expected .nff, .toml or .obj");
   }
+  scene.source_files.insert(scene.source_files.begin(), path.string());
   read_texture_images(scene);
   return scene;
 }

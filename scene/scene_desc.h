@@ -121,6 +121,10 @@ struct SceneDesc {
   std::vector<ScenePolygon> polygons;
   std::vector<SceneCone> cones;
   RenderDesc render;
+  // The files the scene was read from, each once, in reading order: the
+  // scene file, OBJ meshes and MTL libraries (texture images are in
+  // textures[].path).
+  std::vector<std::string> source_files;
 };
 
 }  // namespace quiver

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -102,9 +103,19 @@ class Cli : public ::testing::Test {
   // Runs the program in work() with args; environment (e.g.
   // "LD_DEBUG=files") is set for the program alone.
   Outcome run(const std::vector<std::string>& args, const std::string& environment = "") const {
-    std::string command("cd ");
-    command += shell_quoted(work().string());
-    command += " && ";
+    return run_shell("cd " + shell_quoted(work().string()) + " && " + program_call(args, environment));
+  }
+
+  // Runs the program in work() in the background and sends it `signal`
+  // ("INT", "TERM") after `seconds`.
+  Outcome run_and_signal(const std::vector<std::string>& args, const std::string& signal, double seconds) const {
+    return run_shell("cd " + shell_quoted(work().string()) + " && { " + program_call(args, "") +
+                     " & pid=$!; sleep " + std::to_string(seconds) + "; kill -" + signal + " $pid; wait $pid; }");
+  }
+
+  // "[env ENVIRONMENT] quiver ARGS >io/stdout 2>io/stderr", quoted for sh.
+  std::string program_call(const std::vector<std::string>& args, const std::string& environment) const {
+    std::string command;
     if (!environment.empty()) command += "env " + shell_quoted(environment) + " ";
     command += shell_quoted(kCli.string());
     for (const std::string& arg : args) {
@@ -115,6 +126,10 @@ class Cli : public ::testing::Test {
     command += shell_quoted((io() / "stdout").string());
     command += " 2>";
     command += shell_quoted((io() / "stderr").string());
+    return command;
+  }
+
+  Outcome run_shell(const std::string& command) const {
     const int status = std::system(command.c_str());
     Outcome result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -267,6 +282,80 @@ TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err.rfind("quiver: ", 0), 0u) << r.err;
     EXPECT_TRUE(work_files().empty());
+  }
+}
+
+// Copies of the scenes and of every file they read go in io()/inputs, so a
+// check that fails overwrites a copy; returns the bytes of each file there.
+std::map<std::string, std::string> contents(const fs::path& directory) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(directory)) {
+    if (entry.is_regular_file()) files[fs::relative(entry.path(), directory).string()] = read_text(entry.path());
+  }
+  return files;
+}
+
+TEST_F(Cli, NoOutputMayNameAFileTheRenderReads) {
+  const fs::path inputs = io() / "inputs";
+  fs::create_directories(inputs);
+  fs::copy(kTexturedObj.parent_path(), inputs / "obj", fs::copy_options::recursive);
+  fs::copy_file(kTiny, inputs / "tiny.nff");
+  fs::create_symlink(inputs / "obj" / "tex" / "checker.png", inputs / "texture_link.png");
+  fs::create_hard_link(inputs / "tiny.nff", inputs / "tiny_hard_link.nff");
+  const std::map<std::string, std::string> before = contents(inputs);
+  const std::string nff = (inputs / "tiny.nff").string(), obj = (inputs / "obj" / "materials.obj").string();
+  const std::string size[] = {"--width", "8", "--height", "6"};
+  const std::vector<std::vector<std::string>> cases = {
+      {"render", nff, "-o", "out.png", "--stats", nff},                                          // the scene
+      {"render", nff, "-o", "out.png", "--stats", (inputs / "." / "tiny.nff").string()},         // another spelling
+      {"render", nff, "-o", "out.png", "--stats", (inputs / "tiny_hard_link.nff").string()},     // a hard link
+      {"render", obj, "-o", "out.png", "--stats", obj},                                          // an OBJ scene
+      {"render", obj, "-o", "out.png", "--stats", (inputs / "obj" / "materials.mtl").string()},  // its MTL
+      {"render", obj, "-o", (inputs / "obj" / "tex" / "checker.png").string()},                  // its texture
+      {"render", obj, "-o", (inputs / "texture_link.png").string()},                             // a symlink to it
+  };
+  for (std::vector<std::string> args : cases) {
+    args.insert(args.end(), std::begin(size), std::end(size));
+    std::string joined;
+    for (const std::string& a : args) joined += a + " ";
+    SCOPED_TRACE(joined);
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("the render reads"), std::string::npos) << r.err;
+    EXPECT_TRUE(work_files().empty());
+    EXPECT_EQ(contents(inputs), before);
+  }
+}
+
+TEST_F(Cli, AFailedStatsWriteLeavesEveryOutputAsItWas) {
+  std::ofstream(work() / "a.png") << "OLD";
+  // /proc exists and is a directory, so the path passes the early checks and the write itself fails.
+  const std::vector<std::string> args = {"render", kTiny.string(), "-o", "a.png", "--width", "8", "--height", "6",
+                                         "--stats", "/proc/quiver_stats.json"};
+  const Outcome r = run(args);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("quiver_stats.json"), std::string::npos) << r.err;
+  EXPECT_EQ(work_files(), std::vector<std::string>{"a.png"});
+  EXPECT_EQ(read_text(work() / "a.png"), "OLD");
+  fs::remove(work() / "a.png");
+  EXPECT_EQ(run(args).exit_code, 1);
+  EXPECT_TRUE(work_files().empty());
+}
+
+TEST_F(Cli, SigintAndSigtermStopTheRenderAndWriteNothing) {
+  for (const auto& [signal, exit_code] : {std::pair<std::string, int>{"INT", 130}, {"TERM", 143}}) {
+    SCOPED_TRACE(signal);
+    std::ofstream(work() / "out.exr") << "OLD";
+    // The built-in scene at 64 samples per pixel: many seconds of tiles.
+    const Outcome r = run_and_signal({"render", "-o", "out.exr", "--stats", "stats.json", "--aa", "grid:8", "--width",
+                                      "1024", "--height", "1024", "-q"},
+                                     signal, 1.0);
+    EXPECT_EQ(r.exit_code, exit_code);
+    // The program's own line (a process killed outright prints none).
+    EXPECT_EQ(r.err.rfind("quiver: interrupted by SIG" + signal + " during the render, after ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(work_files(), std::vector<std::string>{"out.exr"});  // no temporary file, no stats
+    EXPECT_EQ(read_text(work() / "out.exr"), "OLD");
   }
 }
 

@@ -197,6 +197,13 @@ class StatsFile : public ::testing::Test {
   fs::path dir_;
 };
 
+// stage_json_file and commit, as the CLI writes a stats file.
+void write_json_file(const fs::path& path, const json& value) {
+  StagedOutputs outputs;
+  stage_json_file(outputs, path, value);
+  outputs.commit();
+}
+
 TEST_F(StatsFile, WritesParsableJsonAndNoTemporaryFile) {
   const Example e = example();
   const json j = render_stats_json(e.result, e.settings, e.context);

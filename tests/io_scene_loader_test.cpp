@@ -65,5 +65,24 @@ TEST(SceneLoader, EveryExampleSceneLoads) {
   }
 }
 
+// source_files lists the scene, then each OBJ mesh and MTL library as read.
+TEST(SceneLoader, RecordsEveryFileItReads) {
+  const fs::path obj = kTestData / "obj" / "materials.obj";
+  const SceneDesc from_obj = load_scene(obj);
+  ASSERT_EQ(from_obj.source_files.size(), 2u);
+  EXPECT_EQ(fs::path(from_obj.source_files[0]), obj);
+  EXPECT_EQ(fs::path(from_obj.source_files[1]).filename(), "materials.mtl");
+  EXPECT_TRUE(fs::equivalent(from_obj.source_files[1], kTestData / "obj" / "materials.mtl"));
+
+  const fs::path toml = kExamples / "mesh_include.toml";
+  const SceneDesc from_toml = load_scene(toml);
+  ASSERT_EQ(from_toml.source_files.size(), 2u);
+  EXPECT_EQ(fs::path(from_toml.source_files[0]), toml);
+  EXPECT_TRUE(fs::equivalent(from_toml.source_files[1], kExamples / "octahedron.obj"));
+
+  EXPECT_EQ(load_scene(kTestData / "scenes" / "tiny.nff").source_files,
+            std::vector<std::string>{(kTestData / "scenes" / "tiny.nff").string()});
+}
+
 }  // namespace
 }  // namespace quiver

@@ -1,0 +1,34 @@
+// SIGINT and SIGTERM in `quiver render`. While the scene is read and built
+// nothing has been written, so a signal ends the process at once: one line
+// on stderr, exit 128 + the signal number (130, 143). From the render on, a
+// signal only raises the stop flag: the render stops before its next tile,
+// and the caller removes its temporary files, says what was interrupted and
+// exits with the same code.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+namespace quiver {
+
+enum class InterruptPhase { reading, rendering };
+
+// Installs the handlers (system calls restart after them), the phase being
+// `reading`. Idempotent.
+void install_interrupt_handlers();
+
+void set_interrupt_phase(InterruptPhase phase);
+
+// Raised by the first SIGINT or SIGTERM while `rendering`.
+const std::atomic<bool>& stop_requested();
+
+// The signal that raised the stop flag; 0 when none did.
+int interrupting_signal();
+
+// "SIGINT", "SIGTERM", else "signal N".
+std::string signal_name(int signal);
+
+// 128 + signal: the shell's convention for a process ended by a signal.
+constexpr int interrupted_exit_code(int signal) { return 128 + signal; }
+
+}  // namespace quiver

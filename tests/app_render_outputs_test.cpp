@@ -1,0 +1,79 @@
+// The outputs-against-inputs check (app/render_outputs.h): one file under
+// several names (spellings, symlinks, hard links) is found, distinct files
+// are not, and every role of a file read is named.
+#include "app/render_outputs.h"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/render_options.h"
+#include "support/temporary_directory.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RenderOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::ofstream(at("scene.nff")) << "s 0 0 0 1\n";
+    std::ofstream(at("other.nff")) << "s 0 0 0 1\n";  // the same bytes, another file
+    fs::create_directory(at("sub"));
+    fs::create_symlink(at("scene.nff"), at("link.nff"));
+    fs::create_hard_link(at("scene.nff"), at("hard.nff"));
+  }
+  fs::path at(const char* name) const { return dir_.path() / name; }
+
+  testing::TemporaryDirectory dir_{"quiver_render_outputs_test"};
+};
+
+TEST_F(RenderOutputs, OneFileUnderEveryName) {
+  for (const fs::path& name : {at("scene.nff"), dir_.path() / "sub" / ".." / "scene.nff",
+                               dir_.path() / "." / "scene.nff", at("link.nff"), at("hard.nff")}) {
+    EXPECT_TRUE(same_file(name, at("scene.nff"))) << name;
+  }
+  EXPECT_FALSE(same_file(at("other.nff"), at("scene.nff")));
+  EXPECT_FALSE(same_file(at("missing.png"), at("scene.nff")));
+  EXPECT_TRUE(same_file(at("missing.png"), dir_.path() / "sub" / ".." / "missing.png"));  // neither exists
+}
+
+TEST_F(RenderOutputs, AnOutputNamingAnInputIsAUsageErrorNamingBoth) {
+  const std::vector<RoleFile> inputs{{"the scene file", at("scene.nff")}, {"a texture image", at("other.nff")}};
+  try {
+    check_outputs_spare_inputs({{"--output", at("out.png")}, {"--stats", at("hard.nff")}}, inputs);
+    FAIL() << "no error";
+  } catch (const UsageError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("--stats names '" + at("hard.nff").string() + "', the scene file the render reads"),
+              std::string::npos)
+        << message;
+  }
+  EXPECT_THROW(check_outputs_spare_inputs({{"--output", at("other.nff")}}, inputs), UsageError);
+  EXPECT_THROW(check_outputs_spare_inputs({{"--output", at("a.png")}, {"--stats", at("sub/../a.png")}}, {}),
+               UsageError);
+  EXPECT_NO_THROW(check_outputs_spare_inputs({{"--output", at("a.png")}, {"--stats", at("a.json")}}, inputs));
+}
+
+TEST_F(RenderOutputs, FilesReadNameTheirRoles) {
+  SceneDesc desc;
+  desc.source_files = {"scene.toml", "mesh.obj", "mesh.MTL"};
+  TextureDesc image;
+  image.kind = TextureDesc::Kind::image;
+  image.path = "wood.png";
+  desc.textures = {TextureDesc{}, image};  // a checker has no file
+  const std::vector<RoleFile> read = files_read(desc, true);
+  ASSERT_EQ(read.size(), 4u);
+  EXPECT_EQ(read[0].role, "the scene file");
+  EXPECT_EQ(read[1].role, "an OBJ mesh");
+  EXPECT_EQ(read[2].role, "an MTL material library");
+  EXPECT_EQ(read[3].role, "a texture image");
+  EXPECT_EQ(read[3].path, "wood.png");
+  EXPECT_EQ(files_read(desc, false)[0].role, "an OBJ mesh");
+}
+
+}  // namespace
+}  // namespace quiver

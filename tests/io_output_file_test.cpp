@@ -1,0 +1,111 @@
+// StagedOutputs (io/output_file.h): outputs renamed over their targets
+// together, only after all were written; temporaries removed on failure;
+// targets put back when a rename fails part-way.
+#include "io/output_file.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/temporary_directory.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A writer putting `text` in the temporary.
+StagedOutputs::Writer writing(const std::string& text) {
+  return [text](const fs::path& temporary) { std::ofstream(temporary, std::ios::binary) << text; };
+}
+
+class Staged : public ::testing::Test {
+ protected:
+  std::vector<std::string> names() const {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(dir_.path())) found.push_back(entry.path().filename().string());
+    std::sort(found.begin(), found.end());
+    return found;
+  }
+  fs::path at(const char* name) const { return dir_.path() / name; }
+
+  testing::TemporaryDirectory dir_{"quiver_output_file_test"};
+};
+
+TEST_F(Staged, NothingReplacesATargetBeforeTheCommit) {
+  std::ofstream(at("a.png")) << "OLD";
+  {
+    StagedOutputs outputs;
+    outputs.stage(at("a.png"), writing("NEW"));
+    outputs.stage(at("b.json"), writing("{}"));
+    EXPECT_EQ(read_text(at("a.png")), "OLD");
+    EXPECT_EQ(names().size(), 3u);  // a.png and two temporaries
+    outputs.commit();
+  }
+  EXPECT_EQ(read_text(at("a.png")), "NEW");
+  EXPECT_EQ(read_text(at("b.json")), "{}");
+  EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "b.json"}));
+}
+
+TEST_F(Staged, AFailedWriteLeavesEveryTargetAndNoTemporary) {
+  std::ofstream(at("a.png")) << "OLD";
+  {
+    StagedOutputs outputs;
+    outputs.stage(at("a.png"), writing("NEW"));
+    EXPECT_THROW(outputs.stage(at("b.json"),
+                               [](const fs::path& temporary) {
+                                 std::ofstream(temporary) << "partial";
+                                 throw std::runtime_error("disk full");
+                               }),
+                 std::runtime_error);
+  }  // never committed
+  EXPECT_EQ(read_text(at("a.png")), "OLD");
+  EXPECT_EQ(names(), std::vector<std::string>{"a.png"});
+}
+
+TEST_F(Staged, DiscardRemovesTheTemporaries) {
+  StagedOutputs outputs;
+  outputs.stage(at("a.png"), writing("NEW"));
+  outputs.discard();
+  EXPECT_TRUE(names().empty());
+  outputs.commit();  // nothing left to commit
+  EXPECT_TRUE(names().empty());
+}
+
+TEST_F(Staged, AFailedRenamePutsBackTheTargetsAlreadyReplaced) {
+  std::ofstream(at("a.png")) << "OLD";
+  StagedOutputs outputs;
+  outputs.stage(at("a.png"), writing("NEW"));
+  outputs.stage(at("new.exr"), writing("NEW"));
+  outputs.stage(at("c.json"), writing("{}"));
+  // A directory with a file in it cannot be replaced by a file.
+  fs::create_directories(at("c.json") / "inside");
+  EXPECT_THROW(outputs.commit(), std::runtime_error);
+  EXPECT_EQ(read_text(at("a.png")), "OLD");  // put back
+  EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "c.json"}));  // new.exr did not exist: removed
+}
+
+TEST_F(Staged, WriteFileAtomicallyKeepsTheOldFileWhenTheWriteFails) {
+  std::ofstream(at("a.png")) << "OLD";
+  EXPECT_THROW(write_file_atomically(at("a.png"), [](const fs::path&) { throw std::runtime_error("no"); }),
+               std::runtime_error);
+  EXPECT_EQ(read_text(at("a.png")), "OLD");
+  write_file_atomically(at("a.png"), writing("NEW"));
+  EXPECT_EQ(read_text(at("a.png")), "NEW");
+  EXPECT_EQ(names(), std::vector<std::string>{"a.png"});
+}
+
+}  // namespace
+}  // namespace quiver
