@@ -45,8 +45,9 @@ PolygonDesc in_plane(const std::vector<Point2>& outline, float z0 = 0.f, float s
   return d;
 }
 
-// The kernel's rule in double: half-open straddle, crossing on the +x side
-// iff the point is left of a->b for an upward edge (right of it downward).
+// The crossing rule in the polygon's own projection, in double (the band
+// spans' parity): half-open straddle, crossing on the +x side iff the point
+// is left of a->b for an upward edge (right of it downward).
 bool crossing_reference(const std::vector<Point2>& poly, double x, double y) {
   bool inside = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -55,6 +56,22 @@ bool crossing_reference(const std::vector<Point2>& poly, double x, double y) {
     if ((a.y > y) == b_above) continue;
     const double side = (y - a.y) * (b.x - a.x) - (x - a.x) * (b.y - a.y);
     if ((side > 0) == b_above) inside = !inside;
+  }
+  return inside;
+}
+
+// The kernel's ray-space rule (geometry/polygon.h) in double for a ray along
+// -z through (x, y): kz = z, swapped (d.z < 0), so the sheared frame is
+// x' = Y - y, y' = X - x; an edge straddles iff its ends differ in y' > 0
+// and crosses iff lo.x' hi.y' - lo.y' hi.x' > 0 (lo, hi: its ends below and above).
+bool ray_space_reference(const std::vector<Point2>& poly, double x, double y) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Point2 a{poly[j].y - y, poly[j].x - x}, b{poly[i].y - y, poly[i].x - x};
+    const bool b_above = b.y > 0;
+    if ((a.y > 0) == b_above) continue;
+    const Point2 lo = b_above ? a : b, hi = b_above ? b : a;
+    if (lo.x * hi.y - lo.y * hi.x > 0) inside = !inside;
   }
   return inside;
 }
@@ -242,8 +259,8 @@ TEST(PolygonStability, RaysThroughVerticesAndAlongEdges) {
           wrong = kernel != (winding_number(outline, x, y) != 0);
           wrong_off_boundary += wrong;
           on_vertex_scanline += vertex_row;
-        } else {  // on it: the half-open rule, evaluated exactly
-          wrong = kernel != crossing_reference(outline, x, y);
+        } else {  // on it: the ray-space half-open rule, evaluated exactly
+          wrong = kernel != ray_space_reference(outline, x, y);
           wrong_on_boundary += wrong;
         }
         if (wrong && first_wrong.empty()) first_wrong = std::to_string(x) + ", " + std::to_string(y);
@@ -265,7 +282,7 @@ TEST(PolygonStability, ParallelRaysMissWithoutNaN) {
   EXPECT_EQ(closest({{0.5f, 0.5f, 2}, {1, 1, 0}, 0.f, kInf}, l).id, kNoHit);  // above it
   Candidate<float> c;
   const Ray<float> in_plane_ray{{0.5f, 0.5f, 1}, {1, 0, 0}, 0.f, kInf};
-  EXPECT_FALSE(PolygonCrossing::intersect(in_plane_ray, l.broadcast<float>(0), kInf, true, c));
+  EXPECT_FALSE(PolygonCrossing::intersect(PolygonCrossing::prepare(in_plane_ray), l.broadcast<float>(0), kInf, true, c));
   EXPECT_TRUE(std::isfinite(c.t));
   EXPECT_TRUE(std::isfinite(c.u) && std::isfinite(c.v));
 }
@@ -276,8 +293,8 @@ TEST(PolygonKernel, ClosestOfSeveralAndInactiveLanes) {
   EXPECT_EQ(h.id, 1);  // first of the two equal hits
   EXPECT_FLOAT_EQ(h.t, 4.f);
   Candidate<float> c;
-  EXPECT_FALSE(PolygonCrossing::intersect(Ray<float>{{0.5f, 0.5f, 5}, {0, 0, -1}, 0.f, kInf}, ps.broadcast<float>(0),
-                                          kInf, false, c));
+  EXPECT_FALSE(PolygonCrossing::intersect(PolygonCrossing::prepare(Ray<float>{{0.5f, 0.5f, 5}, {0, 0, -1}, 0.f, kInf}),
+                                          ps.broadcast<float>(0), kInf, false, c));
 }
 
 TEST(PolygonBuild, DropsDegenerateNonPlanarAndNonFinite) {
@@ -691,8 +708,9 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
 }
 
-// Each lane reads only its band's edges, yet every result equals the full
-// edge loop's bit for bit, at every width, in both orientations.
+// The band spans decide only lanes clear of every edge by their margin, so
+// every result equals the ray-space loop's over all edges (band_count 0)
+// bit for bit, at every width, in both orientations.
 TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
   RaySampler s(23);
   const std::vector<PolygonDesc> descs = banded_polygon_descs(s);
