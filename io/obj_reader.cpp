@@ -131,6 +131,13 @@ class LineScanner {
     throw ParseError(file_, line_, taken_end_ + 1, expected, kEndOfLine);
   }
 
+  // Once next_statement() returned false: the position past the last byte.
+  [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
+    const bool ends_a_line = !text_.empty() && (text_.back() == '\n' || text_.back() == '\r');
+    if (ends_a_line) throw ParseError(file_, line_ + 1, 1, expected, found);
+    throw ParseError(file_, std::max<std::size_t>(line_, 1), line_text_.size() + 1, expected, found);
+  }
+
   // A finite float using the whole token (a leading '+' is allowed), the
   // decimal value correctly rounded. A value too small for float becomes a
   // signed zero; one too large, or of magnitude over 3.4e38, is an error.
@@ -475,6 +482,10 @@ class ObjReader {
       } else {
         scan_.fail_at(keyword, kObjStatementList);
       }
+    }
+    // A mesh without faces draws nothing: almost always a mistake.
+    if (scene_.triangles.empty()) {
+      scan_.fail_at_end_of_file("at least one face ('f'; 'l' and 'p' draw nothing)", kNoObjectsFound);
     }
     return std::move(scene_);
   }

@@ -1,5 +1,7 @@
 #include "io/parse_error.h"
 
+#include <algorithm>
+
 namespace quiver {
 
 namespace {
@@ -54,6 +56,13 @@ std::string quoted_token(std::string_view token) {
   if (token.size() > kShownBytes) quoted += "...";
   quoted += '\'';
   return quoted;
+}
+
+TextPosition end_of_text(std::string_view text) {
+  const std::size_t last_newline = text.rfind('\n');
+  const std::size_t line_start = last_newline == std::string_view::npos ? 0 : last_newline + 1;
+  const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+  return {lines + 1, text.size() - line_start + 1};
 }
 
 std::string joined(std::initializer_list<std::string_view> parts) {

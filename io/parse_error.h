@@ -32,6 +32,18 @@ class ParseError : public std::runtime_error {
   std::size_t column_ = 0;
 };
 
+// What an error says it found in a scene file that ends before any object.
+inline constexpr std::string_view kNoObjectsFound = "end of file with no objects";
+
+// A 1-based line and byte column.
+struct TextPosition {
+  std::size_t line, column;
+};
+
+// The position just past the last byte of text whose lines end at '\n':
+// where an error found at the end of a file points.
+TextPosition end_of_text(std::string_view text);
+
 // The parts of a message, concatenated.
 std::string joined(std::initializer_list<std::string_view> parts);
 

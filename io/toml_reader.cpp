@@ -255,6 +255,15 @@ class TomlSceneReader {
     for_each_entry(root, "cylinders", unbounded, [this](const toml::table& t) { read_cylinder(t); });
     for_each_entry(root, "cones", unbounded, [this](const toml::table& t) { read_cone(t); });
     for_each_entry(root, "meshes", kMaxTomlMeshes, [this](const toml::table& t) { read_mesh(t); });
+    // A scene without objects renders nothing: almost always a mistake.
+    if (scene_.spheres.empty() && scene_.planes.empty() && scene_.triangles.empty() && scene_.polygons.empty() &&
+        scene_.cones.empty()) {
+      const TextPosition end = end_of_text(text_);
+      throw ParseError(file_, end.line, end.column,
+                       "at least one object ([[spheres]], [[planes]], [[triangles]], [[polygons]], [[cylinders]], "
+                       "[[cones]] or [[meshes]])",
+                       kNoObjectsFound);
+    }
     return std::move(scene_);
   }
 

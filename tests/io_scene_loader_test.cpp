@@ -46,6 +46,23 @@ TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
   }
 }
 
+// Every reader refuses a file without objects (issue 28), at its end.
+TEST(SceneLoader, AnEmptySceneOfAnyFormatIsAnError) {
+  const testing::TemporaryDirectory temporary("quiver_loader_test");
+  for (const char* name : {"empty.nff", "empty.toml", "empty.obj"}) {
+    const fs::path path = temporary.path() / name;
+    std::ofstream{path};
+    try {
+      load_scene(path);
+      ADD_FAILURE() << "no ParseError for " << name;
+    } catch (const ParseError& error) {
+      const std::string what = error.what();
+      EXPECT_EQ(what.rfind(path.string() + ":1:1: expected at least one ", 0), 0u) << what;
+      EXPECT_NE(what.find("found end of file with no objects"), std::string::npos) << what;
+    }
+  }
+}
+
 // Every example scene in io/examples loads and holds a camera, a light and geometry.
 TEST(SceneLoader, EveryExampleSceneLoads) {
   std::vector<fs::path> examples;

@@ -193,7 +193,8 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
       "[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 0]\n[[lights]]\nposition = [1, 1, 1]\n"
       "[[lights]]\ntype = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\n"
       "edge_v = [0, 1, 0]\n[[textures]]\nname = \"t\"\ntype = \"image\"\n"
-      "file = \"../obj/tex/checker.png\"\n");
+      "file = \"../obj/tex/checker.png\"\n[[materials]]\nname = \"m\"\n" +
+      std::string(kSphere) + "material = \"m\"\n");
   ASSERT_TRUE(camera.camera.has_value());
   expect_vec3(camera.camera->up, 0.f, 1.f, 0.f);
   EXPECT_EQ(camera.camera->angle_degrees, 45.f);
@@ -203,7 +204,7 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
   expect_vec3(camera.lights[0].color, 1.f, 1.f, 1.f);
   EXPECT_EQ(camera.lights[1].samples, LightDesc{}.samples);
   EXPECT_EQ(camera.textures[0].wrap, WrapMode::repeat);
-  EXPECT_TRUE(camera.materials.empty());  // no primitive asked for the default
+  EXPECT_EQ(camera.materials.size(), 1u);  // no primitive asked for the default
 }
 
 // ---- errors, each at its position ----
@@ -230,11 +231,12 @@ TEST(TomlReader, NonAsciiWhereTomlplusplusMisreadsItIsAnError) {
   const SceneDesc scene = parse(
       "# caf\xC3\xA9 \xD0\x91\n[render]\naa = \"\xC3\xA9\\n\xD0\x91\" # \xE2\x82\xAC\n"
       "[[materials]]\nname = '\xC3\xA9'\n[[textures]]\nname = \"\"\"\xC3\xA9\"\"\"\n"
-      "type = \"checker2d\"\n");
+      "type = \"checker2d\"\n" +
+      std::string(kSphere) + "material = '\xC3\xA9'\n");
   EXPECT_EQ(scene.render.aa, "\xC3\xA9\n\xD0\x91");
   EXPECT_EQ(scene.materials.size(), 1u);
   EXPECT_EQ(scene.textures.size(), 1u);
-  EXPECT_NO_THROW(parse("\xEF\xBB\xBF[render]\nmax_depth = 2\n"));  // a byte order mark
+  EXPECT_NO_THROW(parse("\xEF\xBB\xBF[render]\nmax_depth = 2\n" + std::string(kSphere)));  // a byte order mark
   // A quoted part of a dotted key is a string too: toml++ reads it, and the
   // reader then finds a table where the material name belongs.
   EXPECT_TRUE(
@@ -320,6 +322,24 @@ TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
   for (std::size_t i = 0; i <= kMaxTomlLights; ++i) lights += "[[lights]]\nposition = [0, 0, 0]\n";
   // The entry past the bound starts on line 2 * 1024 + 1.
   EXPECT_TRUE(error_at(lights, 2 * kMaxTomlLights + 1, 1, "at most 1024 [[lights]] entries"));
+}
+
+// A scene without objects renders a blank image (issue 28): an error at the
+// end of the file, also when it has a camera, lights and materials.
+TEST(TomlReader, NoObjectsIsAnErrorAtTheEndOfTheFile) {
+  EXPECT_TRUE(error_at("", 1, 1, "at least one object ([[spheres]], [[planes]]", "found end of file with no objects"));
+  EXPECT_TRUE(error_at("[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 0]\n[[lights]]\nposition = [1, 1, 1]\n"
+                       "[[materials]]\nname = \"m\" # last",
+                       7, 18, "[[cones]] or [[meshes]])", "found end of file with no objects"));
+  for (const char* object : {
+           "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n", "[[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n",
+           "[[triangles]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n",
+           "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n",
+           "[[cylinders]]\nbase = [0, 0, 0]\napex = [0, 1, 0]\nradius = 1\n",
+           "[[cones]]\nbase = [0, 0, 0]\napex = [0, 1, 0]\nbase_radius = 1\napex_radius = 0\n",
+           "[[meshes]]\nfile = \"triangle.obj\"\n"}) {
+    EXPECT_NO_THROW(parse(object)) << object;
+  }
 }
 
 TEST(TomlReader, FilesMustExist) {
