@@ -57,17 +57,24 @@ int write_image(const char* path, const char* format, int width, int height, int
   }
 }
 
-void* open_input(const char* path, OiioImageHeader* header, char* error, std::size_t error_size) {
+void* open_input(const char* path, const char* format, OiioImageHeader* header, char* error,
+                 std::size_t error_size) {
   try {
     // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, &config);
+    // The format's plugin alone: ImageInput::open would try every plugin
+    // on a file its own plugin refuses.
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, false, &config);
     if (!input) {
       copy_message(error_of<OIIO::ImageInput>(nullptr), error, error_size);
       return nullptr;
     }
-    const OIIO::ImageSpec& spec = input->spec();
+    OIIO::ImageSpec spec;
+    if (!input->open(path, spec, config)) {
+      copy_message(error_of(input.get()), error, error_size);
+      return nullptr;
+    }
     header->width = spec.width;
     header->height = spec.height;
     header->depth = spec.depth;

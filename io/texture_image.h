@@ -13,9 +13,11 @@ namespace quiver {
 // Reads an image file. One channel is grey (replicated), two are grey +
 // alpha, three or more are RGB (+ alpha); alpha is dropped. Integer formats
 // are sRGB-decoded (exact EOTF) unless the file's "oiio:ColorSpace" names a
-// linear space; float formats are linear. Throws ParseError ("file:
-// message") for a missing, unreadable or non-image file, sizes beyond
-// kMaxTextureSide / kMaxTexturePixels, or non-finite texels.
+// linear space; float formats are linear. The format is told by the
+// file's first bytes (io/image_signature.h) and decoded by its plugin
+// alone. Throws ParseError ("file: message") for a missing, unreadable or
+// non-image file, sizes beyond kMaxTextureSide / kMaxTexturePixels, or
+// non-finite texels.
 TextureImage read_texture_image(const std::filesystem::path& path);
 
 // Reads the file of every image texture that names one and has no pixels
