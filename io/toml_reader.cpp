@@ -28,6 +28,7 @@
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
+#include "io/toml_prescan.h"
 
 namespace quiver {
 
@@ -52,6 +53,17 @@ std::string list_of(KeyList keys) {
 }
 
 bool is_continuation_byte(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+// Where a bare TOML word ends.
+bool is_toml_delimiter(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',' || c == '[' || c == ']' || c == '{' ||
+         c == '}' || c == '=' || c == '#' || static_cast<unsigned char>(c) >= 0x80;
+}
+
+// Why the input is bounded, for the bounds' error messages.
+constexpr std::string_view kTomlBoundsHint =
+    "a TOML scene is for what is written by hand; large geometry belongs in an OBJ file included with "
+    "[[meshes]], many spheres in an NFF scene";
 
 // The scene text, for turning toml++ positions into byte positions and
 // quoting what stands there. Lines end at '\n' (TOML allows no lone '\r').
@@ -100,135 +112,23 @@ class SourceText {
   std::string_view text_;
 };
 
-// toml++ 3.3 classifies some non-ASCII characters as whitespace through a
-// table that reaches __builtin_unreachable (undefined behaviour) for
-// U+00A1..U+0499 and others. It asks only outside strings and comments,
-// right after a backslash in a basic string, and after a line-ending
-// backslash in a multi-line basic string. Outside strings and comments and
-// after a backslash, a non-ASCII character is invalid TOML anyway; after a
-// line-ending backslash it is not, but is rare. This lexer finds the first
-// such character and returns its offset. Its one subtlety: toml++ reads a
-// bare value (a number, date or boolean, or anything else not opening a
-// string, array or inline table) up to a blank, line end, ']', '}', ',' or
-// '#', through quotes and brackets; keys and values are told apart with
-// '=' and the nesting of table headers, arrays and inline tables.
-std::optional<std::size_t> character_tomlplusplus_misreads(std::string_view text) {
-  enum class State { normal, bare_value, comment, basic, literal, multi_basic, multi_literal };
-  // toml++ refuses deeper nesting (TOML_MAX_NESTED_VALUES, 256) before it
-  // reads on, so the lexer may stop there too.
-  constexpr std::size_t kMaxNesting = 300;
-  State state = State::normal;
-  bool in_key = true;
-  std::vector<char> nesting;  // 'h' table header, '[' array, '{' inline table
-  auto is_ascii = [](char c) { return static_cast<unsigned char>(c) < 0x80; };
-  auto ends_bare_value = [](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ']' || c == '}' || c == ',' || c == '#';
-  };
-  auto run_of = [&](std::size_t i, char quote) {
-    std::size_t n = 0;
-    while (i + n < text.size() && text[i + n] == quote) ++n;
-    return n;
-  };
-  // toml++ skips a UTF-8 byte order mark at the start.
-  std::size_t i = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
-  while (i < text.size()) {
-    const char c = text[i];
-    switch (state) {
-      case State::normal:
-        if (!is_ascii(c)) return i;
-        if (!in_key && !ends_bare_value(c) && c != '"' && c != '\'' && c != '[' && c != '{' && c != '=') {
-          state = State::bare_value;
-          continue;
-        }
-        if (c == '#') {
-          state = State::comment;
-        } else if (c == '"' || c == '\'') {
-          const bool multi = run_of(i, c) >= 3;
-          state =
-              c == '"' ? (multi ? State::multi_basic : State::basic) : (multi ? State::multi_literal : State::literal);
-          i += multi ? 3 : 1;
-          continue;
-        } else if (c == '=') {
-          in_key = false;
-        } else if (c == '[' || c == '{') {
-          if (nesting.size() == kMaxNesting) return std::nullopt;
-          nesting.push_back(c == '{' ? '{' : (in_key && (nesting.empty() || nesting.back() == 'h') ? 'h' : '['));
-          in_key = c == '{' || nesting.back() == 'h';
-        } else if (c == ',') {
-          in_key = !nesting.empty() && nesting.back() == '{';
-        } else if ((c == ']' || c == '}') && !nesting.empty()) {
-          const bool header = nesting.back() == 'h';
-          nesting.pop_back();
-          in_key = header;
-        } else if (c == '\n' && nesting.empty()) {
-          in_key = true;
-        }
-        break;
-      case State::bare_value:
-        if (ends_bare_value(c)) {
-          state = State::normal;
-          continue;
-        }
-        if (!is_ascii(c)) return i;
-        break;
-      case State::comment:
-        if (c == '\n') {
-          state = State::normal;
-          if (nesting.empty()) in_key = true;
-        }
-        break;
-      case State::basic:
-      case State::multi_basic:
-        if (c == '\\') {
-          std::size_t next = i + 1;
-          if (state == State::multi_basic) {
-            // A line-ending backslash: toml++ tests what follows the blanks.
-            while (next < text.size() &&
-                   (text[next] == ' ' || text[next] == '\t' || text[next] == '\r' || text[next] == '\n')) {
-              ++next;
-            }
-          }
-          if (next < text.size() && !is_ascii(text[next])) return next;
-          i = next == i + 1 ? i + 2 : next;
-          continue;
-        }
-        if (c == '"') {
-          if (state == State::basic) {
-            state = State::normal;
-          } else {
-            const std::size_t run = run_of(i, '"');
-            if (run >= 3) state = State::normal;
-            i += run;
-            continue;
-          }
-        } else if (c == '\n' && state == State::basic) {
-          state = State::normal;  // unterminated: toml++ reports it
-        }
-        break;
-      case State::literal:
-        if (c == '\'' || c == '\n') state = State::normal;
-        break;
-      case State::multi_literal:
-        if (c == '\'') {
-          const std::size_t run = run_of(i, '\'');
-          if (run >= 3) state = State::normal;
-          i += run;
-          continue;
-        }
-        break;
-    }
-    ++i;
-  }
-  return std::nullopt;
-}
-
 class TomlSceneReader {
  public:
   TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir)
       : text_(text), source_(text), file_(file), base_dir_(base_dir) {}
 
   SceneDesc read() {
-    if (const std::optional<std::size_t> at = character_tomlplusplus_misreads(text_)) fail_at_byte(*at);
+    const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
+    if (prescan.misread) {
+      fail_at_byte(*prescan.misread,
+                   "an ASCII character (outside strings and comments, after a backslash in a string, and "
+                   "after a line-ending backslash, toml++ 3.3 misreads others)");
+    }
+    if (prescan.past_node_bound) {
+      fail_at_byte(*prescan.past_node_bound,
+                   joined({"at most ", std::to_string(kMaxTomlNodes), " keys, values and tables (", kTomlBoundsHint,
+                           ")"}));
+    }
     toml::table root;
     try {
       root = toml::parse(text_, file_);
@@ -293,8 +193,9 @@ class TomlSceneReader {
     throw ParseError(file_, line_number, column, expected, shown);
   }
 
-  // A non-ASCII character toml++ must not see (see character_tomlplusplus_misreads).
-  [[noreturn]] void fail_at_byte(std::size_t offset) const {
+  // An error found by prescan_toml at a byte offset; the token there is
+  // the character (a misread one) or the bare word (a value past the bound).
+  [[noreturn]] void fail_at_byte(std::size_t offset, std::string_view expected) const {
     const std::size_t line_start = text_.rfind('\n', offset == 0 ? 0 : offset - 1);
     const std::size_t start = line_start == std::string_view::npos || offset == 0 ? 0 : line_start + 1;
     const auto line =
@@ -302,10 +203,8 @@ class TomlSceneReader {
         1;
     std::size_t end = offset + 1;
     while (end < text_.size() && end - offset < 4 && is_continuation_byte(text_[end])) ++end;
-    throw ParseError(file_, line, offset - start + 1,
-                     "an ASCII character (outside strings and comments, after a backslash in a string, and "
-                     "after a line-ending backslash, toml++ 3.3 misreads others)",
-                     quoted_token(text_.substr(offset, end - offset)));
+    while (end < text_.size() && !is_toml_delimiter(text_[offset]) && !is_toml_delimiter(text_[end])) ++end;
+    throw ParseError(file_, line, offset - start + 1, expected, quoted_token(text_.substr(offset, end - offset)));
   }
 
   [[noreturn]] void fail(const toml::node& node, std::string_view expected) const {
@@ -829,14 +728,14 @@ class TomlSceneReader {
 
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir) {
   if (text.size() > kMaxTomlBytes) {
-    throw ParseError::whole_file(file_name,
-                                 joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes), " bytes"}));
+    throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
+                                                    " bytes (", kTomlBoundsHint, ")"}));
   }
   return TomlSceneReader(text, file_name, base_dir).read();
 }
 
 SceneDesc read_toml_scene(const fs::path& path) {
-  const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene");
+  const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
   return parse_toml_scene(text, path.string(), path.parent_path());
 }
 

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -339,6 +340,87 @@ TEST(TomlReader, NoObjectsIsAnErrorAtTheEndOfTheFile) {
            "[[cones]]\nbase = [0, 0, 0]\napex = [0, 1, 0]\nbase_radius = 1\napex_radius = 0\n",
            "[[meshes]]\nfile = \"triangle.obj\"\n"}) {
     EXPECT_NO_THROW(parse(object)) << object;
+  }
+}
+
+// A value of /proc/self/status in KiB ("VmRSS", "VmHWM"), or -1.
+long status_kib(const std::string& key) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind(key + ":", 0) == 0) return std::stol(line.substr(key.size() + 1));
+  }
+  return -1;
+}
+
+// Returns freed heap to the system, then sets the peak resident size
+// (VmHWM) to the current one; false when /proc/self/clear_refs refuses.
+bool reset_peak_resident_size() {
+  ::malloc_trim(0);
+  std::ofstream clear_refs("/proc/self/clear_refs");
+  clear_refs << "5";
+  clear_refs.flush();
+  return clear_refs.good();
+}
+
+// "[[polygons]]" with n vertices [0, 0, 0]: 4 nodes, then 4 a vertex.
+std::string polygon_of(std::size_t n) {
+  std::string text = "[[polygons]]\nvertices = [";
+  for (std::size_t i = 0; i < n; ++i) text += "[0, 0, 0], ";
+  return text + "]\n";
+}
+
+// toml++ builds a node of 70-120 bytes for every key, value and table
+// before the reader sees one (a million-vertex polygon, 8 MB, took 346 MB):
+// they are counted first, and past the bound nothing is built.
+TEST(TomlReader, NodesAreBoundedBeforeTomlplusplusBuildsThem) {
+  const std::size_t at_bound = (kMaxTomlNodes - 4) / 4;
+  EXPECT_EQ(parse(polygon_of(at_bound)).polygons.at(0).polygon.vertices.size(), at_bound);
+  EXPECT_TRUE(error_at(polygon_of(at_bound + 1), 2, 13 + 11 * at_bound,
+                       "at most 524288 keys, values and tables (a TOML scene is for what is written by hand; large "
+                       "geometry belongs in an OBJ file included with [[meshes]]",
+                       "found '['"));
+  // Keys, dotted keys, inline tables and strings count too.
+  std::string keys(kSphere);
+  for (std::size_t i = 0; keys.size() < 6 * kMaxTomlNodes; ++i) {
+    keys += 'a';
+    keys += std::to_string(i);
+    keys += ".b = { c = 'd' }\n";
+  }
+  try {
+    parse(keys);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_NE(std::string(error.what()).find("at most 524288 keys"), std::string::npos) << error.what();
+  }
+
+  std::string zeros = std::string(kSphere) + "junk = [0";
+  for (std::size_t i = 0; i < kMaxTomlNodes; ++i) zeros += ",0";
+  for (const std::string& text : {zeros + "]\n", polygon_of(1'000'000)}) {
+    if (!reset_peak_resident_size()) GTEST_SKIP() << "/proc/self/clear_refs cannot reset the peak resident size";
+    const long before = status_kib("VmRSS");
+    EXPECT_THROW(parse(text), ParseError);
+    const long growth_kib = status_kib("VmHWM") - before;
+    EXPECT_LT(growth_kib, 16 * 1024) << "peak resident size grew by " << growth_kib << " KiB for " << text.size()
+                                     << " bytes of TOML";
+  }
+}
+
+TEST(TomlReader, AFileLargerThanTheBoundIsRefusedUnread) {
+  const testing::TemporaryDirectory temporary("quiver_toml_test");
+  const fs::path big = temporary.path() / "big.toml";
+  std::ofstream{big};
+  fs::resize_file(big, kMaxTomlBytes + 1);
+  try {
+    read_toml_scene(big);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(error.line(), 0u);
+    EXPECT_EQ(std::string(error.what()).rfind(big.string() + ": cannot read a TOML scene: larger than the limit of " +
+                                                  std::to_string(kMaxTomlBytes) + " bytes (a TOML scene is for",
+                                              0),
+              0u)
+        << error.what();
   }
 }
 
