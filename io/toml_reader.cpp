@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrator/anti_aliasing.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
@@ -417,6 +418,15 @@ class TomlSceneReader {
     if (const toml::node* aa = t.get("aa")) {
       const std::string_view text = string(*aa, "aa", s);
       if (text.empty() || text.size() > 64) fail(*aa, expected_for("a non-empty string of at most 64 bytes", "aa", s));
+      try {
+        parse_anti_aliasing(text);
+      } catch (const std::invalid_argument& error) {
+        // "anti-aliasing[ part]: expected ..." without its first word.
+        std::string_view why = error.what();
+        if (why.starts_with("anti-aliasing")) why.remove_prefix(std::string_view("anti-aliasing").size());
+        while (why.starts_with(":") || why.starts_with(" ")) why.remove_prefix(1);
+        fail(*aa, expected_for(joined({"an anti-aliasing mode (", why, ")"}), "aa", s));
+      }
       scene_.render.aa = std::string(text);
     }
     if (const toml::node* depth = t.get("max_depth")) {

@@ -230,12 +230,12 @@ TEST(TomlReader, NonAsciiWhereTomlplusplusMisreadsItIsAnError) {
   EXPECT_TRUE(error_at("[render]\naa = \"\"\"a\\\n  \xC3\xA9\"\"\"\n", 3, 3, "an ASCII character"));
   // Comments and strings may hold any UTF-8.
   const SceneDesc scene = parse(
-      "# caf\xC3\xA9 \xD0\x91\n[render]\naa = \"\xC3\xA9\\n\xD0\x91\" # \xE2\x82\xAC\n"
+      "# caf\xC3\xA9 \xD0\x91\n[[materials]]\nname = \"\xC3\xA9\\n\xD0\x91\" # \xE2\x82\xAC\n"
       "[[materials]]\nname = '\xC3\xA9'\n[[textures]]\nname = \"\"\"\xC3\xA9\"\"\"\n"
       "type = \"checker2d\"\n" +
-      std::string(kSphere) + "material = '\xC3\xA9'\n");
-  EXPECT_EQ(scene.render.aa, "\xC3\xA9\n\xD0\x91");
-  EXPECT_EQ(scene.materials.size(), 1u);
+      std::string(kSphere) + "material = \"\xC3\xA9\\n\xD0\x91\"\n");
+  EXPECT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.spheres.at(0).material, 0u);  // the name with an escaped line break
   EXPECT_EQ(scene.textures.size(), 1u);
   EXPECT_NO_THROW(parse("\xEF\xBB\xBF[render]\nmax_depth = 2\n" + std::string(kSphere)));  // a byte order mark
   // A quoted part of a dotted key is a string too: toml++ reads it, and the
@@ -311,6 +311,20 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
                        "a point different from 'base'"));
   EXPECT_TRUE(error_at("[render]\nmin_weight = 2\n", 2, 14, "a number from 0 to 1"));
   EXPECT_TRUE(error_at("[render]\naa = \"\"\n", 2, 6, "a non-empty string"));
+}
+
+// [render] aa is checked as --aa is, at its value (it was checked when the
+// render began, with no file, line or column).
+TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
+  EXPECT_TRUE(error_at("[render]\naa = \"bogus\"\n", 2, 6,
+                       "an anti-aliasing mode (expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH or corners, "
+                       "found 'bogus') (aa in [render])",
+                       "found '\"bogus\"'"));
+  EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));
+  EXPECT_TRUE(error_at("[render]\naa = \"adaptive:-1:2\"\n", 2, 6, "threshold: expected a finite number >= 0"));
+  for (const char* mode : {"none", "grid:3", "jitter:2", "adaptive:0.05:3", "corners"}) {
+    EXPECT_EQ(parse("[render]\naa = \"" + std::string(mode) + "\"\n" + std::string(kSphere)).render.aa, mode);
+  }
 }
 
 TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
