@@ -6,6 +6,9 @@
 // plain functions; no C++ type or exception crosses the boundary. Every
 // function reports failure by its return value and writes OpenImageIO's
 // message, cut to fit and NUL-terminated, into the caller's error buffer.
+// What the libraries below print to stderr while an image is read (libpng's
+// "libpng error: ...") is captured: added to that message on failure,
+// dropped on success.
 #pragma once
 
 #include <cstddef>

@@ -7,8 +7,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -252,6 +255,61 @@ TEST(TextureFile, EachFormatIsReadByItsFirstBytes) {
   const TextureImage texel = read_texture_image(dds_path);
   EXPECT_EQ(texel.width, 1);
   EXPECT_EQ(texel.rgb, std::vector<float>({srgb_decoded(1), srgb_decoded(2), srgb_decoded(3)}));
+}
+
+// What `action` writes to this process's stderr (file descriptor 2, where
+// libraries print), captured in a temporary file.
+std::string printed_to_stderr(const std::function<void()>& action) {
+  std::FILE* capture = std::tmpfile();
+  if (capture == nullptr) {
+    ADD_FAILURE() << "no temporary file";
+    return {};
+  }
+  std::fflush(stderr);
+  const int saved = ::dup(STDERR_FILENO);
+  ::dup2(::fileno(capture), STDERR_FILENO);
+  action();
+  std::fflush(stderr);
+  ::dup2(saved, STDERR_FILENO);
+  ::close(saved);
+  std::string printed;
+  std::rewind(capture);
+  for (int c = std::fgetc(capture); c != EOF; c = std::fgetc(capture)) printed += static_cast<char>(c);
+  std::fclose(capture);
+  return printed;
+}
+
+// libpng prints "libpng error: ..." to stderr as OpenImageIO decodes; that
+// text belongs in the error, not on the terminal.
+TEST(TextureFile, DecoderMessagesAreInTheErrorNotOnStderr) {
+  TemporaryDirectory directory;
+  std::vector<std::uint8_t> pixels(64 * 64 * 3);
+  std::uint32_t state = 1;  // noise, so that the image data does not compress away
+  for (std::uint8_t& p : pixels) {
+    state = state * 1664525u + 1013904223u;
+    p = static_cast<std::uint8_t>(state >> 24);
+  }
+  const fs::path whole = directory.path() / "whole.png";
+  write_with_oiio(whole, 64, 64, 3, OIIO::TypeDesc::UINT8, pixels.data());
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 2000u);
+
+  const fs::path cut = directory.path() / "cut.png";  // ends inside the image data
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  std::string broken = bytes;  // the first chunk after IHDR renamed to an invalid type
+  broken[37] = '\x01';
+  const fs::path bad_chunk = directory.path() / "bad_chunk.png";
+  std::ofstream(bad_chunk, std::ios::binary) << broken;
+
+  for (const fs::path& path : {cut, bad_chunk}) {
+    std::string what;
+    const std::string printed = printed_to_stderr([&] { what = read_error(path); });
+    EXPECT_EQ(printed, "") << path.filename();
+    EXPECT_NE(what.find("cannot "), std::string::npos) << what;
+    EXPECT_NE(what.find("PNG"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
+  }
 }
 
 TEST(TextureFile, ASceneTexturesFilesAreReadIntoTheirDescriptions) {
