@@ -29,14 +29,17 @@ ParseError::ParseError(std::string_view file, std::size_t line, std::size_t colu
       line_(line),
       column_(column) {}
 
-ParseError::ParseError(std::string_view file, std::string what)
-    : std::runtime_error(std::move(what)), file_(file) {}
+ParseError::ParseError(std::string_view file, std::size_t line, std::size_t column, std::string what)
+    : std::runtime_error(std::move(what)), file_(file), line_(line), column_(column) {}
 
 ParseError ParseError::whole_file(std::string_view file, std::string_view message) {
-  std::string what(file);
-  what += ": ";
-  what += message;
-  return ParseError(file, std::move(what));
+  return ParseError(file, 0, 0, joined({file, ": ", message}));
+}
+
+ParseError ParseError::in_named_file(const FilePosition& at, std::string_view role, const ParseError& cause) {
+  return ParseError(at.file, at.line, at.column,
+                    joined({at.file, ":", std::to_string(at.line), ":", std::to_string(at.column), ": in the ", role,
+                            " named here: ", cause.what()}));
 }
 
 std::string quoted_token(std::string_view token) {

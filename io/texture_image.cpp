@@ -157,7 +157,13 @@ TextureImage read_texture_image(const fs::path& path) {
 void read_texture_images(SceneDesc& scene) {
   for (TextureDesc& t : scene.textures) {
     if (t.kind != TextureDesc::Kind::image || t.path.empty() || !t.rgb.empty()) continue;
-    TextureImage image = read_texture_image(t.path);
+    TextureImage image;
+    try {
+      image = read_texture_image(t.path);
+    } catch (const ParseError& error) {
+      if (t.named_at.line == 0) throw;
+      throw ParseError::in_named_file(t.named_at, "image texture", error);
+    }
     t.width = image.width;
     t.height = image.height;
     t.rgb = std::move(image.rgb);

@@ -21,7 +21,8 @@ namespace quiver {
 TextureImage read_texture_image(const std::filesystem::path& path);
 
 // Reads the file of every image texture that names one and has no pixels
-// yet into its width, height and rgb. Throws as read_texture_image.
+// yet into its width, height and rgb. Throws as read_texture_image, at the
+// texture's named_at when it has one (ParseError::in_named_file).
 void read_texture_images(SceneDesc& scene);
 
 }  // namespace quiver

@@ -175,9 +175,8 @@ class TomlSceneReader {
   // the same line (otherwise the token at the position is quoted).
   [[noreturn]] void fail_at_position(const toml::source_position& begin, std::string_view expected,
                                      std::optional<toml::source_position> end) const {
-    const std::size_t line_number = std::max<std::size_t>(begin.line, 1);
+    const auto [line_number, column] = byte_position(begin);
     const std::string_view line = source_.line(line_number);
-    const std::size_t column = SourceText::byte_column(line, std::max<std::size_t>(begin.column, 1));
     std::size_t stop = column - 1;
     if (end && end->line == begin.line) {
       stop = SourceText::byte_column(line, end->column) - 1;
@@ -192,6 +191,18 @@ class TomlSceneReader {
       shown = source_.is_end(line_number, column) ? "end of file" : "end of line";
     }
     throw ParseError(file_, line_number, column, expected, shown);
+  }
+
+  // The 1-based line and byte column of a toml++ position.
+  TextPosition byte_position(const toml::source_position& at) const {
+    const std::size_t line_number = std::max<std::size_t>(at.line, 1);
+    return {line_number, SourceText::byte_column(source_.line(line_number), std::max<std::size_t>(at.column, 1))};
+  }
+
+  // Where the scene text holds node, for errors found once it is read.
+  FilePosition named_at(const toml::node& node) const {
+    const TextPosition at = byte_position(node.source().begin);
+    return {std::string(file_), at.line, at.column};
   }
 
   // An error found by prescan_toml at a byte offset; the token there is
@@ -457,7 +468,9 @@ class TomlSceneReader {
     if (type == "image") {
       check_keys(t, {"name", "type", "file", "wrap"}, "an image texture");
       texture.kind = TextureDesc::Kind::image;
-      texture.path = existing_file(required(t, "file", s), "file", s, "an image file");
+      const toml::node& file = required(t, "file", s);
+      texture.path = existing_file(file, "file", s, "an image file");
+      texture.named_at = named_at(file);
       if (const toml::node* wrap = t.get("wrap")) {
         const std::string_view mode = choice(*wrap, "wrap", s, {"repeat", "clamp", "mirror"});
         texture.wrap = mode == "repeat" ? WrapMode::repeat : mode == "clamp" ? WrapMode::clamp : WrapMode::mirror;
@@ -721,6 +734,9 @@ class TomlSceneReader {
       append_obj_mesh(path, columns, material, scene_);
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
+    } catch (const ParseError& error) {
+      if (error.line() != 0) throw;  // at its place in the mesh
+      throw ParseError::in_named_file(named_at(file_node), "OBJ mesh", error);
     }
   }
 

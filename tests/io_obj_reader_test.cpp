@@ -539,6 +539,29 @@ TEST(ObjReader, NoFacesIsAnErrorAtTheEndOfTheFile) {
   }
 }
 
+// An MTL library too large to read, alone or with the others, is an error
+// at the mtllib name that brings it in.
+TEST(ObjReader, MtlLibraryBoundsAreErrorsAtTheirMtllibName) {
+  const testing::TemporaryDirectory temporary("quiver_obj_test");
+  const fs::path mesh = temporary.path() / "mesh.obj";
+  const fs::path big = temporary.path() / "big.mtl";
+  std::ofstream(mesh) << "v 0 0 0\nmtllib   big.mtl\n";
+  std::ofstream{big};
+  fs::resize_file(big, kMaxMtlBytes + 1);
+  try {
+    read_obj_scene(mesh);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), mesh.string() + ":2:10: in the MTL library named here: " + big.string() +
+                                             ": cannot read an MTL material library: larger than the limit of " +
+                                             std::to_string(kMaxMtlBytes) + " bytes");
+  }
+  // Two comments of half the bound each: the second passes the total.
+  const std::string half(kMaxMtlBytes / 2, '#');
+  EXPECT_TRUE(error_at("mtllib a.mtl b.mtl\n", {{"a.mtl", half}, {"b.mtl", half + "#"}}, "test.obj", 1, 14,
+                       "MTL libraries of at most 67108864 bytes in all, found 'b.mtl'"));
+}
+
 TEST(ObjReader, WholeFileErrors) {
   try {
     read_obj_scene(kTestData / "no_such_file.obj");

@@ -469,6 +469,24 @@ TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
   }
 }
 
+// An error about an included mesh as a whole points at its file key.
+TEST(TomlReader, WholeFileErrorsOfAnIncludedMeshPointAtItsFileKey) {
+  const testing::TemporaryDirectory temporary("quiver_toml_test");
+  const fs::path& dir = temporary.path();
+  std::ofstream(dir / "huge.obj") << "v 3e38 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
+  std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"huge.obj\"\nscale = 10\n";
+  try {
+    read_toml_scene(dir / "scene.toml");
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the OBJ mesh named here: " +
+                                             (dir / "huge.obj").string() +
+                                             ": a vertex is not finite after the mesh transform of the including scene");
+    EXPECT_EQ(error.line(), 2u);
+    EXPECT_EQ(error.column(), 8u);
+  }
+}
+
 // spot.obj has no MTL library: a [[meshes]] include gives it its texture.
 TEST(TomlReader, SharedSpotMeshTexturedThroughAnInclude) {
   const char* env = std::getenv("QUIVER_SHARED_DIR");
