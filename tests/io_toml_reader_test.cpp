@@ -55,6 +55,17 @@ SceneDesc parse(std::string_view text) { return parse_toml_scene(text, "test.tom
   return ::testing::AssertionFailure() << "no ParseError";
 }
 
+// The ParseError of read_toml_scene(path); a test failure when there is none.
+ParseError read_error(const fs::path& path) {
+  try {
+    read_toml_scene(path);
+  } catch (const ParseError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no ParseError for " << path;
+  return ParseError::whole_file(path.string(), "no error");
+}
+
 constexpr std::string_view kSphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
 
 // ---- well-formed input ----
@@ -425,17 +436,13 @@ TEST(TomlReader, AFileLargerThanTheBoundIsRefusedUnread) {
   const fs::path big = temporary.path() / "big.toml";
   std::ofstream{big};
   fs::resize_file(big, kMaxTomlBytes + 1);
-  try {
-    read_toml_scene(big);
-    ADD_FAILURE() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(error.line(), 0u);
-    EXPECT_EQ(std::string(error.what()).rfind(big.string() + ": cannot read a TOML scene: larger than the limit of " +
-                                                  std::to_string(kMaxTomlBytes) + " bytes (a TOML scene is for",
-                                              0),
-              0u)
-        << error.what();
-  }
+  const ParseError error = read_error(big);
+  EXPECT_EQ(error.line(), 0u);
+  EXPECT_EQ(std::string(error.what()).rfind(big.string() + ": cannot read a TOML scene: larger than the limit of " +
+                                                std::to_string(kMaxTomlBytes) + " bytes (a TOML scene is for",
+                                            0),
+            0u)
+      << error.what();
 }
 
 TEST(TomlReader, FilesMustExist) {
@@ -444,14 +451,10 @@ TEST(TomlReader, FilesMustExist) {
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"none.obj\"\n", 2, 8, "the path of an OBJ file that exists"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"minimal.toml\"\n", 2, 8, "an OBJ file (.obj)"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"triangle.obj\"\nscale = [1, 0, 1]\n", 3, 9, "a non-zero scale"));
-  try {
-    read_toml_scene(kTestData / "none.toml");
-    FAIL() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(error.line(), 0u);
-    EXPECT_NE(std::string(error.what()).find("none.toml: cannot read a TOML scene: no such file"), std::string::npos)
-        << error.what();
-  }
+  const ParseError error = read_error(kTestData / "none.toml");
+  EXPECT_EQ(error.line(), 0u);
+  EXPECT_NE(std::string(error.what()).find("none.toml: cannot read a TOML scene: no such file"), std::string::npos)
+      << error.what();
 }
 
 TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
@@ -459,14 +462,10 @@ TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
   const fs::path& dir = temporary.path();
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
   std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"bad.obj\"\n";
-  try {
-    read_toml_scene(dir / "scene.toml");
-    ADD_FAILURE() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(fs::path(error.file()).filename(), "bad.obj");
-    EXPECT_EQ(error.line(), 3u);
-    EXPECT_EQ(error.column(), 7u);
-  }
+  const ParseError error = read_error(dir / "scene.toml");
+  EXPECT_EQ(fs::path(error.file()).filename(), "bad.obj");
+  EXPECT_EQ(error.line(), 3u);
+  EXPECT_EQ(error.column(), 7u);
 }
 
 // An error about an included mesh as a whole points at its file key.
@@ -475,16 +474,12 @@ TEST(TomlReader, WholeFileErrorsOfAnIncludedMeshPointAtItsFileKey) {
   const fs::path& dir = temporary.path();
   std::ofstream(dir / "huge.obj") << "v 3e38 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
   std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"huge.obj\"\nscale = 10\n";
-  try {
-    read_toml_scene(dir / "scene.toml");
-    ADD_FAILURE() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the OBJ mesh named here: " +
-                                             (dir / "huge.obj").string() +
-                                             ": a vertex is not finite after the mesh transform of the including scene");
-    EXPECT_EQ(error.line(), 2u);
-    EXPECT_EQ(error.column(), 8u);
-  }
+  const ParseError error = read_error(dir / "scene.toml");
+  EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the OBJ mesh named here: " +
+                                           (dir / "huge.obj").string() +
+                                           ": a vertex is not finite after the mesh transform of the including scene");
+  EXPECT_EQ(error.line(), 2u);
+  EXPECT_EQ(error.column(), 8u);
 }
 
 // spot.obj has no MTL library: a [[meshes]] include gives it its texture.
