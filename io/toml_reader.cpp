@@ -1,9 +1,9 @@
-// TOML scene reader: toml++ parses the document (its errors become
-// ParseError at their position), then one function per section checks the
-// keys of each table against the keys that section allows and reads every
-// value with its type, range and default. Positions come from toml++'s
-// source regions, whose columns count code points; they are turned into
-// byte columns against the text.
+// TOML scene reader: io/toml_prescan.h bounds the text, toml++ parses the
+// document (its errors become ParseError at their position), then one
+// function per section checks the keys of each table against the keys that
+// section allows and reads every value with its type, range and default.
+// Positions come from toml++'s source regions, whose columns count code
+// points; they are turned into byte columns against the text.
 #include "io/toml_reader.h"
 
 #include <toml++/toml.h>
