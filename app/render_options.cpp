@@ -173,6 +173,7 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
 
   if (options.preset_spd) {
     s.trace.min_weight = 0.f;
+    s.trace.spawn_every_ray = true;
   } else if (options.min_weight) {
     s.trace.min_weight = float(*options.min_weight);
   } else if (scene.render.min_weight) {

@@ -247,8 +247,7 @@ std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& g) {
   std::array<std::size_t, 5> bytes{};
   const SphereSoA& s = g.spheres;
   bytes[0] = sum_bytes(s.cx, s.cy, s.cz, s.r2, s.inv_r, s.source, g.sphere_origin);
-  const PlaneSoA& p = g.planes;
-  bytes[1] = sum_bytes(p.nx, p.ny, p.nz, p.d, p.source, g.plane_origin);
+  bytes[1] = g.planes.memory_bytes() + bytes_of(g.plane_origin);
   for (const AlignedFloats* c : const_cast<TriangleSoA&>(g.triangles).columns()) bytes[2] += bytes_of(*c);
   bytes[2] += sum_bytes(g.triangles.source, g.triangle_origin);
   const PolygonSoA& q = g.polygons;

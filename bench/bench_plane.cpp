@@ -28,6 +28,8 @@ const bool registered = [] {
   auto streams_of = [](auto u, PlaneMethod m) { return plane_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<PlaneSoA>("plane/seed", streams_by_unit<PlaneSoA>(PlaneMethod::seed, streams_of),
                                        planes, rays);
+  register_kernel_benchmarks<PlaneSoA>("plane/anchored",
+                                       streams_by_unit<PlaneSoA>(PlaneMethod::anchored, streams_of), planes, rays);
   return true;
 }();
 

@@ -15,6 +15,7 @@ import sys
 # and selects not counted). See bench/README.md for how each was counted.
 FLOPS_PER_TEST = {
     "plane/seed": 12,
+    "plane/anchored": 14,
     "sphere/algebraic": 34,
     "sphere/geometric": 30,
     "sphere/robust": 49,

@@ -1,5 +1,12 @@
-// Ray / infinite plane, the seed's formula: the plane is n.P + d = 0 with
-// unit n, so t = -(d + n.o) / (n.dir).
+// Ray / infinite plane, two formulas for t over one stored plane (unit n,
+// a point p on it as given, and d = -n.p rounded to float):
+//   seed:     t = -(d + n.o) / (n.dir), the seed's formula. d + n.o cancels
+//             when the origin is far from the world origin, so t loses
+//             digits there (bench/ACCURACY.md: 1e-3 relative at 1e5).
+//   anchored: t = n.(p - o) / (n.dir). p - o is exact or nearly so when o is
+//             near p, so the error follows the ray's distance from the
+//             plane's point, not from the world origin (as the robust
+//             sphere's o - c).
 // t-range: hit iff tmin < t < tmax. A ray parallel to the plane (n.dir == 0)
 // misses, even when its origin lies on the plane; the division is then fed
 // 1 so no lane makes a NaN or a division by zero.
@@ -18,16 +25,33 @@ template <class F>
 struct PlaneLanes {
   Vec3<F> normal;  // unit length
   F d;             // n.P + d = 0 on the plane
+  Vec3<F> point;   // on the plane, as given
 };
 
-// t where the ray meets the plane n.P + d = 0; `crosses` marks the lanes
-// not parallel to it (the others divide by 1 and must be masked off).
+// t = numer / (n.dir); `crosses` marks the lanes not parallel to the plane
+// (the others divide by 1 and must be masked off).
 template <class F>
-inline F plane_crossing(const Ray<F>& ray, const Vec3<F>& normal, const F& d, Mask<F>& crosses) {
+inline F divide_by_slope(const F& numer, const Ray<F>& ray, const Vec3<F>& normal, Mask<F>& crosses) {
   const F denom = dot(normal, ray.direction);
   crosses = denom != F(0.f);
-  const F numer = -(d + dot(normal, ray.origin));
   return numer / select(crosses, denom, F(1.f));
+}
+
+// t where the ray meets the plane n.P + d = 0 (the seed's formula).
+template <class F>
+inline F plane_crossing(const Ray<F>& ray, const Vec3<F>& normal, const F& d, Mask<F>& crosses) {
+  return divide_by_slope(-(d + dot(normal, ray.origin)), ray, normal, crosses);
+}
+
+// The candidate of a plane hit at t: both sides, no surface coordinates.
+template <class F>
+inline Mask<F> plane_candidate(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& t, const Mask<F>& crosses,
+                               const F& tmax, const Mask<F>& active, Candidate<F>& out) {
+  out.t = t;
+  out.u = F(0.f);
+  out.v = F(0.f);
+  out.ng = plane.normal;
+  return active && crosses && out.t > ray.tmin && out.t < tmax;
 }
 
 struct PlaneSeed : RayAsIs {
@@ -35,11 +59,18 @@ struct PlaneSeed : RayAsIs {
   static Mask<F> intersect(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
     Mask<F> crosses;
-    out.t = plane_crossing(ray, plane.normal, plane.d, crosses);
-    out.u = F(0.f);
-    out.v = F(0.f);
-    out.ng = plane.normal;
-    return active && crosses && out.t > ray.tmin && out.t < tmax;
+    const F t = plane_crossing(ray, plane.normal, plane.d, crosses);
+    return plane_candidate(ray, plane, t, crosses, tmax, active, out);
+  }
+};
+
+struct PlaneAnchored : RayAsIs {
+  template <class F>
+  static Mask<F> intersect(const Ray<F>& ray, const PlaneLanes<F>& plane, const F& tmax,
+                           const Mask<F>& active, Candidate<F>& out) {
+    Mask<F> crosses;
+    const F t = divide_by_slope(dot(plane.normal, plane.point - ray.origin), ray, plane.normal, crosses);
+    return plane_candidate(ray, plane, t, crosses, tmax, active, out);
   }
 };
 

@@ -12,7 +12,7 @@ bool finite(const Vec3<float>& v) {
 
 PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
   PlaneSoA soa;
-  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) c->reserve(padded_size(planes.size()));
+  for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(planes.size()));
   for (const PlaneDesc& p : planes) {
     if (!finite(p.point) || !finite(p.normal)) {
       ++report.dropped_non_finite;
@@ -34,11 +34,20 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);
     soa.d.push_back(d);
+    soa.px.push_back(p.point.x);
+    soa.py.push_back(p.point.y);
+    soa.pz.push_back(p.point.z);
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d}) pad_column(*c, soa.count);
+  for (AlignedFloats* c : soa.columns()) pad_column(*c, soa.count);
   return soa;
+}
+
+std::size_t PlaneSoA::memory_bytes() const {
+  std::size_t bytes = source.capacity() * sizeof(std::uint32_t);
+  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &px, &py, &pz}) bytes += c->capacity() * sizeof(float);
+  return bytes;
 }
 
 }  // namespace quiver

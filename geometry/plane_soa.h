@@ -1,4 +1,5 @@
-// Infinite planes in SoA: unit normal (nx, ny, nz) and offset d.
+// Infinite planes in SoA: unit normal (nx, ny, nz), offset d = -n.p in
+// float (the seed's formula) and the point p as given (px, py, pz).
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@
 namespace quiver {
 
 struct PlaneSoA {
-  AlignedFloats nx, ny, nz, d;
+  AlignedFloats nx, ny, nz, d, px, py, pz;
   std::size_t count = 0;
   // Input index of each kept primitive (builders drop some), and the id of
   // primitive 0 in hits (a scene numbers its stores consecutively).
@@ -21,13 +22,17 @@ struct PlaneSoA {
   std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
+  std::vector<AlignedFloats*> columns() { return {&nx, &ny, &nz, &d, &px, &py, &pz}; }
+  // Bytes held by the columns and the source list.
+  std::size_t memory_bytes() const;
   template <class F>
   PlaneLanes<F> broadcast(std::size_t i) const {
-    return {broadcast_vec3<F>(nx, ny, nz, i), F(d[i])};
+    return {broadcast_vec3<F>(nx, ny, nz, i), F(d[i]), broadcast_vec3<F>(px, py, pz, i)};
   }
   template <class F>
   PlaneLanes<F> load(std::size_t first) const {
-    return {load_vec3_unaligned<F>(nx, ny, nz, first), load_lanes_unaligned<F>(d.data() + first)};
+    return {load_vec3_unaligned<F>(nx, ny, nz, first), load_lanes_unaligned<F>(d.data() + first),
+            load_vec3_unaligned<F>(px, py, pz, first)};
   }
 };
 

@@ -6,9 +6,10 @@ namespace quiver {
 template <KernelUnit U>
 KernelStreams<PlaneSoA> plane_streams(PlaneMethod method) {
   switch (method) {
-    case PlaneMethod::seed: break;
+    case PlaneMethod::seed: return make_streams<U, PlaneSeed, PlaneSoA>();
+    case PlaneMethod::anchored: break;
   }
-  return make_streams<U, PlaneSeed, PlaneSoA>();
+  return make_streams<U, PlaneAnchored, PlaneSoA>();
 }
 
 // This unit's instances.

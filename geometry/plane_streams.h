@@ -7,7 +7,8 @@
 
 namespace quiver {
 
-enum class PlaneMethod { seed };
+// seed: t from the offset d; anchored: t from the plane's point (geometry/plane.h).
+enum class PlaneMethod { seed, anchored };
 
 template <KernelUnit U>
 KernelStreams<PlaneSoA> plane_streams(PlaneMethod method);

@@ -48,7 +48,7 @@ SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere) : unit_
   with_kernel_unit(unit, [this](auto u) {
     constexpr KernelUnit U = decltype(u)::value;
     spheres_ = sphere_streams<U>(sphere_method_);
-    planes_ = plane_streams<U>(PlaneMethod::seed);
+    planes_ = plane_streams<U>(PlaneMethod::anchored);
     triangles_ = triangle_streams<U>(TriangleMethod::watertight);
     polygons_ = polygon_streams<U>(PolygonMethod::crossing);
     cones_ = cone_streams<U>(ConeMethod::quadric);

@@ -64,7 +64,7 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     shaded_.counts = {};
     const WaveShadingInput in{&scene_,           &materials_,         &rays_,         &hits_,
                               &paths_,           &surfaces_,          depth < settings_.max_depth,
-                              settings_.min_weight, settings_.seed};
+                              settings_.min_weight, settings_.seed, settings_.spawn_every_ray};
     shade_wave_(in, shaded_);
     // The ambient terms (the background on a miss), in ray order.
     for (std::size_t i = 0; i < rays_.count; ++i) {

@@ -195,7 +195,8 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
         // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
         const Vec3<F> reflected = color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
         const Vec3<F> contribution = mul(weight, mul(intensity, reflected));
-        cast = cast & (max_component(contribution) > F(0.f));
+        // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
+        if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
         const unsigned bits = lane_bits(cast);
         out.counts.light_issued += W;
         out.counts.light_active += std::popcount(bits);
@@ -225,8 +226,14 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const Mask<F> total_internal = and_not(transmissive, transmitted);
   reflect_weight = select(total_internal, reflect_weight + refract_weight, reflect_weight);
   refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), refract_weight);
-  const Mask<F> cast_reflection = hit_mask & worth_casting(reflect_weight, in.min_weight);
-  const Mask<F> cast_refraction = hit_mask & transmissive & transmitted & worth_casting(refract_weight, in.min_weight);
+  // SPD (rules 8 and 9): a reflection ray off every reflective or
+  // transmissive hit (a transmitter with Ks 0 too, its weight then 0 unless
+  // totally internally reflected) and a refraction ray through every
+  // transmissive one, with no weight test.
+  const Mask<F> cast_reflection =
+      hit_mask & (in.spawn_every_ray ? (kr > F(0.f)) | transmissive : worth_casting(reflect_weight, in.min_weight));
+  const Mask<F> cast_refraction = hit_mask & transmissive & transmitted &
+                                  (in.spawn_every_ray ? transmissive : worth_casting(refract_weight, in.min_weight));
   const unsigned reflection_bits = lane_bits(cast_reflection), refraction_bits = lane_bits(cast_refraction);
   if ((reflection_bits | refraction_bits) == 0) return;
 

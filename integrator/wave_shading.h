@@ -33,6 +33,7 @@ struct WaveShadingInput {
   bool spawn;                      // below the maximum depth
   float min_weight;
   std::uint64_t seed;
+  bool spawn_every_ray;  // TraceSettings::spawn_every_ray
 };
 
 // What shading a wave counted, for TraceStats.

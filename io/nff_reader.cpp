@@ -61,6 +61,10 @@ class NffParser {
         fail_at(keyword, kEntityList);
       }
     }
+    // A scene without objects renders nothing: almost always a mistake.
+    if (scene_.spheres.empty() && scene_.polygons.empty() && scene_.cones.empty()) {
+      fail_at_end_of_file("at least one object (s, c, p or pp)", kNoObjectsFound);
+    }
     apply_spd_intensities();
     return std::move(scene_);
   }
@@ -86,7 +90,6 @@ class NffParser {
       const std::size_t end = newline == std::string_view::npos ? text_.size() : newline;
       line_text_ = text_.substr(next_, end - next_);
       line_text_ = line_text_.substr(0, std::min(line_text_.find('#'), line_text_.size()));
-      line_start_ = next_;
       next_ = newline == std::string_view::npos ? text_.size() : newline + 1;
       ++line_;
       scan_ = 0;
@@ -99,11 +102,12 @@ class NffParser {
 
   // The next line must exist (for `what`); otherwise end of file is the error.
   void require_line(std::string_view what) {
-    if (next_line()) return;
-    const bool ends_with_newline = text_.empty() || text_.back() == '\n';
-    const std::size_t line = ends_with_newline ? line_ + 1 : line_;
-    const std::size_t column = ends_with_newline ? 1 : text_.size() - line_start_ + 1;
-    throw ParseError(file_, line, column, what, kEndOfFile);
+    if (!next_line()) fail_at_end_of_file(what, kEndOfFile);
+  }
+
+  [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
+    const TextPosition end = end_of_text(text_);
+    throw ParseError(file_, end.line, end.column, expected, found);
   }
 
   void skip_blanks() {
@@ -370,7 +374,6 @@ class NffParser {
   std::string_view text_;
   std::string_view file_;
   std::size_t next_ = 0;        // offset of the first unread line
-  std::size_t line_start_ = 0;  // offset of the current line
   std::size_t line_ = 0;        // 1-based number of the current line
   std::string_view line_text_;  // the current line up to its comment
   std::size_t scan_ = 0;        // offset in line_text_ of the next token (blanks skipped)

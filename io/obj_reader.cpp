@@ -131,6 +131,16 @@ class LineScanner {
     throw ParseError(file_, line_, taken_end_ + 1, expected, kEndOfLine);
   }
 
+  // Where token stands, for errors found once what it names is read.
+  FilePosition position_of(const Token& token) const { return {std::string(file_), line_, token.column}; }
+
+  // Once next_statement() returned false: the position past the last byte.
+  [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
+    const bool ends_a_line = !text_.empty() && (text_.back() == '\n' || text_.back() == '\r');
+    if (ends_a_line) throw ParseError(file_, line_ + 1, 1, expected, found);
+    throw ParseError(file_, std::max<std::size_t>(line_, 1), line_text_.size() + 1, expected, found);
+  }
+
   // A finite float using the whole token (a leading '+' is allowed), the
   // decimal value correctly rounded. A value too small for float becomes a
   // signed zero; one too large, or of magnitude over 3.4e38, is an error.
@@ -220,6 +230,7 @@ struct MtlMaterial {
   bool has_dissolve = false;
   std::int64_t illum = 0;
   std::string texture_path;     // map_Kd resolved against the library's folder; empty when none
+  FilePosition texture_named_at;  // its file name in the map_Kd statement
   bool texture_clamps = false;  // the last `-clamp on|off` of the material's map_Kd statements
 };
 
@@ -267,6 +278,7 @@ void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& d
     scan.fail_at(file, joined({"an image file that exists (looked for '", path.string(), "')"}));
   }
   material.texture_path = path.string();
+  material.texture_named_at = scan.position_of(file);
   if (!material.has_diffuse) {
     material.diffuse = {kDiffuseUnderTexture, kDiffuseUnderTexture, kDiffuseUnderTexture};
   }
@@ -476,6 +488,10 @@ class ObjReader {
         scan_.fail_at(keyword, kObjStatementList);
       }
     }
+    // A mesh without faces draws nothing: almost always a mistake.
+    if (scene_.triangles.empty()) {
+      scan_.fail_at_end_of_file("at least one face ('f'; 'l' and 'p' draw nothing)", kNoObjectsFound);
+    }
     return std::move(scene_);
   }
 
@@ -628,6 +644,7 @@ class ObjReader {
       TextureDesc texture;
       texture.kind = TextureDesc::Kind::image;
       texture.path = m.texture_path;
+      texture.named_at = m.texture_named_at;
       texture.wrap = wrap;
       scene_.textures.push_back(std::move(texture));
     }
@@ -643,11 +660,16 @@ class ObjReader {
       if (library_names_.size() == kMaxMtlLibraries) {
         scan_.fail_at(name, joined({"at most ", std::to_string(kMaxMtlLibraries), " MTL libraries"}));
       }
-      const std::optional<MtlLibrary> library = find_library_(name.text);
+      std::optional<MtlLibrary> library;
+      try {
+        library = find_library_(name.text);
+      } catch (const ParseError& error) {
+        if (error.line() != 0) throw;  // at its place in the library
+        throw ParseError::in_named_file(scan_.position_of(name), "MTL library", error);
+      }
       if (!library) scan_.fail_at(name, "an MTL library that exists");
       if (library->text.size() > kMaxMtlBytes - mtl_bytes_) {
-        throw ParseError::whole_file(library->file_name, joined({"the MTL libraries of one OBJ exceed the limit of ",
-                                                                 std::to_string(kMaxMtlBytes), " bytes"}));
+        scan_.fail_at(name, joined({"MTL libraries of at most ", std::to_string(kMaxMtlBytes), " bytes in all"}));
       }
       mtl_bytes_ += library->text.size();
       read_mtl(*library, materials_);

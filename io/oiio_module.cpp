@@ -4,24 +4,97 @@
 #include "io/oiio_module.h"
 
 #include <OpenImageIO/imageio.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace quiver {
 
 namespace {
 
-// Copies message into the caller's buffer, cut to fit, NUL-terminated.
-void copy_message(const std::string& message, char* error, std::size_t error_size) {
+// Copies message into the caller's buffer on one line (OpenImageIO joins
+// its messages with line breaks; they become "; "), cut to fit,
+// NUL-terminated.
+void copy_message(std::string_view message, char* error, std::size_t error_size) {
   if (error == nullptr || error_size == 0) return;
-  const std::size_t length = std::min(message.size(), error_size - 1);
-  std::memcpy(error, message.data(), length);
+  while (!message.empty() && message.back() == '\n') message.remove_suffix(1);
+  std::string line;
+  for (char c : message) line += c == '\n' ? std::string_view("; ") : std::string_view(&c, 1);
+  const std::size_t length = std::min(line.size(), error_size - 1);
+  std::memcpy(error, line.data(), length);
   error[length] = '\0';
+}
+
+// Sends what is printed to stderr while it lives (libpng, under
+// OpenImageIO, prints "libpng error: ..." there) to a memory file, so that
+// it can join the message instead of reaching the terminal. stderr is one
+// per process: captures take turns.
+class StderrCapture {
+ public:
+  StderrCapture() : lock_(turn()) {
+    std::fflush(stderr);
+    file_ = ::memfd_create("quiver_oiio_stderr", MFD_CLOEXEC);
+    if (file_ >= 0) saved_ = ::dup(STDERR_FILENO);
+    if (saved_ >= 0 && ::dup2(file_, STDERR_FILENO) < 0) {
+      ::close(saved_);
+      saved_ = -1;
+    }
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+  ~StderrCapture() {
+    finish();
+    if (file_ >= 0) ::close(file_);
+  }
+
+  // Restores stderr; returns what was printed (its first 4 KiB).
+  std::string finish() {
+    if (saved_ < 0) return {};
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    saved_ = -1;
+    std::string printed(4096, '\0');
+    const ssize_t got = ::pread(file_, printed.data(), printed.size(), 0);
+    printed.resize(got > 0 ? static_cast<std::size_t>(got) : 0);
+    return printed;
+  }
+
+ private:
+  static std::mutex& turn() {
+    static std::mutex mutex;
+    return mutex;
+  }
+
+  std::lock_guard<std::mutex> lock_;
+  int file_ = -1;
+  int saved_ = -1;
+};
+
+// message, then each printed line whose text (after a "library error: "
+// prefix) it does not hold already.
+std::string with_printed(std::string message, std::string_view printed) {
+  while (!printed.empty()) {
+    const std::size_t end = std::min(printed.find('\n'), printed.size());
+    const std::string_view line = printed.substr(0, end);
+    printed.remove_prefix(std::min(end + 1, printed.size()));
+    const std::size_t colon = line.find(": ");
+    const std::string_view text = colon == std::string_view::npos ? line : line.substr(colon + 2);
+    if (!text.empty() && message.find(text) == std::string::npos) {
+      message += "; ";
+      message += line;
+    }
+  }
+  return message;
 }
 
 // The error of an ImageInput or ImageOutput, else OpenImageIO's global one.
@@ -57,17 +130,25 @@ int write_image(const char* path, const char* format, int width, int height, int
   }
 }
 
-void* open_input(const char* path, OiioImageHeader* header, char* error, std::size_t error_size) {
+void* open_input(const char* path, const char* format, OiioImageHeader* header, char* error,
+                 std::size_t error_size) {
   try {
     // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path, &config);
+    // The format's plugin alone: ImageInput::open would try every plugin
+    // on a file its own plugin refuses.
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, false, &config);
     if (!input) {
       copy_message(error_of<OIIO::ImageInput>(nullptr), error, error_size);
       return nullptr;
     }
-    const OIIO::ImageSpec& spec = input->spec();
+    OIIO::ImageSpec spec;
+    StderrCapture printed;
+    if (!input->open(path, spec, config)) {
+      copy_message(with_printed(error_of(input.get()), printed.finish()), error, error_size);
+      return nullptr;
+    }
     header->width = spec.width;
     header->height = spec.height;
     header->depth = spec.depth;
@@ -86,8 +167,9 @@ int read_pixels(void* handle, int channel_count, int as_float, void* pixels, std
   auto* input = static_cast<OIIO::ImageInput*>(handle);
   try {
     const OIIO::TypeDesc type = as_float ? OIIO::TypeFloat : OIIO::TypeDesc::UINT16;
+    StderrCapture printed;
     if (!input->read_image(0, 0, 0, channel_count, type, pixels, pixel_stride)) {
-      copy_message(error_of(input), error, error_size);
+      copy_message(with_printed(error_of(input), printed.finish()), error, error_size);
       return 0;
     }
     return 1;

@@ -6,6 +6,9 @@
 // plain functions; no C++ type or exception crosses the boundary. Every
 // function reports failure by its return value and writes OpenImageIO's
 // message, cut to fit and NUL-terminated, into the caller's error buffer.
+// What the libraries below print to stderr while an image is read (libpng's
+// "libpng error: ...") is captured: added to that message on failure,
+// dropped on success.
 #pragma once
 
 #include <cstddef>
@@ -13,7 +16,7 @@
 namespace quiver {
 
 // Bumped whenever OiioModuleApi changes, so a stale module is refused.
-inline constexpr int kOiioModuleVersion = 1;
+inline constexpr int kOiioModuleVersion = 2;
 
 // The exported symbol's name and file name of the module.
 inline constexpr const char* kOiioModuleEntry = "quiver_oiio_module_api";
@@ -37,10 +40,12 @@ struct OiioModuleApi {
                      const char* const* channel_names, int is_float, const void* pixels, const char* color_space,
                      char* error, std::size_t error_size);
 
-  // Opens an image for reading (colours as stored, not premultiplied by
-  // alpha) and fills header. Returns a handle for read_pixels and
+  // Opens an image for reading with the plugin of the named OpenImageIO
+  // format ("png", ...) alone, colours as stored (not premultiplied by
+  // alpha), and fills header. Returns a handle for read_pixels and
   // close_input, or null with a message.
-  void* (*open_input)(const char* path, OiioImageHeader* header, char* error, std::size_t error_size);
+  void* (*open_input)(const char* path, const char* format, OiioImageHeader* header, char* error,
+                      std::size_t error_size);
 
   // Reads the first channel_count channels of every pixel as 32-bit floats
   // (as_float) or 16-bit codes, pixel_stride bytes apart. Returns 1, or 0

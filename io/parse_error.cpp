@@ -1,5 +1,7 @@
 #include "io/parse_error.h"
 
+#include <algorithm>
+
 namespace quiver {
 
 namespace {
@@ -27,14 +29,17 @@ ParseError::ParseError(std::string_view file, std::size_t line, std::size_t colu
       line_(line),
       column_(column) {}
 
-ParseError::ParseError(std::string_view file, std::string what)
-    : std::runtime_error(std::move(what)), file_(file) {}
+ParseError::ParseError(std::string_view file, std::size_t line, std::size_t column, std::string what)
+    : std::runtime_error(std::move(what)), file_(file), line_(line), column_(column) {}
 
 ParseError ParseError::whole_file(std::string_view file, std::string_view message) {
-  std::string what(file);
-  what += ": ";
-  what += message;
-  return ParseError(file, std::move(what));
+  return ParseError(file, 0, 0, joined({file, ": ", message}));
+}
+
+ParseError ParseError::in_named_file(const FilePosition& at, std::string_view role, const ParseError& cause) {
+  return ParseError(at.file, at.line, at.column,
+                    joined({at.file, ":", std::to_string(at.line), ":", std::to_string(at.column), ": in the ", role,
+                            " named here: ", cause.what()}));
 }
 
 std::string quoted_token(std::string_view token) {
@@ -54,6 +59,13 @@ std::string quoted_token(std::string_view token) {
   if (token.size() > kShownBytes) quoted += "...";
   quoted += '\'';
   return quoted;
+}
+
+TextPosition end_of_text(std::string_view text) {
+  const std::size_t last_newline = text.rfind('\n');
+  const std::size_t line_start = last_newline == std::string_view::npos ? 0 : last_newline + 1;
+  const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+  return {lines + 1, text.size() - line_start + 1};
 }
 
 std::string joined(std::initializer_list<std::string_view> parts) {

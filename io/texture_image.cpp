@@ -6,13 +6,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
+#include "io/image_signature.h"
 #include "io/oiio_loader.h"
 #include "io/parse_error.h"
 
@@ -69,6 +72,22 @@ void check_finite_texels(const fs::path& path, const TextureImage& image) {
   }
 }
 
+// The OpenImageIO format of the file's first bytes; a file they name no
+// texture format of is refused before any decoder sees it.
+std::string_view format_from_signature(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open it");
+  std::string head(kImageSignatureBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::optional<std::string_view> format = image_format_of(head, path.extension().string());
+  if (!format) {
+    const std::string found = head.empty() ? "an empty file" : "first bytes " + quoted_token(head.substr(0, 8));
+    fail(path, joined({"not an image: expected a ", kTextureFormatNames, " file, found ", found}));
+  }
+  return *format;
+}
+
 }  // namespace
 
 TextureImage read_texture_image(const fs::path& path) {
@@ -76,6 +95,9 @@ TextureImage read_texture_image(const fs::path& path) {
   const fs::file_status status = fs::status(path, error);
   if (!fs::exists(status)) fail(path, "cannot open: no such file");
   if (fs::is_directory(status)) fail(path, "cannot open: it is a directory");
+  // A FIFO, socket or device could block or never end.
+  if (!fs::is_regular_file(status)) fail(path, "cannot open: not a regular file");
+  const std::string_view format = format_from_signature(path);
 
   const OiioModuleApi* oiio = nullptr;
   try {
@@ -85,8 +107,9 @@ TextureImage read_texture_image(const fs::path& path) {
   }
   char error_text[1024] = "";
   OiioImageHeader header{};
-  void* opened = oiio->open_input(path.c_str(), &header, error_text, sizeof error_text);
-  if (opened == nullptr) fail(path, "not an image OpenImageIO can read (" + std::string(error_text) + ")");
+  const std::string format_name(format);
+  void* opened = oiio->open_input(path.c_str(), format_name.c_str(), &header, error_text, sizeof error_text);
+  if (opened == nullptr) fail(path, joined({"cannot decode it as ", format, " (", error_text, ")"}));
   const std::unique_ptr<void, void (*)(void*)> input(opened, oiio->close_input);
 
   // Bounds first: nothing is sized from the header before this.
@@ -134,7 +157,13 @@ TextureImage read_texture_image(const fs::path& path) {
 void read_texture_images(SceneDesc& scene) {
   for (TextureDesc& t : scene.textures) {
     if (t.kind != TextureDesc::Kind::image || t.path.empty() || !t.rgb.empty()) continue;
-    TextureImage image = read_texture_image(t.path);
+    TextureImage image;
+    try {
+      image = read_texture_image(t.path);
+    } catch (const ParseError& error) {
+      if (t.named_at.line == 0) throw;
+      throw ParseError::in_named_file(t.named_at, "image texture", error);
+    }
     t.width = image.width;
     t.height = image.height;
     t.rgb = std::move(image.rgb);

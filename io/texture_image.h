@@ -13,13 +13,16 @@ namespace quiver {
 // Reads an image file. One channel is grey (replicated), two are grey +
 // alpha, three or more are RGB (+ alpha); alpha is dropped. Integer formats
 // are sRGB-decoded (exact EOTF) unless the file's "oiio:ColorSpace" names a
-// linear space; float formats are linear. Throws ParseError ("file:
-// message") for a missing, unreadable or non-image file, sizes beyond
-// kMaxTextureSide / kMaxTexturePixels, or non-finite texels.
+// linear space; float formats are linear. The format is told by the
+// file's first bytes (io/image_signature.h) and decoded by its plugin
+// alone. Throws ParseError ("file: message") for a missing, unreadable or
+// non-image file, sizes beyond kMaxTextureSide / kMaxTexturePixels, or
+// non-finite texels.
 TextureImage read_texture_image(const std::filesystem::path& path);
 
 // Reads the file of every image texture that names one and has no pixels
-// yet into its width, height and rgb. Throws as read_texture_image.
+// yet into its width, height and rgb. Throws as read_texture_image, at the
+// texture's named_at when it has one (ParseError::in_named_file).
 void read_texture_images(SceneDesc& scene);
 
 }  // namespace quiver

@@ -1,9 +1,9 @@
-// TOML scene reader: toml++ parses the document (its errors become
-// ParseError at their position), then one function per section checks the
-// keys of each table against the keys that section allows and reads every
-// value with its type, range and default. Positions come from toml++'s
-// source regions, whose columns count code points; they are turned into
-// byte columns against the text.
+// TOML scene reader: io/toml_prescan.h bounds the text, toml++ parses the
+// document (its errors become ParseError at their position), then one
+// function per section checks the keys of each table against the keys that
+// section allows and reads every value with its type, range and default.
+// Positions come from toml++'s source regions, whose columns count code
+// points; they are turned into byte columns against the text.
 #include "io/toml_reader.h"
 
 #include <toml++/toml.h>
@@ -24,10 +24,12 @@
 #include <utility>
 #include <vector>
 
+#include "integrator/anti_aliasing.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
+#include "io/toml_prescan.h"
 
 namespace quiver {
 
@@ -52,6 +54,17 @@ std::string list_of(KeyList keys) {
 }
 
 bool is_continuation_byte(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+// Where a bare TOML word ends.
+bool is_toml_delimiter(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',' || c == '[' || c == ']' || c == '{' ||
+         c == '}' || c == '=' || c == '#' || static_cast<unsigned char>(c) >= 0x80;
+}
+
+// Why the input is bounded, for the bounds' error messages.
+constexpr std::string_view kTomlBoundsHint =
+    "a TOML scene is for what is written by hand; large geometry belongs in an OBJ file included with "
+    "[[meshes]], many spheres in an NFF scene";
 
 // The scene text, for turning toml++ positions into byte positions and
 // quoting what stands there. Lines end at '\n' (TOML allows no lone '\r').
@@ -100,135 +113,23 @@ class SourceText {
   std::string_view text_;
 };
 
-// toml++ 3.3 classifies some non-ASCII characters as whitespace through a
-// table that reaches __builtin_unreachable (undefined behaviour) for
-// U+00A1..U+0499 and others. It asks only outside strings and comments,
-// right after a backslash in a basic string, and after a line-ending
-// backslash in a multi-line basic string. Outside strings and comments and
-// after a backslash, a non-ASCII character is invalid TOML anyway; after a
-// line-ending backslash it is not, but is rare. This lexer finds the first
-// such character and returns its offset. Its one subtlety: toml++ reads a
-// bare value (a number, date or boolean, or anything else not opening a
-// string, array or inline table) up to a blank, line end, ']', '}', ',' or
-// '#', through quotes and brackets; keys and values are told apart with
-// '=' and the nesting of table headers, arrays and inline tables.
-std::optional<std::size_t> character_tomlplusplus_misreads(std::string_view text) {
-  enum class State { normal, bare_value, comment, basic, literal, multi_basic, multi_literal };
-  // toml++ refuses deeper nesting (TOML_MAX_NESTED_VALUES, 256) before it
-  // reads on, so the lexer may stop there too.
-  constexpr std::size_t kMaxNesting = 300;
-  State state = State::normal;
-  bool in_key = true;
-  std::vector<char> nesting;  // 'h' table header, '[' array, '{' inline table
-  auto is_ascii = [](char c) { return static_cast<unsigned char>(c) < 0x80; };
-  auto ends_bare_value = [](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ']' || c == '}' || c == ',' || c == '#';
-  };
-  auto run_of = [&](std::size_t i, char quote) {
-    std::size_t n = 0;
-    while (i + n < text.size() && text[i + n] == quote) ++n;
-    return n;
-  };
-  // toml++ skips a UTF-8 byte order mark at the start.
-  std::size_t i = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
-  while (i < text.size()) {
-    const char c = text[i];
-    switch (state) {
-      case State::normal:
-        if (!is_ascii(c)) return i;
-        if (!in_key && !ends_bare_value(c) && c != '"' && c != '\'' && c != '[' && c != '{' && c != '=') {
-          state = State::bare_value;
-          continue;
-        }
-        if (c == '#') {
-          state = State::comment;
-        } else if (c == '"' || c == '\'') {
-          const bool multi = run_of(i, c) >= 3;
-          state =
-              c == '"' ? (multi ? State::multi_basic : State::basic) : (multi ? State::multi_literal : State::literal);
-          i += multi ? 3 : 1;
-          continue;
-        } else if (c == '=') {
-          in_key = false;
-        } else if (c == '[' || c == '{') {
-          if (nesting.size() == kMaxNesting) return std::nullopt;
-          nesting.push_back(c == '{' ? '{' : (in_key && (nesting.empty() || nesting.back() == 'h') ? 'h' : '['));
-          in_key = c == '{' || nesting.back() == 'h';
-        } else if (c == ',') {
-          in_key = !nesting.empty() && nesting.back() == '{';
-        } else if ((c == ']' || c == '}') && !nesting.empty()) {
-          const bool header = nesting.back() == 'h';
-          nesting.pop_back();
-          in_key = header;
-        } else if (c == '\n' && nesting.empty()) {
-          in_key = true;
-        }
-        break;
-      case State::bare_value:
-        if (ends_bare_value(c)) {
-          state = State::normal;
-          continue;
-        }
-        if (!is_ascii(c)) return i;
-        break;
-      case State::comment:
-        if (c == '\n') {
-          state = State::normal;
-          if (nesting.empty()) in_key = true;
-        }
-        break;
-      case State::basic:
-      case State::multi_basic:
-        if (c == '\\') {
-          std::size_t next = i + 1;
-          if (state == State::multi_basic) {
-            // A line-ending backslash: toml++ tests what follows the blanks.
-            while (next < text.size() &&
-                   (text[next] == ' ' || text[next] == '\t' || text[next] == '\r' || text[next] == '\n')) {
-              ++next;
-            }
-          }
-          if (next < text.size() && !is_ascii(text[next])) return next;
-          i = next == i + 1 ? i + 2 : next;
-          continue;
-        }
-        if (c == '"') {
-          if (state == State::basic) {
-            state = State::normal;
-          } else {
-            const std::size_t run = run_of(i, '"');
-            if (run >= 3) state = State::normal;
-            i += run;
-            continue;
-          }
-        } else if (c == '\n' && state == State::basic) {
-          state = State::normal;  // unterminated: toml++ reports it
-        }
-        break;
-      case State::literal:
-        if (c == '\'' || c == '\n') state = State::normal;
-        break;
-      case State::multi_literal:
-        if (c == '\'') {
-          const std::size_t run = run_of(i, '\'');
-          if (run >= 3) state = State::normal;
-          i += run;
-          continue;
-        }
-        break;
-    }
-    ++i;
-  }
-  return std::nullopt;
-}
-
 class TomlSceneReader {
  public:
   TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir)
       : text_(text), source_(text), file_(file), base_dir_(base_dir) {}
 
   SceneDesc read() {
-    if (const std::optional<std::size_t> at = character_tomlplusplus_misreads(text_)) fail_at_byte(*at);
+    const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
+    if (prescan.misread) {
+      fail_at_byte(*prescan.misread,
+                   "an ASCII character (outside strings and comments, after a backslash in a string, and "
+                   "after a line-ending backslash, toml++ 3.3 misreads others)");
+    }
+    if (prescan.past_node_bound) {
+      fail_at_byte(*prescan.past_node_bound,
+                   joined({"at most ", std::to_string(kMaxTomlNodes), " keys, values and tables (", kTomlBoundsHint,
+                           ")"}));
+    }
     toml::table root;
     try {
       root = toml::parse(text_, file_);
@@ -255,6 +156,15 @@ class TomlSceneReader {
     for_each_entry(root, "cylinders", unbounded, [this](const toml::table& t) { read_cylinder(t); });
     for_each_entry(root, "cones", unbounded, [this](const toml::table& t) { read_cone(t); });
     for_each_entry(root, "meshes", kMaxTomlMeshes, [this](const toml::table& t) { read_mesh(t); });
+    // A scene without objects renders nothing: almost always a mistake.
+    if (scene_.spheres.empty() && scene_.planes.empty() && scene_.triangles.empty() && scene_.polygons.empty() &&
+        scene_.cones.empty()) {
+      const TextPosition end = end_of_text(text_);
+      throw ParseError(file_, end.line, end.column,
+                       "at least one object ([[spheres]], [[planes]], [[triangles]], [[polygons]], [[cylinders]], "
+                       "[[cones]] or [[meshes]])",
+                       kNoObjectsFound);
+    }
     return std::move(scene_);
   }
 
@@ -265,9 +175,8 @@ class TomlSceneReader {
   // the same line (otherwise the token at the position is quoted).
   [[noreturn]] void fail_at_position(const toml::source_position& begin, std::string_view expected,
                                      std::optional<toml::source_position> end) const {
-    const std::size_t line_number = std::max<std::size_t>(begin.line, 1);
+    const auto [line_number, column] = byte_position(begin);
     const std::string_view line = source_.line(line_number);
-    const std::size_t column = SourceText::byte_column(line, std::max<std::size_t>(begin.column, 1));
     std::size_t stop = column - 1;
     if (end && end->line == begin.line) {
       stop = SourceText::byte_column(line, end->column) - 1;
@@ -284,8 +193,21 @@ class TomlSceneReader {
     throw ParseError(file_, line_number, column, expected, shown);
   }
 
-  // A non-ASCII character toml++ must not see (see character_tomlplusplus_misreads).
-  [[noreturn]] void fail_at_byte(std::size_t offset) const {
+  // The 1-based line and byte column of a toml++ position.
+  TextPosition byte_position(const toml::source_position& at) const {
+    const std::size_t line_number = std::max<std::size_t>(at.line, 1);
+    return {line_number, SourceText::byte_column(source_.line(line_number), std::max<std::size_t>(at.column, 1))};
+  }
+
+  // Where the scene text holds node, for errors found once it is read.
+  FilePosition named_at(const toml::node& node) const {
+    const TextPosition at = byte_position(node.source().begin);
+    return {std::string(file_), at.line, at.column};
+  }
+
+  // An error found by prescan_toml at a byte offset; the token there is
+  // the character (a misread one) or the bare word (a value past the bound).
+  [[noreturn]] void fail_at_byte(std::size_t offset, std::string_view expected) const {
     const std::size_t line_start = text_.rfind('\n', offset == 0 ? 0 : offset - 1);
     const std::size_t start = line_start == std::string_view::npos || offset == 0 ? 0 : line_start + 1;
     const auto line =
@@ -293,10 +215,8 @@ class TomlSceneReader {
         1;
     std::size_t end = offset + 1;
     while (end < text_.size() && end - offset < 4 && is_continuation_byte(text_[end])) ++end;
-    throw ParseError(file_, line, offset - start + 1,
-                     "an ASCII character (outside strings and comments, after a backslash in a string, and "
-                     "after a line-ending backslash, toml++ 3.3 misreads others)",
-                     quoted_token(text_.substr(offset, end - offset)));
+    while (end < text_.size() && !is_toml_delimiter(text_[offset]) && !is_toml_delimiter(text_[end])) ++end;
+    throw ParseError(file_, line, offset - start + 1, expected, quoted_token(text_.substr(offset, end - offset)));
   }
 
   [[noreturn]] void fail(const toml::node& node, std::string_view expected) const {
@@ -509,6 +429,15 @@ class TomlSceneReader {
     if (const toml::node* aa = t.get("aa")) {
       const std::string_view text = string(*aa, "aa", s);
       if (text.empty() || text.size() > 64) fail(*aa, expected_for("a non-empty string of at most 64 bytes", "aa", s));
+      try {
+        parse_anti_aliasing(text);
+      } catch (const std::invalid_argument& error) {
+        // "anti-aliasing[ part]: expected ..." without its first word.
+        std::string_view why = error.what();
+        if (why.starts_with("anti-aliasing")) why.remove_prefix(std::string_view("anti-aliasing").size());
+        while (why.starts_with(":") || why.starts_with(" ")) why.remove_prefix(1);
+        fail(*aa, expected_for(joined({"an anti-aliasing mode (", why, ")"}), "aa", s));
+      }
       scene_.render.aa = std::string(text);
     }
     if (const toml::node* depth = t.get("max_depth")) {
@@ -539,7 +468,9 @@ class TomlSceneReader {
     if (type == "image") {
       check_keys(t, {"name", "type", "file", "wrap"}, "an image texture");
       texture.kind = TextureDesc::Kind::image;
-      texture.path = existing_file(required(t, "file", s), "file", s, "an image file");
+      const toml::node& file = required(t, "file", s);
+      texture.path = existing_file(file, "file", s, "an image file");
+      texture.named_at = named_at(file);
       if (const toml::node* wrap = t.get("wrap")) {
         const std::string_view mode = choice(*wrap, "wrap", s, {"repeat", "clamp", "mirror"});
         texture.wrap = mode == "repeat" ? WrapMode::repeat : mode == "clamp" ? WrapMode::clamp : WrapMode::mirror;
@@ -803,6 +734,9 @@ class TomlSceneReader {
       append_obj_mesh(path, columns, material, scene_);
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
+    } catch (const ParseError& error) {
+      if (error.line() != 0) throw;  // at its place in the mesh
+      throw ParseError::in_named_file(named_at(file_node), "OBJ mesh", error);
     }
   }
 
@@ -820,14 +754,14 @@ class TomlSceneReader {
 
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir) {
   if (text.size() > kMaxTomlBytes) {
-    throw ParseError::whole_file(file_name,
-                                 joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes), " bytes"}));
+    throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
+                                                    " bytes (", kTomlBoundsHint, ")"}));
   }
   return TomlSceneReader(text, file_name, base_dir).read();
 }
 
 SceneDesc read_toml_scene(const fs::path& path) {
-  const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene");
+  const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
   return parse_toml_scene(text, path.string(), path.parent_path());
 }
 

@@ -13,8 +13,13 @@
 
 namespace quiver {
 
-// Largest TOML scene read, in bytes.
-inline constexpr std::size_t kMaxTomlBytes = std::size_t{256} << 20;
+// Largest TOML scene read, in bytes, and most keys, values, arrays and
+// tables in it (counted by io/toml_prescan.h before toml++ builds its
+// document, which takes 70-120 bytes a node). A TOML scene is for what is
+// written by hand: about 47,000 spheres fit; large geometry belongs in OBJ
+// files included with [[meshes]].
+inline constexpr std::size_t kMaxTomlBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxTomlNodes = std::size_t{1} << 19;
 // Most entries of [[lights]], [[textures]], [[materials]] and [[meshes]].
 inline constexpr std::size_t kMaxTomlLights = 1024;
 inline constexpr std::size_t kMaxTomlTextures = 1024;

@@ -95,14 +95,14 @@ std::size_t bytes_of(const Vec& v) {
 
 std::size_t GeometryLayer::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const AlignedFloats* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r2, &spheres.inv_r, &planes.nx,
-                                 &planes.ny, &planes.nz, &planes.d, &cones.bx, &cones.by, &cones.bz, &cones.ax,
-                                 &cones.ay, &cones.az, &cones.height, &cones.radius0, &cones.slope, &cones.facing}) {
+  for (const AlignedFloats* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r2, &spheres.inv_r, &cones.bx,
+                                 &cones.by, &cones.bz, &cones.ax, &cones.ay, &cones.az, &cones.height, &cones.radius0, &cones.slope, &cones.facing}) {
     bytes += bytes_of(*c);
   }
+  bytes += planes.memory_bytes();  // with its source list
   for (AlignedFloats* c : const_cast<TriangleSoA&>(triangles).columns()) bytes += bytes_of(*c);
   bytes += polygons.memory_bytes();  // with its source list
-  for (const auto* s : {&spheres.source, &planes.source, &triangles.source, &cones.source}) {
+  for (const auto* s : {&spheres.source, &triangles.source, &cones.source}) {
     bytes += bytes_of(*s);
   }
   for (const auto* o : {&sphere_origin, &plane_origin, &triangle_origin, &polygon_origin, &cone_origin}) {

@@ -46,6 +46,13 @@ struct LightDesc {
 
 enum class WrapMode { repeat, clamp, mirror };
 
+// Where a scene file names a file that is read later (an image texture's),
+// so that an error found then points there; line 0 when no file named it.
+struct FilePosition {
+  std::string file;
+  std::size_t line = 0, column = 0;
+};
+
 // A texture: a 2D checkerboard over (u, v), a 3D solid checkerboard over the
 // world position, or an image (a file, or pixels in memory for built-in scenes).
 struct TextureDesc {
@@ -54,6 +61,7 @@ struct TextureDesc {
   Vec3<float> color_a{1.f, 1.f, 1.f}, color_b{0.f, 0.f, 0.f};  // checkers
   float scale = 1.f;  // checks per unit of (u, v) or of world space
   std::string path;   // image file; absolute or relative to the working directory
+  FilePosition named_at;  // the text that names path
   WrapMode wrap = WrapMode::repeat;
   // In-memory image (used when path is empty): linear RGB, row 0 at v = 1.
   int width = 0, height = 0;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,8 +22,18 @@ PlaneSoA planes_of(std::initializer_list<PlaneDesc> descs, BuildReport* out = nu
   return soa;
 }
 
+constexpr PlaneMethod kMethods[] = {PlaneMethod::seed, PlaneMethod::anchored};
+
+// The closest hit, the same from both methods on these exact cases.
 Hit<float> closest(const Ray<float>& ray, const PlaneSoA& planes) {
-  return testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::seed), ray, planes);
+  const Hit<float> seed = testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::seed), ray, planes);
+  const Hit<float> anchored =
+      testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::anchored), ray, planes);
+  EXPECT_EQ(seed.id, anchored.id);
+  if (seed.id != kNoHit) {
+    EXPECT_EQ(seed.t, anchored.t);
+  }
+  return anchored;
 }
 
 TEST(PlaneKernel, HitsFloorStraightDown) {
@@ -76,7 +87,45 @@ TEST(PlaneBuild, DropsDegenerateAndNonFinite) {
   EXPECT_EQ(report.dropped_degenerate, 2u);  // zero normal; 1e-30 whose squared length underflows
   EXPECT_FLOAT_EQ(soa.ny[0], 1.f);           // normalised
   EXPECT_FLOAT_EQ(soa.d[0], -1.f);
+  EXPECT_EQ(soa.py[0], 1.f);  // the point as given
   for (float v : soa.nx) EXPECT_TRUE(std::isfinite(v));
+}
+
+// A tilted plane and rays toward it from near its point, the whole case
+// moved away from the world origin: the anchored method's t stays within a few float ulps of t
+// in double for the plane as stored (float n and p); the seed's d + n.o
+// cancels and loses digits.
+TEST(PlaneKernel, AnchoredKeepsItsDigitsFarFromTheOrigin) {
+  RaySampler s(11);
+  for (const double far : {1e3, 1e4, 1e5}) {  // beyond, float positions are coarser than the offsets
+    const Vec3<float> center{float(far * 0.6), float(-far * 0.48), float(far * 0.64)};
+    const PlaneSoA plane = planes_of({{center, {0.3f, 0.9f, -0.2f}}});
+    const Vec3<double> n{plane.nx[0], plane.ny[0], plane.nz[0]}, p{plane.px[0], plane.py[0], plane.pz[0]};
+    double worst[2] = {0.0, 0.0};
+    const Vec3<float> normal{plane.nx[0], plane.ny[0], plane.nz[0]};
+    for (int i = 0; i < 2000; ++i) {
+      // From 0.1 to 2 away from the plane, at least 0.3 rad from it (grazing rays are another study).
+      const Vec3<float> along = s.in_box({-2, -2, -2}, {2, 2, 2});
+      const Vec3<float> origin = center + along - normal * dot(normal, along) + normal * s.uniform(0.1f, 2.f);
+      Vec3<float> direction = s.unit_direction();
+      if (dot(direction, normal) > -0.3f) direction = normalize(direction - normal * 1.3f);
+      const Ray<float> ray{origin, direction, 0.f, kInf};
+      const Vec3<double> o{ray.origin.x, ray.origin.y, ray.origin.z};
+      const Vec3<double> d{ray.direction.x, ray.direction.y, ray.direction.z};
+      const double t = dot(n, p - o) / dot(n, d);
+      ASSERT_GT(t, 0.0);
+      for (int m = 0; m < 2; ++m) {
+        const Hit<float> h = testing::closest_hit(plane_streams<KernelUnit::scalar>(kMethods[m]), ray, plane);
+        ASSERT_EQ(h.id, 0) << far;
+        worst[m] = std::max(worst[m], std::fabs(h.t - t) / t);
+      }
+    }
+    SCOPED_TRACE(far);
+    EXPECT_LT(worst[1], 1e-5);  // anchored
+    if (far >= 1e5) {
+      EXPECT_GT(worst[0], 1e-3);  // seed: its known weakness
+    }
+  }
 }
 
 template <class W>
@@ -102,9 +151,11 @@ TYPED_TEST(PlaneWidths, MatchesScalarBitForBit) {
   }
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(plane_streams<KernelUnit::scalar>(PlaneMethod::seed),
-                                                        plane_streams<TestFixture::kUnit>(PlaneMethod::seed), soa, planes);
-  EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 2);  // the test exercises hits
+  for (const PlaneMethod method : kMethods) {
+    const auto ref = testing::expect_streams_match_scalar(plane_streams<KernelUnit::scalar>(method),
+                                                          plane_streams<TestFixture::kUnit>(method), soa, planes);
+    EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 2);  // the test exercises hits
+  }
 }
 
 // Streams compose: a ray a previous store already occluded stays occluded,
@@ -116,10 +167,12 @@ TYPED_TEST(PlaneWidths, OccludedStreamsKeepEarlierOcclusion) {
   std::vector<Ray<float>> rays;
   for (int i = 0; i < 19; ++i) rays.push_back({{float(i), 1.f, 0.f}, {0.f, 1.f, 0.f}, 0.f, kInf});  // away: miss
   const RaySoA soa = testing::to_soa(rays);
-  OcclusionSoA result(soa);
-  for (std::size_t i = 0; i < rays.size(); i += 3) result.occluded[i] = 1;
-  plane_streams<TestFixture::kUnit>(PlaneMethod::seed).occluded_packets(soa, planes, result);
-  for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(result.occluded[i], i % 3 == 0 ? 1 : 0) << "ray " << i;
+  for (const PlaneMethod method : kMethods) {
+    OcclusionSoA result(soa);
+    for (std::size_t i = 0; i < rays.size(); i += 3) result.occluded[i] = 1;
+    plane_streams<TestFixture::kUnit>(method).occluded_packets(soa, planes, result);
+    for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(result.occluded[i], i % 3 == 0 ? 1 : 0) << "ray " << i;
+  }
 }
 
 }  // namespace

@@ -331,6 +331,53 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
   EXPECT_EQ(centre_red(opaque), 0.f);
 }
 
+// ---- the SPD ray tree (--preset spd) ------------------------------------------
+
+// A transmitter with Ks 0 (like SPD gears' glass gears) filling the view,
+// a matte wall behind the camera facing it, a light between them. Every eye
+// ray hits the glass; its reflection ray (weight 0: kr is 0) hits the wall.
+SceneDesc glass_and_wall() {
+  SceneDesc s;
+  s.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 16, 12};
+  s.lights.push_back({});
+  s.lights[0].position = {0.f, 3.f, 4.f};
+  MaterialDesc glass;
+  glass.kd = 0.2f;
+  glass.kt = 0.8f;
+  glass.ior = 1.1f;
+  MaterialDesc wall;
+  s.materials = {glass, wall};
+  s.polygons.push_back({{{{-5.f, -5.f, 0.f}, {5.f, -5.f, 0.f}, {5.f, 5.f, 0.f}, {-5.f, 5.f, 0.f}}}, {}, 0});
+  s.polygons.push_back({{{{-20.f, -20.f, 8.f}, {-20.f, 20.f, 8.f}, {20.f, 20.f, 8.f}, {20.f, -20.f, 8.f}}}, {}, 1});
+  return s;
+}
+
+TEST(Render, SpdTreeSpawnsReflectionsOffTransmittersAndTheirShadowRays) {
+  const Scene scene = build_scene(glass_and_wall(), {});
+  RenderSettings settings = small_settings(16, 12);
+  settings.isa = best_supported_isa();
+  settings.trace.max_depth = 1;
+  settings.trace.min_weight = 0.f;
+  const RenderResult whitted = render(scene, settings);
+  settings.trace.spawn_every_ray = true;
+  const RenderResult spd = render(scene, settings);
+  const std::uint64_t n = 16u * 12u;
+  ASSERT_EQ(spd.stats.rays.primary_hits, n);
+  // Without the SPD rule a Ks 0 transmitter reflects nothing.
+  EXPECT_EQ(whitted.stats.rays.reflection, 0u);
+  EXPECT_EQ(whitted.stats.rays.refraction, n);
+  EXPECT_EQ(whitted.stats.rays.shadow, n);
+  // SPD rule 8: a reflection ray off every transmitter hit; rule 9: a
+  // refraction ray (no total internal reflection entering from air); rule
+  // 10: a shadow ray from the glass and from every wall point the
+  // zero-weight reflection rays reach.
+  EXPECT_EQ(spd.stats.rays.reflection, n);
+  EXPECT_EQ(spd.stats.rays.refraction, n);
+  EXPECT_EQ(spd.stats.rays.shadow, 2 * n);
+  // Zero-weight rays add nothing: the same image.
+  EXPECT_TRUE(same_bits(whitted.image.rgb, spd.image.rgb));
+}
+
 // ---- self-intersection at any scale ------------------------------------------
 
 SceneDesc scaled(SceneDesc s, float k) {

@@ -218,8 +218,6 @@ TEST(NffReader, CameraAndBackgroundAreOptional) {
   EXPECT_FALSE(scene.camera.has_value());
   expect_vec3(scene.background, 0.f, 0.f, 0.f);
   EXPECT_EQ(scene.spheres.size(), 1u);
-  EXPECT_TRUE(parse_nff("", "empty.nff").materials.empty());
-  EXPECT_TRUE(parse_nff("# only a comment\n\n", "comment.nff").spheres.empty());
 }
 
 TEST(NffReader, NumberSpellings) {
@@ -366,7 +364,22 @@ TEST(NffErrors, ResolutionOutOfBounds) {
   // Each side allowed, the product (2^29) not.
   EXPECT_TRUE(parse_error_at(head + "resolution 65536 8192\n", 7, 12,
                              "expected at most 268435456 pixels (width * height), found '65536 8192'"));
-  EXPECT_TRUE(parse_nff(head + "resolution 65536 4096\n", "ok.nff").camera.has_value());  // exactly 2^28
+  const std::string largest = head + "resolution 65536 4096\n" + with_material("s 0 0 0 1\n");  // exactly 2^28
+  EXPECT_TRUE(parse_nff(largest, "ok.nff").camera.has_value());
+}
+
+// An empty NFF renders a blank image: issue 28 makes it an error, as is
+// any NFF without an object (a camera, lights and materials alone).
+TEST(NffErrors, NoObjectsIsAnErrorAtTheEndOfTheFile) {
+  EXPECT_TRUE(
+      parse_error_at("", 1, 1, "expected at least one object (s, c, p or pp), found end of file with no objects"));
+  EXPECT_TRUE(parse_error_at("# only a comment\n\n", 3, 1, "found end of file with no objects"));
+  EXPECT_TRUE(parse_error_at(std::string(kCamera) + "l 1 1 1\n" + std::string(kMaterial) + "b 0 0 0", 10, 8,
+                             "found end of file with no objects"));
+  for (const char* object : {"s 0 0 0 1\n", "c\n0 0 0 1\n0 1 0 1\n", "p 3\n0 0 0\n1 0 0\n0 1 0\n",
+                             "pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n"}) {
+    EXPECT_NO_THROW(parse_nff(with_material(object), "test.nff")) << object;
+  }
 }
 
 TEST(NffErrors, UnreadableFile) {

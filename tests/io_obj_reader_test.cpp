@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
+#include "tests/support/temporary_directory.h"
 
 namespace quiver {
 namespace {
@@ -424,10 +426,10 @@ TEST(ObjReader, BadNumbersAreErrorsAtTheirToken) {
   // An exponent of 10 or more digits is an error whatever its value (these read as 0).
   EXPECT_TRUE(obj_error_at("v 0 0e2147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
   EXPECT_TRUE(obj_error_at("v 0 0.000e-0002147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
-  EXPECT_NO_THROW(parse("v 0 1e-000000000000030 0\n"));
+  EXPECT_NO_THROW(parse("v 0 1e-000000000000030 0\n" + std::string(kTriangle) + "f 2 3 4\n"));
   // Magnitudes over 3.4e38 are errors, also those below FLT_MAX.
   EXPECT_TRUE(obj_error_at("v 0 0 -3.40282346e38\n", 1, 7, "a number from -3.4e38 to 3.4e38"));
-  EXPECT_NO_THROW(parse("v 0 0 -3.4e38\n"));
+  EXPECT_NO_THROW(parse("v 0 0 -3.4e38\n" + std::string(kTriangle) + "f 2 3 4\n"));
 }
 
 TEST(ObjReader, ZeroWithAHugeExponentReadsAsZero) {
@@ -512,7 +514,52 @@ TEST(ObjReader, MtlErrorsAreReportedInTheMtlFile) {
   EXPECT_TRUE(
       error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd -clamp yes tex/checker.png\n"}}, "m.mtl", 2, 15, "'on' or 'off'"));
   // Statements quiver does not use are skipped, whatever they hold.
-  EXPECT_NO_THROW(parse(obj, {{"m.mtl", "newmtl a\nsharpness x\nmap_Ks anything at all\n"}}));
+  EXPECT_NO_THROW(parse(obj + std::string(kTriangle) + "f 1 2 3\n",
+                        {{"m.mtl", "newmtl a\nsharpness x\nmap_Ks anything at all\n"}}));
+}
+
+// A mesh without faces draws nothing (issue 28): an error at the end of the
+// file, in a scene of its own or appended to another.
+TEST(ObjReader, NoFacesIsAnErrorAtTheEndOfTheFile) {
+  const std::string_view no_objects =
+      "expected at least one face ('f'; 'l' and 'p' draw nothing), found end of file with no objects";
+  EXPECT_TRUE(obj_error_at("", 1, 1, no_objects));
+  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "l 1 2\np 3\n# end\n", 7, 1, no_objects));
+  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "vn 0 0 1", 4, 9, no_objects));
+  EXPECT_TRUE(obj_error_at("v 0 0 0\r\nv 1 0 0\r", 3, 1, no_objects));
+  const testing::TemporaryDirectory temporary("quiver_obj_test");
+  const fs::path mesh = temporary.path() / "points.obj";
+  std::ofstream(mesh) << kTriangle << "p 1 2 3\n";
+  SceneDesc scene;
+  try {
+    append_obj_mesh(mesh, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, std::nullopt, scene);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), mesh.string() + ":5:1: " + std::string(no_objects));
+  }
+}
+
+// An MTL library too large to read, alone or with the others, is an error
+// at the mtllib name that brings it in.
+TEST(ObjReader, MtlLibraryBoundsAreErrorsAtTheirMtllibName) {
+  const testing::TemporaryDirectory temporary("quiver_obj_test");
+  const fs::path mesh = temporary.path() / "mesh.obj";
+  const fs::path big = temporary.path() / "big.mtl";
+  std::ofstream(mesh) << "v 0 0 0\nmtllib   big.mtl\n";
+  std::ofstream{big};
+  fs::resize_file(big, kMaxMtlBytes + 1);
+  try {
+    read_obj_scene(mesh);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), mesh.string() + ":2:10: in the MTL library named here: " + big.string() +
+                                             ": cannot read an MTL material library: larger than the limit of " +
+                                             std::to_string(kMaxMtlBytes) + " bytes");
+  }
+  // Two comments of half the bound each: the second passes the total.
+  const std::string half(kMaxMtlBytes / 2, '#');
+  EXPECT_TRUE(error_at("mtllib a.mtl b.mtl\n", {{"a.mtl", half}, {"b.mtl", half + "#"}}, "test.obj", 1, 14,
+                       "MTL libraries of at most 67108864 bytes in all, found 'b.mtl'"));
 }
 
 TEST(ObjReader, WholeFileErrors) {

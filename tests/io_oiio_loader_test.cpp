@@ -32,13 +32,13 @@ TEST(OiioModule, FailuresAreReturnedWithAMessage) {
 
   OiioImageHeader header{};
   const fs::path missing = directory.path() / "missing.png";
-  EXPECT_EQ(oiio.open_input(missing.c_str(), &header, error, sizeof error), nullptr);
+  EXPECT_EQ(oiio.open_input(missing.c_str(), "png", &header, error, sizeof error), nullptr);
   EXPECT_NE(std::string(error), "");
 
   const fs::path text = directory.path() / "text.png";
   std::ofstream(text) << "not an image\n";
   error[0] = '\0';
-  EXPECT_EQ(oiio.open_input(text.c_str(), &header, error, sizeof error), nullptr);
+  EXPECT_EQ(oiio.open_input(text.c_str(), "png", &header, error, sizeof error), nullptr);
   EXPECT_NE(std::string(error), "");
 
   const std::vector<std::uint8_t> pixel{1, 2, 3};
@@ -49,9 +49,14 @@ TEST(OiioModule, FailuresAreReturnedWithAMessage) {
             0);
   EXPECT_NE(std::string(error), "");
 
+  // A format OpenImageIO has no plugin for.
+  error[0] = '\0';
+  EXPECT_EQ(oiio.open_input(text.c_str(), "no-such-format", &header, error, sizeof error), nullptr);
+  EXPECT_NE(std::string(error), "");
+
   // A message longer than the buffer is cut and still terminated.
   char tiny[4] = {'x', 'x', 'x', 'x'};
-  EXPECT_EQ(oiio.open_input(missing.c_str(), &header, tiny, sizeof tiny), nullptr);
+  EXPECT_EQ(oiio.open_input(missing.c_str(), "png", &header, tiny, sizeof tiny), nullptr);
   EXPECT_EQ(tiny[3], '\0');
 }
 
@@ -67,7 +72,7 @@ TEST(OiioModule, ReadsWhatItWrote) {
       << error;
 
   OiioImageHeader header{};
-  void* input = oiio.open_input(path.c_str(), &header, error, sizeof error);
+  void* input = oiio.open_input(path.c_str(), "tiff", &header, error, sizeof error);
   ASSERT_NE(input, nullptr) << error;
   EXPECT_EQ(header.width, 2);
   EXPECT_EQ(header.height, 1);

@@ -46,6 +46,55 @@ TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
   }
 }
 
+// Every reader refuses a file without objects (issue 28), at its end.
+TEST(SceneLoader, AnEmptySceneOfAnyFormatIsAnError) {
+  const testing::TemporaryDirectory temporary("quiver_loader_test");
+  for (const char* name : {"empty.nff", "empty.toml", "empty.obj"}) {
+    const fs::path path = temporary.path() / name;
+    std::ofstream{path};
+    try {
+      load_scene(path);
+      ADD_FAILURE() << "no ParseError for " << name;
+    } catch (const ParseError& error) {
+      const std::string what = error.what();
+      EXPECT_EQ(what.rfind(path.string() + ":1:1: expected at least one ", 0), 0u) << what;
+      EXPECT_NE(what.find("found end of file with no objects"), std::string::npos) << what;
+    }
+  }
+}
+
+// An image read after the scene (load_scene reads textures last) that
+// fails names the scene line that named it: TOML's file key, MTL's map_Kd.
+TEST(SceneLoader, TextureErrorsPointAtTheTextThatNamesTheImage) {
+  const testing::TemporaryDirectory temporary("quiver_loader_test");
+  const fs::path& dir = temporary.path();
+  const fs::path image = dir / "zeros.png";
+  std::ofstream(image, std::ios::binary) << std::string(64, '\0');
+  std::ofstream(dir / "scene.toml") << "[[textures]]\nname = \"t\"\ntype = \"image\"\nfile = \"zeros.png\"\n"
+                                       "[[materials]]\nname = \"m\"\ntexture = \"t\"\n"
+                                       "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n";
+  std::ofstream(dir / "mesh.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  std::ofstream(dir / "m.mtl") << "newmtl a\nKd 1 1 1\nmap_Kd -clamp on zeros.png\n";
+  const std::string cause = image.string() + ": not an image: expected a PNG";
+  const struct {
+    fs::path scene, named_in;
+    std::size_t line, column;
+  } cases[] = {{dir / "scene.toml", dir / "scene.toml", 4, 8}, {dir / "mesh.obj", dir / "m.mtl", 3, 18}};
+  for (const auto& c : cases) {
+    try {
+      load_scene(c.scene);
+      ADD_FAILURE() << "no ParseError for " << c.scene;
+    } catch (const ParseError& error) {
+      EXPECT_EQ(fs::path(error.file()), c.named_in);
+      EXPECT_EQ(error.line(), c.line);
+      EXPECT_EQ(error.column(), c.column);
+      const std::string prefix = c.named_in.string() + ":" + std::to_string(c.line) + ":" + std::to_string(c.column) +
+                                 ": in the image texture named here: " + cause;
+      EXPECT_EQ(std::string(error.what()).rfind(prefix, 0), 0u) << error.what();
+    }
+  }
+}
+
 // Every example scene in io/examples loads and holds a camera, a light and geometry.
 TEST(SceneLoader, EveryExampleSceneLoads) {
   std::vector<fs::path> examples;

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -52,6 +53,17 @@ SceneDesc parse(std::string_view text) { return parse_toml_scene(text, "test.tom
     return ::testing::AssertionSuccess();
   }
   return ::testing::AssertionFailure() << "no ParseError";
+}
+
+// The ParseError of read_toml_scene(path); a test failure when there is none.
+ParseError read_error(const fs::path& path) {
+  try {
+    read_toml_scene(path);
+  } catch (const ParseError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no ParseError for " << path;
+  return ParseError::whole_file(path.string(), "no error");
 }
 
 constexpr std::string_view kSphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
@@ -193,7 +205,8 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
       "[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 0]\n[[lights]]\nposition = [1, 1, 1]\n"
       "[[lights]]\ntype = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\n"
       "edge_v = [0, 1, 0]\n[[textures]]\nname = \"t\"\ntype = \"image\"\n"
-      "file = \"../obj/tex/checker.png\"\n");
+      "file = \"../obj/tex/checker.png\"\n[[materials]]\nname = \"m\"\n" +
+      std::string(kSphere) + "material = \"m\"\n");
   ASSERT_TRUE(camera.camera.has_value());
   expect_vec3(camera.camera->up, 0.f, 1.f, 0.f);
   EXPECT_EQ(camera.camera->angle_degrees, 45.f);
@@ -203,7 +216,7 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
   expect_vec3(camera.lights[0].color, 1.f, 1.f, 1.f);
   EXPECT_EQ(camera.lights[1].samples, LightDesc{}.samples);
   EXPECT_EQ(camera.textures[0].wrap, WrapMode::repeat);
-  EXPECT_TRUE(camera.materials.empty());  // no primitive asked for the default
+  EXPECT_EQ(camera.materials.size(), 1u);  // no primitive asked for the default
 }
 
 // ---- errors, each at its position ----
@@ -228,13 +241,14 @@ TEST(TomlReader, NonAsciiWhereTomlplusplusMisreadsItIsAnError) {
   EXPECT_TRUE(error_at("[render]\naa = \"\"\"a\\\n  \xC3\xA9\"\"\"\n", 3, 3, "an ASCII character"));
   // Comments and strings may hold any UTF-8.
   const SceneDesc scene = parse(
-      "# caf\xC3\xA9 \xD0\x91\n[render]\naa = \"\xC3\xA9\\n\xD0\x91\" # \xE2\x82\xAC\n"
+      "# caf\xC3\xA9 \xD0\x91\n[[materials]]\nname = \"\xC3\xA9\\n\xD0\x91\" # \xE2\x82\xAC\n"
       "[[materials]]\nname = '\xC3\xA9'\n[[textures]]\nname = \"\"\"\xC3\xA9\"\"\"\n"
-      "type = \"checker2d\"\n");
-  EXPECT_EQ(scene.render.aa, "\xC3\xA9\n\xD0\x91");
-  EXPECT_EQ(scene.materials.size(), 1u);
+      "type = \"checker2d\"\n" +
+      std::string(kSphere) + "material = \"\xC3\xA9\\n\xD0\x91\"\n");
+  EXPECT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.spheres.at(0).material, 0u);  // the name with an escaped line break
   EXPECT_EQ(scene.textures.size(), 1u);
-  EXPECT_NO_THROW(parse("\xEF\xBB\xBF[render]\nmax_depth = 2\n"));  // a byte order mark
+  EXPECT_NO_THROW(parse("\xEF\xBB\xBF[render]\nmax_depth = 2\n" + std::string(kSphere)));  // a byte order mark
   // A quoted part of a dotted key is a string too: toml++ reads it, and the
   // reader then finds a table where the material name belongs.
   EXPECT_TRUE(
@@ -310,6 +324,20 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
   EXPECT_TRUE(error_at("[render]\naa = \"\"\n", 2, 6, "a non-empty string"));
 }
 
+// [render] aa is checked as --aa is, at its value (it was checked when the
+// render began, with no file, line or column).
+TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
+  EXPECT_TRUE(error_at("[render]\naa = \"bogus\"\n", 2, 6,
+                       "an anti-aliasing mode (expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH or corners, "
+                       "found 'bogus') (aa in [render])",
+                       "found '\"bogus\"'"));
+  EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));
+  EXPECT_TRUE(error_at("[render]\naa = \"adaptive:-1:2\"\n", 2, 6, "threshold: expected a finite number >= 0"));
+  for (const char* mode : {"none", "grid:3", "jitter:2", "adaptive:0.05:3", "corners"}) {
+    EXPECT_EQ(parse("[render]\naa = \"" + std::string(mode) + "\"\n" + std::string(kSphere)).render.aa, mode);
+  }
+}
+
 TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
   EXPECT_TRUE(error_at("[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0]]\n", 2, 12, "an array of 3 to 1000000 points"));
   EXPECT_TRUE(error_at("[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\nnormals = [[0, 0, 1]]\n", 3, 11,
@@ -322,20 +350,111 @@ TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
   EXPECT_TRUE(error_at(lights, 2 * kMaxTomlLights + 1, 1, "at most 1024 [[lights]] entries"));
 }
 
+// A scene without objects renders a blank image (issue 28): an error at the
+// end of the file, also when it has a camera, lights and materials.
+TEST(TomlReader, NoObjectsIsAnErrorAtTheEndOfTheFile) {
+  EXPECT_TRUE(error_at("", 1, 1, "at least one object ([[spheres]], [[planes]]", "found end of file with no objects"));
+  EXPECT_TRUE(error_at("[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 0]\n[[lights]]\nposition = [1, 1, 1]\n"
+                       "[[materials]]\nname = \"m\" # last",
+                       7, 18, "[[cones]] or [[meshes]])", "found end of file with no objects"));
+  for (const char* object : {
+           "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n", "[[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n",
+           "[[triangles]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n",
+           "[[polygons]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n",
+           "[[cylinders]]\nbase = [0, 0, 0]\napex = [0, 1, 0]\nradius = 1\n",
+           "[[cones]]\nbase = [0, 0, 0]\napex = [0, 1, 0]\nbase_radius = 1\napex_radius = 0\n",
+           "[[meshes]]\nfile = \"triangle.obj\"\n"}) {
+    EXPECT_NO_THROW(parse(object)) << object;
+  }
+}
+
+// A value of /proc/self/status in KiB ("VmRSS", "VmHWM"), or -1.
+long status_kib(const std::string& key) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind(key + ":", 0) == 0) return std::stol(line.substr(key.size() + 1));
+  }
+  return -1;
+}
+
+// Returns freed heap to the system, then sets the peak resident size
+// (VmHWM) to the current one; false when /proc/self/clear_refs refuses.
+bool reset_peak_resident_size() {
+  ::malloc_trim(0);
+  std::ofstream clear_refs("/proc/self/clear_refs");
+  clear_refs << "5";
+  clear_refs.flush();
+  return clear_refs.good();
+}
+
+// "[[polygons]]" with n vertices [0, 0, 0]: 4 nodes, then 4 a vertex.
+std::string polygon_of(std::size_t n) {
+  std::string text = "[[polygons]]\nvertices = [";
+  for (std::size_t i = 0; i < n; ++i) text += "[0, 0, 0], ";
+  return text + "]\n";
+}
+
+// toml++ builds a node of 70-120 bytes for every key, value and table
+// before the reader sees one (a million-vertex polygon, 8 MB, took 346 MB):
+// they are counted first, and past the bound nothing is built.
+TEST(TomlReader, NodesAreBoundedBeforeTomlplusplusBuildsThem) {
+  const std::size_t at_bound = (kMaxTomlNodes - 4) / 4;
+  EXPECT_EQ(parse(polygon_of(at_bound)).polygons.at(0).polygon.vertices.size(), at_bound);
+  EXPECT_TRUE(error_at(polygon_of(at_bound + 1), 2, 13 + 11 * at_bound,
+                       "at most 524288 keys, values and tables (a TOML scene is for what is written by hand; large "
+                       "geometry belongs in an OBJ file included with [[meshes]]",
+                       "found '['"));
+  // Keys, dotted keys, inline tables and strings count too.
+  std::string keys(kSphere);
+  for (std::size_t i = 0; keys.size() < 6 * kMaxTomlNodes; ++i) {
+    keys += 'a';
+    keys += std::to_string(i);
+    keys += ".b = { c = 'd' }\n";
+  }
+  try {
+    parse(keys);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_NE(std::string(error.what()).find("at most 524288 keys"), std::string::npos) << error.what();
+  }
+
+  std::string zeros = std::string(kSphere) + "junk = [0";
+  for (std::size_t i = 0; i < kMaxTomlNodes; ++i) zeros += ",0";
+  for (const std::string& text : {zeros + "]\n", polygon_of(1'000'000)}) {
+    if (!reset_peak_resident_size()) GTEST_SKIP() << "/proc/self/clear_refs cannot reset the peak resident size";
+    const long before = status_kib("VmRSS");
+    EXPECT_THROW(parse(text), ParseError);
+    const long growth_kib = status_kib("VmHWM") - before;
+    EXPECT_LT(growth_kib, 16 * 1024) << "peak resident size grew by " << growth_kib << " KiB for " << text.size()
+                                     << " bytes of TOML";
+  }
+}
+
+TEST(TomlReader, AFileLargerThanTheBoundIsRefusedUnread) {
+  const testing::TemporaryDirectory temporary("quiver_toml_test");
+  const fs::path big = temporary.path() / "big.toml";
+  std::ofstream{big};
+  fs::resize_file(big, kMaxTomlBytes + 1);
+  const ParseError error = read_error(big);
+  EXPECT_EQ(error.line(), 0u);
+  EXPECT_EQ(std::string(error.what()).rfind(big.string() + ": cannot read a TOML scene: larger than the limit of " +
+                                                std::to_string(kMaxTomlBytes) + " bytes (a TOML scene is for",
+                                            0),
+            0u)
+      << error.what();
+}
+
 TEST(TomlReader, FilesMustExist) {
   EXPECT_TRUE(error_at("[[textures]]\nname = \"t\"\ntype = \"image\"\nfile = \"none.png\"\n", 4, 8,
                        "the path of an image file that exists"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"none.obj\"\n", 2, 8, "the path of an OBJ file that exists"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"minimal.toml\"\n", 2, 8, "an OBJ file (.obj)"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"triangle.obj\"\nscale = [1, 0, 1]\n", 3, 9, "a non-zero scale"));
-  try {
-    read_toml_scene(kTestData / "none.toml");
-    FAIL() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(error.line(), 0u);
-    EXPECT_NE(std::string(error.what()).find("none.toml: cannot read a TOML scene: no such file"), std::string::npos)
-        << error.what();
-  }
+  const ParseError error = read_error(kTestData / "none.toml");
+  EXPECT_EQ(error.line(), 0u);
+  EXPECT_NE(std::string(error.what()).find("none.toml: cannot read a TOML scene: no such file"), std::string::npos)
+      << error.what();
 }
 
 TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
@@ -343,14 +462,24 @@ TEST(TomlReader, ErrorsInAnIncludedMeshNameTheMeshFile) {
   const fs::path& dir = temporary.path();
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
   std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"bad.obj\"\n";
-  try {
-    read_toml_scene(dir / "scene.toml");
-    ADD_FAILURE() << "no ParseError";
-  } catch (const ParseError& error) {
-    EXPECT_EQ(fs::path(error.file()).filename(), "bad.obj");
-    EXPECT_EQ(error.line(), 3u);
-    EXPECT_EQ(error.column(), 7u);
-  }
+  const ParseError error = read_error(dir / "scene.toml");
+  EXPECT_EQ(fs::path(error.file()).filename(), "bad.obj");
+  EXPECT_EQ(error.line(), 3u);
+  EXPECT_EQ(error.column(), 7u);
+}
+
+// An error about an included mesh as a whole points at its file key.
+TEST(TomlReader, WholeFileErrorsOfAnIncludedMeshPointAtItsFileKey) {
+  const testing::TemporaryDirectory temporary("quiver_toml_test");
+  const fs::path& dir = temporary.path();
+  std::ofstream(dir / "huge.obj") << "v 3e38 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
+  std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"huge.obj\"\nscale = 10\n";
+  const ParseError error = read_error(dir / "scene.toml");
+  EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the OBJ mesh named here: " +
+                                           (dir / "huge.obj").string() +
+                                           ": a vertex is not finite after the mesh transform of the including scene");
+  EXPECT_EQ(error.line(), 2u);
+  EXPECT_EQ(error.column(), 8u);
 }
 
 // spot.obj has no MTL library: a [[meshes]] include gives it its texture.

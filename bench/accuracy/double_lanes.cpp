@@ -51,7 +51,9 @@ std::vector<DoubleHit> run_double(const Method& method, const RaySoA& rays, cons
         case SphereMethod::robust: return all_in_double<SphereRobust>(rays, prims.spheres);
       }
       break;
-    case Kind::plane: return all_in_double<PlaneSeed>(rays, prims.planes);
+    case Kind::plane:
+      if (PlaneMethod(method.method) == PlaneMethod::seed) return all_in_double<PlaneSeed>(rays, prims.planes);
+      return all_in_double<PlaneAnchored>(rays, prims.planes);
     case Kind::triangle:
       if (TriangleMethod(method.method) == TriangleMethod::moller_trumbore) {
         return all_in_double<TriangleMollerTrumbore>(rays, prims.triangles);

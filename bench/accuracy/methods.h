@@ -28,11 +28,12 @@ struct Method {
   bool renderer_default;  // what integrator/scene_intersector.cpp uses
 };
 
-inline constexpr std::array<Method, 8> kMethods = {{
+inline constexpr std::array<Method, 9> kMethods = {{
     {Kind::sphere, int(SphereMethod::algebraic), "sphere", "algebraic", false},
     {Kind::sphere, int(SphereMethod::geometric), "sphere", "geometric", false},
     {Kind::sphere, int(SphereMethod::robust), "sphere", "robust", true},
-    {Kind::plane, int(PlaneMethod::seed), "plane", "seed", true},
+    {Kind::plane, int(PlaneMethod::seed), "plane", "seed", false},
+    {Kind::plane, int(PlaneMethod::anchored), "plane", "anchored", true},
     {Kind::triangle, int(TriangleMethod::moller_trumbore), "triangle", "moller_trumbore", false},
     {Kind::triangle, int(TriangleMethod::watertight), "triangle", "watertight", true},
     {Kind::polygon, int(PolygonMethod::crossing), "polygon", "crossing", true},

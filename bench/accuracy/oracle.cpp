@@ -97,8 +97,12 @@ Reference reference(const Ray<float>& ray, const SphereSoA& spheres, std::size_t
 }
 
 Reference reference(const Ray<float>& ray, const PlaneSoA& planes, std::size_t i) {
+  // The plane through the stored point p with the stored normal: d = -n.p exactly.
   const Vec3<float> normal = float_vertex(planes.nx, planes.ny, planes.nz, i);
-  const PlaneCrossing crossing = cross_plane(ray, normal, planes.d[i]);
+  const DDVec3 n = exact(normal);
+  const DDVec3 p_minus_o = exact_difference(float_vertex(planes.px, planes.py, planes.pz, i), ray.origin);
+  PlaneCrossing crossing{dot(n, exact(ray.direction)), DD(0.0)};
+  if (crossing.denominator.hi != 0.0) crossing.t = dot(n, p_minus_o) / crossing.denominator;
   Reference ref;
   const double d_length = std::sqrt(to_double(dot(exact(ray.direction), exact(ray.direction))));
   const double n_length = std::sqrt(to_double(dot(exact(normal), exact(normal))));

@@ -32,6 +32,7 @@ COLORS = {
     "sphere/geometric": "tab:orange",
     "sphere/robust": "tab:green",
     "plane/seed": "tab:blue",
+    "plane/anchored": "tab:pink",
     "triangle/moller_trumbore": "tab:purple",
     "triangle/watertight": "tab:cyan",
     "polygon/crossing": "tab:brown",
