@@ -1,17 +1,21 @@
 // Ray / planar polygon (n >= 3 vertices, convex or concave), watertight
 // across polygons that share edges (closed polygon meshes):
-//   1. plane hit: n.P + d = 0 with unit n, t = -(d + n.o) / (n.dir)
-//      (plane_crossing, geometry/plane.h); the hit point projected onto the
+//   1. plane hit, anchored at the first vertex V0 as stored: t = n.(V0 - o)
+//      / (n.dir) with unit n (divide_by_slope, geometry/plane.h, as
+//      PlaneAnchored), so t keeps its digits far from the world origin
+//      (V0 - o is exact or nearly so near the polygon, where d + n.o with a
+//      float d = -n.C would cancel); the hit point projected onto the
 //      polygon's dominant plane (drop the axis k of n's largest |component|,
 //      chosen at build time): (u, v) = (P[(k+1)%3], P[(k+2)%3]) relative to
 //      the first vertex;
 //   2. lanes clear of every edge are decided in that projection: outside the
 //      2D bounding rectangle, or by an edge band (below); "clear" by
-//      each lane's margin, a bound on how far rounding (and the stored
-//      plane's distance from the vertices) moves the projected hit point
+//      each lane's margin, a bound on how far rounding (and t's plane's
+//      distance from the vertices) moves the projected hit point
 //      from the ray's true crossing: 2^-16 * (|t| |d|_1 + |o|_1 + reach) +
-//      2 * plane_slack, times |d|_1 / |n.d| (reach: the largest |V|_1 + |d|;
-//      plane_slack: the largest |n.V + d| over the vertices). To first
+//      2 * plane_slack, times |d|_1 / |n.d| (reach: the largest |V|_1 + |d|
+//      with d = -n.C through the centroid; plane_slack: the largest
+//      |n.(V - V0)| over the vertices). To first
 //      order, rounding moves the projected hit point by 7 ulp of that sum
 //      times |d|_1 / |n.d|, and the shear below moves the vertices by what
 //      looks like 17 ulp of it on the plane: the 2^-16 is 10 times more;
@@ -83,7 +87,7 @@ inline constexpr float kPolygonLaneMargin = 0x1p-16f;
 template <class F>
 struct PolygonLanes {
   Vec3<F> normal;          // unit length
-  F d;                     // n.P + d = 0 on the plane
+  Vec3<F> anchor;          // the first vertex in 3D, as given: t's plane passes through it
   int axis_u, axis_v;      // the kept axes, (k+1)%3 and (k+2)%3
   F origin_u, origin_v;    // the first vertex, projected
   F umin, umax, vmin, vmax;  // bounding rectangle, relative to the first vertex
@@ -288,7 +292,7 @@ struct PolygonCrossing {
                            const Mask<F>& active, Candidate<F>& out) {
     const Ray<F>& ray = prepared.ray;
     Mask<F> crosses;
-    out.t = plane_crossing(ray, poly.normal, poly.d, crosses);
+    out.t = divide_by_slope(dot(poly.normal, poly.anchor - ray.origin), ray, poly.normal, crosses);
     out.ng = poly.normal;
     // Projected hit point relative to the first vertex: (o - V0) + t dir.
     const F u = fma(out.t, ray.direction[poly.axis_u], ray.origin[poly.axis_u] - poly.origin_u);

@@ -218,14 +218,16 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
       continue;
     }
     const Vec3<float> n{float(poly.normal.x), float(poly.normal.y), float(poly.normal.z)};
-    // d for the rounded normal through the centroid: n.C + d = 0.
+    // d for the rounded normal through the centroid: n.C + d = 0 (the lane
+    // margin's reach; the kernel's t is anchored at the first vertex).
     const Vec3d& c = poly.centroid;
     const float d = float(-(double(n.x) * c.x + double(n.y) * c.y + double(n.z) * c.z));
     const Vec3<float>& v0 = poly.vertices[0];
     const int au = (poly.dropped_axis + 1) % 3, av = (poly.dropped_axis + 2) % 3;
 
     // Projected vertices relative to the first, all kept; the lane margin's
-    // reach (largest |V|_1 + |d|) and plane slack (largest |n.V + d|).
+    // reach (largest |V|_1 + |d|) and plane slack (largest |n.(V - V0)|: the
+    // vertices' distance from t's plane, the one through the first vertex).
     std::vector<float> us, vs;
     bool all_finite = std::isfinite(d);
     double reach = 0.0, slack = 0.0;
@@ -235,7 +237,8 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
       us.push_back(u);
       vs.push_back(v);
       reach = std::max(reach, std::abs(double(p.x)) + std::abs(double(p.y)) + std::abs(double(p.z)));
-      slack = std::max(slack, std::abs(double(n.x) * p.x + double(n.y) * p.y + double(n.z) * p.z + double(d)));
+      slack = std::max(slack, std::abs(double(n.x) * (double(p.x) - v0.x) + double(n.y) * (double(p.y) - v0.y) +
+                                       double(n.z) * (double(p.z) - v0.z)));
     }
     if (!all_finite) {
       ++report.dropped_non_finite;

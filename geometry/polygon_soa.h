@@ -65,7 +65,7 @@ struct PolygonSoA {
   template <class F>
   PolygonLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(nx, ny, nz, i),
-            F(d[i]),
+            broadcast_vec3<F>(px, py, pz, first_vertex[i]),
             axis_u[i],
             axis_v[i],
             F(origin_u[i]),

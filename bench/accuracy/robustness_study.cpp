@@ -5,7 +5,7 @@
 // method) and the polygon method on closed polygon meshes (the box's quads,
 // prisms of a square, a 24-gon, a 5-point star, a 12-tooth gear and the gear
 // 1e3 from the origin; 10^7 rays; and the far gear with origins as near its
-// faces as the near ones', where the plane's t fails); acne per method,
+// faces as the near ones', where the seed plane's t failed); acne per method,
 // scene scale 1e-4..1e6 and offset rule.
 #include <cmath>
 #include <cstdio>
