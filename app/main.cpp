@@ -196,7 +196,7 @@ int run_render(const RenderArgs& args) {
         scene, plan.settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); },
         &quiver::stop_requested());
     progress.finish();
-    if (result.stopped) {
+    if (result.stopped()) {
       return report_interrupted("during the render, after " + std::to_string(result.tiles_done) + " of " +
                                 std::to_string(result.tiles_total) + " tiles");
     }

@@ -3,6 +3,7 @@
 #include <system_error>
 
 #include "app/render_options.h"
+#include "io/file_extension.h"
 
 namespace quiver {
 
@@ -21,8 +22,7 @@ std::vector<RoleFile> files_read(const SceneDesc& desc, bool first_is_scene) {
   std::vector<RoleFile> files;
   for (std::size_t i = 0; i < desc.source_files.size(); ++i) {
     const fs::path path = desc.source_files[i];
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = char(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    const std::string extension = lowercase_extension(path);
     const char* role = i == 0 && first_is_scene ? "the scene file"
                        : extension == ".mtl"    ? "an MTL material library"
                                                 : "an OBJ mesh";

@@ -324,8 +324,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
   });
   result.tiles_total = tiles.size();
   result.tiles_done = done.load();
-  result.stopped = result.tiles_done < result.tiles_total;
-  if (settings.aa.mode == AntiAliasing::Mode::corners && !result.stopped) average_corners(corners, image);
+  if (settings.aa.mode == AntiAliasing::Mode::corners && !result.stopped()) average_corners(corners, image);
   result.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const Worker& w : workers) result.stats.add(w.stats);
   return result;

@@ -39,7 +39,8 @@ struct RenderResult {
   int threads = 0;  // threads actually used
   SphereMethod sphere_method = SphereMethod::robust;  // the one the render used
   std::size_t tiles_done = 0, tiles_total = 0;
-  bool stopped = false;  // the stop flag was seen: tiles not yet started were skipped, the image is incomplete
+  // The stop flag was seen: tiles not yet started were skipped, the image is incomplete.
+  bool stopped() const { return tiles_done < tiles_total; }
 };
 
 // A rectangle of pixels: the renderer's unit of work.

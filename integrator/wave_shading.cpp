@@ -232,8 +232,8 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   // transmissive one, with no weight test.
   const Mask<F> cast_reflection =
       hit_mask & (in.spawn_every_ray ? (kr > F(0.f)) | transmissive : worth_casting(reflect_weight, in.min_weight));
-  const Mask<F> cast_refraction = hit_mask & transmissive & transmitted &
-                                  (in.spawn_every_ray ? transmissive : worth_casting(refract_weight, in.min_weight));
+  Mask<F> cast_refraction = hit_mask & transmissive & transmitted;
+  if (!in.spawn_every_ray) cast_refraction = cast_refraction & worth_casting(refract_weight, in.min_weight);
   const unsigned reflection_bits = lane_bits(cast_reflection), refraction_bits = lane_bits(cast_refraction);
   if ((reflection_bits | refraction_bits) == 0) return;
 

@@ -4,6 +4,7 @@
 // TIFF through OpenImageIO in the quiver_oiio module, loaded on first use.
 #include "io/image_output.h"
 
+#include "io/file_extension.h"
 #include "io/oiio_loader.h"
 #include "io/output_file.h"
 
@@ -16,7 +17,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -63,12 +63,6 @@ constexpr std::array<FormatInfo, 7> kFormats{{
   what += ": ";
   what += message;
   throw std::runtime_error(what);
-}
-
-std::string lowercase_extension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
 }
 
 const FormatInfo* format_of(const fs::path& path) {

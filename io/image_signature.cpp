@@ -4,6 +4,7 @@
 // header fields for TGA. JPEG 2000 is left out: Debian 12's OpenImageIO
 // 2.4.7 cannot read the JP2 files it writes ("Expected a SOC marker").
 #include "io/image_signature.h"
+#include "io/file_extension.h"
 
 #include <array>
 #include <cctype>
@@ -53,9 +54,7 @@ bool is_netpbm(std::string_view head) {
 // TGA 2.0: colour map type 0 or 1, an image type with data (1-3 plain,
 // 9-11 run-length), non-zero width and height, a pixel depth it defines.
 bool is_tga(std::string_view head, std::string_view extension) {
-  std::string lower(extension);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower != ".tga" || head.size() < kImageSignatureBytes) return false;
+  if (ascii_lowercase(extension) != ".tga" || head.size() < kImageSignatureBytes) return false;
   auto byte = [&](std::size_t i) { return static_cast<unsigned char>(head[i]); };
   const unsigned type = byte(2);
   const unsigned width = byte(12) | (byte(13) << 8), height = byte(14) | (byte(15) << 8);

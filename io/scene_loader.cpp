@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "io/file_extension.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
@@ -11,10 +12,7 @@
 namespace quiver {
 
 SceneDesc load_scene(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
+  const std::string extension = lowercase_extension(path);
   SceneDesc scene;
   if (extension == ".nff") {
     scene = read_nff(path);

@@ -5,6 +5,7 @@
 // Positions come from toml++'s source regions, whose columns count code
 // points; they are turned into byte columns against the text.
 #include "io/toml_reader.h"
+#include "io/file_extension.h"
 
 #include <toml++/toml.h>
 
@@ -700,10 +701,7 @@ class TomlSceneReader {
     check_keys(t, {"file", "material", "translate", "rotate", "scale"}, s);
     const toml::node& file_node = required(t, "file", s);
     const std::string path = existing_file(file_node, "file", s, "an OBJ file");
-    std::string extension = fs::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c); });
-    if (extension != ".obj") fail(file_node, expected_for("an OBJ file (.obj)", "file", s));
+    if (lowercase_extension(path) != ".obj") fail(file_node, expected_for("an OBJ file (.obj)", "file", s));
     std::optional<std::size_t> material;
     if (t.contains("material")) material = material_of(t, s);
 
