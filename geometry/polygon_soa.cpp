@@ -82,6 +82,18 @@ Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
   return Verdict::ok;
 }
 
+// Projected vertices that differ from their predecessor (cyclically), as
+// many as a polygon without consecutive projected duplicates would keep.
+std::size_t distinct_projected(const std::vector<float>& us, const std::vector<float>& vs) {
+  const std::size_t n = us.size();
+  std::size_t distinct = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t j = k == 0 ? n - 1 : k - 1;
+    distinct += us[k] != us[j] || vs[k] != vs[j];
+  }
+  return distinct;
+}
+
 // The span of one band (BandSpan, geometry/polygon.h) from the edges it
 // lists, with above(k): band_of(vertex k's v) > band. Between the edges' u
 // ranges (sorted by their low ends) lie gaps; the edges right of a gap form
@@ -206,31 +218,33 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
       continue;
     }
     const Vec3<float> n{float(poly.normal.x), float(poly.normal.y), float(poly.normal.z)};
-    // d for the rounded normal through the centroid: n.C + d = 0.
+    // d for the rounded normal through the centroid: n.C + d = 0 (the lane
+    // margin's reach; the kernel's t is anchored at the first vertex).
     const Vec3d& c = poly.centroid;
     const float d = float(-(double(n.x) * c.x + double(n.y) * c.y + double(n.z) * c.z));
     const Vec3<float>& v0 = poly.vertices[0];
     const int au = (poly.dropped_axis + 1) % 3, av = (poly.dropped_axis + 2) % 3;
 
-    // Projected vertices relative to the first; consecutive 2D duplicates dropped.
+    // Projected vertices relative to the first, all kept; the lane margin's
+    // reach (largest |V|_1 + |d|) and plane slack (largest |n.(V - V0)|: the
+    // vertices' distance from t's plane, the one through the first vertex).
     std::vector<float> us, vs;
     bool all_finite = std::isfinite(d);
+    double reach = 0.0, slack = 0.0;
     for (const Vec3<float>& p : poly.vertices) {
       const float u = p[au] - v0[au], v = p[av] - v0[av];
       all_finite = all_finite && std::isfinite(u) && std::isfinite(v);
-      if (!us.empty() && us.back() == u && vs.back() == v) continue;
       us.push_back(u);
       vs.push_back(v);
-    }
-    while (us.size() > 1 && us.back() == us.front() && vs.back() == vs.front()) {
-      us.pop_back();
-      vs.pop_back();
+      reach = std::max(reach, std::abs(double(p.x)) + std::abs(double(p.y)) + std::abs(double(p.z)));
+      slack = std::max(slack, std::abs(double(n.x) * (double(p.x) - v0.x) + double(n.y) * (double(p.y) - v0.y) +
+                                       double(n.z) * (double(p.z) - v0.z)));
     }
     if (!all_finite) {
       ++report.dropped_non_finite;
       continue;
     }
-    if (us.size() < 3) {
+    if (distinct_projected(us, vs) < 3) {
       ++report.dropped_degenerate;
       continue;
     }
@@ -245,18 +259,27 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
     soa.umax.push_back(*std::max_element(us.begin(), us.end()));
     soa.vmin.push_back(*std::min_element(vs.begin(), vs.end()));
     soa.vmax.push_back(*std::max_element(vs.begin(), vs.end()));
+    // Rounded up: float() may round down by 2^-24.
+    constexpr double kUp = 1.0 + 0x1p-20;
+    soa.reach.push_back(float((reach + std::abs(double(d))) * kUp));
+    soa.plane_slack.push_back(float(slack * kUp));
     soa.axis_u.push_back(au);
     soa.axis_v.push_back(av);
     soa.vertex_count.push_back(static_cast<std::int32_t>(us.size()));
     soa.first_vertex.push_back(soa.pu.size());
     soa.pu.insert(soa.pu.end(), us.begin(), us.end());
     soa.pv.insert(soa.pv.end(), vs.begin(), vs.end());
+    for (const Vec3<float>& p : poly.vertices) {
+      soa.px.push_back(p.x);
+      soa.py.push_back(p.y);
+      soa.pz.push_back(p.z);
+    }
     add_edge_bands(soa, us, vs, soa.umin.back(), soa.umax.back(), soa.vmin.back(), soa.vmax.back());
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
   for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
-                           &soa.vmin, &soa.vmax, &soa.band_scale}) {
+                           &soa.vmin, &soa.vmax, &soa.reach, &soa.plane_slack, &soa.band_scale}) {
     pad_column(*c, soa.count);
   }
   for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count, &soa.band_count}) pad_column(*c, soa.count);
@@ -267,8 +290,8 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 
 std::size_t PolygonSoA::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &pu, &pv,
-                                 &band_scale}) {
+  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach,
+                                 &plane_slack, &pu, &pv, &px, &py, &pz, &band_scale}) {
     bytes += c->capacity() * sizeof(float);
   }
   for (const AlignedInts* c : {&axis_u, &axis_v, &vertex_count, &band_count}) {

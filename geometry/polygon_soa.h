@@ -1,8 +1,10 @@
 // Planar polygons in SoA: per polygon the unit plane (nx, ny, nz, d), the kept
 // axes of the dominant projection, the first vertex projected, the 2D bounding
-// rectangle and the vertex range; the projected vertices (relative to each
-// polygon's first vertex) live in the flat columns pu, pv. Packets only:
-// broadcast<F>(i) hands every lane the same polygon.
+// rectangle, the lane margin's reach and plane slack (geometry/polygon.h) and
+// the vertex range; the vertices live in flat columns, projected relative to
+// each polygon's first vertex (pu, pv) and in 3D as given (px, py, pz: the
+// ray-space test reads them, so two polygons sharing a vertex read the same
+// floats). Packets only: broadcast<F>(i) hands every lane the same polygon.
 #pragma once
 
 #include <array>
@@ -36,10 +38,12 @@ struct PolygonSoA {
   AlignedFloats nx, ny, nz, d;
   AlignedFloats origin_u, origin_v;
   AlignedFloats umin, umax, vmin, vmax;
+  AlignedFloats reach, plane_slack;
   AlignedInts axis_u, axis_v, vertex_count;
   std::vector<std::size_t> first_vertex;
   // Per vertex, all polygons back to back.
   AlignedFloats pu, pv;
+  AlignedFloats px, py, pz;
   // Edge bands, per polygon: band_count (0: none), the scale of band_of
   // (geometry/polygon.h), and where its band_count + 1 offsets into
   // band_edges start in band_first. band_spans runs beside band_first: the
@@ -61,7 +65,7 @@ struct PolygonSoA {
   template <class F>
   PolygonLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(nx, ny, nz, i),
-            F(d[i]),
+            broadcast_vec3<F>(px, py, pz, first_vertex[i]),
             axis_u[i],
             axis_v[i],
             F(origin_u[i]),
@@ -70,8 +74,13 @@ struct PolygonSoA {
             F(umax[i]),
             F(vmin[i]),
             F(vmax[i]),
+            F(reach[i]),
+            F(plane_slack[i]),
             pu.data() + first_vertex[i],
             pv.data() + first_vertex[i],
+            px.data() + first_vertex[i],
+            py.data() + first_vertex[i],
+            pz.data() + first_vertex[i],
             vertex_count[i],
             band_count[i],
             vmin[i],
@@ -86,8 +95,12 @@ struct PolygonSoA {
 
 // Drops (with counts): a non-finite coordinate (also one whose projection
 // overflows) as non-finite; more than kMaxPolygonVertices input vertices,
-// fewer than 3 after removing consecutive duplicates (cyclically), zero area
-// or a non-planar polygon (see the tolerances above) as degenerate.
+// fewer than 3 after removing consecutive duplicates (cyclically, in 3D;
+// fewer than 3 distinct projected vertices too), zero area or a non-planar
+// polygon (see the tolerances above) as degenerate. Vertices that differ
+// in 3D are all kept, even where their projections coincide (a zero-length
+// projected edge crosses nothing), so a vertex shared by two polygons is
+// in both.
 // Newell's normal of a closed polygon in double: twice its area vector,
 // from the vertices relative to the first (no cancellation far from the
 // origin); the counter-clockwise winding's side.

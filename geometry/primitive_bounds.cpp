@@ -44,15 +44,21 @@ Box primitive_box(const TriangleSoA& t, std::size_t i) {
 }
 
 Box primitive_box(const PolygonSoA& g, std::size_t i) {
-  // Lift the projected vertices onto the stored plane, in double.
+  // The vertices as stored (the ray-space test's) and lifted from their
+  // projections onto the plane through the first one, in double (the plane
+  // hit's).
   const int au = g.axis_u[i], av = g.axis_v[i], ak = 3 - au - av;
   const double n[3] = {g.nx[i], g.ny[i], g.nz[i]};
+  const std::size_t first = g.first_vertex[i];
+  const double v0k = ak == 0 ? g.px[first] : (ak == 1 ? g.py[first] : g.pz[first]);
   Box b = empty_box();
   for (std::int32_t k = 0; k < g.vertex_count[i]; ++k) {
+    const std::size_t at = g.first_vertex[i] + static_cast<std::size_t>(k);
+    grow(b, Vec3<float>{g.px[at], g.py[at], g.pz[at]});
     double p[3];
-    p[au] = static_cast<double>(g.origin_u[i]) + g.pu[g.first_vertex[i] + static_cast<std::size_t>(k)];
-    p[av] = static_cast<double>(g.origin_v[i]) + g.pv[g.first_vertex[i] + static_cast<std::size_t>(k)];
-    p[ak] = -(g.d[i] + n[au] * p[au] + n[av] * p[av]) / n[ak];
+    p[au] = static_cast<double>(g.origin_u[i]) + g.pu[at];
+    p[av] = static_cast<double>(g.origin_v[i]) + g.pv[at];
+    p[ak] = v0k - (n[au] * g.pu[at] + n[av] * g.pv[at]) / n[ak];
     grow_ball(b, p, 0.0);
   }
   return b;

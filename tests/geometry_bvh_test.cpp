@@ -318,7 +318,9 @@ TEST(PrimitiveBounds, SpheresAndPolygonsLieInsideTheirBoxesInExactArithmetic) {
       double p[3];
       p[au] = static_cast<double>(polygons.origin_u[i]) + polygons.pu[polygons.first_vertex[i] + k];
       p[av] = static_cast<double>(polygons.origin_v[i]) + polygons.pv[polygons.first_vertex[i] + k];
-      p[ak] = -(polygons.d[i] + n[au] * p[au] + n[av] * p[av]) / n[ak];
+      const std::size_t first = polygons.first_vertex[i];
+      const double v0k = ak == 0 ? polygons.px[first] : (ak == 1 ? polygons.py[first] : polygons.pz[first]);
+      p[ak] = v0k - (n[au] * polygons.pu[first + k] + n[av] * polygons.pv[first + k]) / n[ak];
       for (int a = 0; a < 3; ++a) {
         ASSERT_LE(static_cast<double>(box.lo[a]), p[a]) << "polygon " << i;
         ASSERT_GE(static_cast<double>(box.hi[a]), p[a]) << "polygon " << i;

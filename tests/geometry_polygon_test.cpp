@@ -45,8 +45,9 @@ PolygonDesc in_plane(const std::vector<Point2>& outline, float z0 = 0.f, float s
   return d;
 }
 
-// The kernel's rule in double: half-open straddle, crossing on the +x side
-// iff the point is left of a->b for an upward edge (right of it downward).
+// The crossing rule in the polygon's own projection, in double (the band
+// spans' parity): half-open straddle, crossing on the +x side iff the point
+// is left of a->b for an upward edge (right of it downward).
 bool crossing_reference(const std::vector<Point2>& poly, double x, double y) {
   bool inside = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -55,6 +56,22 @@ bool crossing_reference(const std::vector<Point2>& poly, double x, double y) {
     if ((a.y > y) == b_above) continue;
     const double side = (y - a.y) * (b.x - a.x) - (x - a.x) * (b.y - a.y);
     if ((side > 0) == b_above) inside = !inside;
+  }
+  return inside;
+}
+
+// The kernel's ray-space rule (geometry/polygon.h) in double for a ray along
+// -z through (x, y): kz = z, swapped (d.z < 0), so the sheared frame is
+// x' = Y - y, y' = X - x; an edge straddles iff its ends differ in y' > 0
+// and crosses iff lo.x' hi.y' - lo.y' hi.x' > 0 (lo, hi: its ends below and above).
+bool ray_space_reference(const std::vector<Point2>& poly, double x, double y) {
+  bool inside = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Point2 a{poly[j].y - y, poly[j].x - x}, b{poly[i].y - y, poly[i].x - x};
+    const bool b_above = b.y > 0;
+    if ((a.y > 0) == b_above) continue;
+    const Point2 lo = b_above ? a : b, hi = b_above ? b : a;
+    if (lo.x * hi.y - lo.y * hi.x > 0) inside = !inside;
   }
   return inside;
 }
@@ -211,50 +228,62 @@ TEST(PolygonKernel, Comb200VerticesTeethAndGaps) {
 }
 
 // Hit points exactly on vertices, on edges and on scan lines through
-// vertices of a concave polygon with horizontal edges, local extrema and a
-// saddle: straight-down rays keep the projected point exact, so the kernel
-// must equal the double-precision rule on every point and the winding
-// number off the boundary (each vertex on the scan line counted once).
+// vertices of concave polygons with horizontal edges, local extrema and a
+// saddle, one small and one of 35 vertices (edge bands: lanes decided by a
+// band's span or edges, those near an edge in ray space): straight-down rays
+// keep the projected point exact, so the kernel must equal the
+// double-precision rule on every point and the winding number off the
+// boundary (each vertex on the scan line counted once).
 TEST(PolygonStability, RaysThroughVerticesAndAlongEdges) {
-  const std::vector<Point2> outline{{0, 0}, {8, 0}, {8, 4}, {7, 4}, {7, 2}, {6, 2}, {6, 4}, {5, 3},
-                                    {4, 4}, {3, 2}, {2, 3}, {1, 2}, {1, 5}, {0, 5}};
-  for (const float tilt : {0.f, 0.5f}) {
-    const PolygonSoA p = polygons_of({in_plane(outline, -2.f, tilt, 0.25f * tilt)});
-    ASSERT_EQ(p.size(), 1u);
-    int on_vertex = 0, on_edge = 0, on_vertex_scanline = 0, hits = 0, wrong_off_boundary = 0, wrong_on_boundary = 0;
-    std::string first_wrong;
-    for (int i = -4; i <= 36; ++i) {
-      for (int j = -4; j <= 24; ++j) {
-        const double x = 0.25 * i, y = 0.25 * j;
-        const Hit<float> h = closest({{float(x), float(y), 50}, {0, 0, -1}, 0.f, kInf}, p);
-        const bool kernel = h.id == 0;
-        hits += kernel;
-        const double dist = boundary_distance(outline, x, y);
-        bool vertex_row = false, is_vertex = false;
-        for (const Point2& v : outline) {
-          vertex_row = vertex_row || v.y == y;
-          is_vertex = is_vertex || (v.x == x && v.y == y);
+  const std::vector<Point2> small{{0, 0}, {8, 0}, {8, 4}, {7, 4}, {7, 2}, {6, 2}, {6, 4}, {5, 3},
+                                  {4, 4}, {3, 2}, {2, 3}, {1, 2}, {1, 5}, {0, 5}};
+  // A comb: square teeth on the right, saw teeth on the left.
+  std::vector<Point2> comb{{0, 0}, {10, 0}};
+  for (int k = 10; k > 4; --k) {
+    comb.insert(comb.end(), {{double(k), 4}, {k - 0.5, 4}, {k - 0.5, 2}, {k - 1.0, 2}});
+  }
+  for (int k = 4; k > 0; --k) comb.insert(comb.end(), {{double(k), 3}, {k - 0.5, 1.5}});
+  comb.push_back({0, 3});
+  for (const std::vector<Point2>* outline : {&small, static_cast<const std::vector<Point2>*>(&comb)}) {
+    for (const float tilt : {0.f, 0.5f}) {
+      const PolygonSoA p = polygons_of({in_plane(*outline, -2.f, tilt, 0.25f * tilt)});
+      ASSERT_EQ(p.size(), 1u);
+      EXPECT_EQ(p.band_count[0] > 0, outline == &comb) << outline->size() << " vertices";
+      int on_vertex = 0, on_edge = 0, on_vertex_scanline = 0, hits = 0, wrong_off_boundary = 0, wrong_on_boundary = 0;
+      std::string first_wrong;
+      for (int i = -4; i <= 44; ++i) {
+        for (int j = -4; j <= 24; ++j) {
+          const double x = 0.25 * i, y = 0.25 * j;
+          const Hit<float> h = closest({{float(x), float(y), 50}, {0, 0, -1}, 0.f, kInf}, p);
+          const bool kernel = h.id == 0;
+          hits += kernel;
+          const double dist = boundary_distance(*outline, x, y);
+          bool vertex_row = false, is_vertex = false;
+          for (const Point2& v : *outline) {
+            vertex_row = vertex_row || v.y == y;
+            is_vertex = is_vertex || (v.x == x && v.y == y);
+          }
+          on_vertex += is_vertex;
+          on_edge += dist == 0 && !is_vertex;
+          bool wrong;
+          if (dist > 0) {  // off the boundary: the true answer
+            wrong = kernel != (winding_number(*outline, x, y) != 0);
+            wrong_off_boundary += wrong;
+            on_vertex_scanline += vertex_row;
+          } else {  // on it: the ray-space half-open rule along +x, evaluated exactly
+            wrong = kernel != ray_space_reference(*outline, x, y);
+            wrong_on_boundary += wrong;
+          }
+          if (wrong && first_wrong.empty()) first_wrong = std::to_string(x) + ", " + std::to_string(y);
         }
-        on_vertex += is_vertex;
-        on_edge += dist == 0 && !is_vertex;
-        bool wrong;
-        if (dist > 0) {  // off the boundary: the true answer
-          wrong = kernel != (winding_number(outline, x, y) != 0);
-          wrong_off_boundary += wrong;
-          on_vertex_scanline += vertex_row;
-        } else {  // on it: the half-open rule, evaluated exactly
-          wrong = kernel != crossing_reference(outline, x, y);
-          wrong_on_boundary += wrong;
-        }
-        if (wrong && first_wrong.empty()) first_wrong = std::to_string(x) + ", " + std::to_string(y);
       }
+      ASSERT_EQ(wrong_off_boundary, 0) << "tilt " << tilt << ", first wrong point " << first_wrong;
+      ASSERT_EQ(wrong_on_boundary, 0) << "tilt " << tilt << ", first wrong point " << first_wrong;
+      EXPECT_EQ(on_vertex, int(outline->size()));
+      EXPECT_GT(on_edge, 100);
+      EXPECT_GT(on_vertex_scanline, 100);
+      EXPECT_GT(hits, 300);
     }
-    ASSERT_EQ(wrong_off_boundary, 0) << "tilt " << tilt << ", first wrong point " << first_wrong;
-    ASSERT_EQ(wrong_on_boundary, 0) << "tilt " << tilt << ", first wrong point " << first_wrong;
-    EXPECT_EQ(on_vertex, int(outline.size()));
-    EXPECT_GT(on_edge, 100);
-    EXPECT_GT(on_vertex_scanline, 100);
-    EXPECT_GT(hits, 300);
   }
 }
 
@@ -265,7 +294,7 @@ TEST(PolygonStability, ParallelRaysMissWithoutNaN) {
   EXPECT_EQ(closest({{0.5f, 0.5f, 2}, {1, 1, 0}, 0.f, kInf}, l).id, kNoHit);  // above it
   Candidate<float> c;
   const Ray<float> in_plane_ray{{0.5f, 0.5f, 1}, {1, 0, 0}, 0.f, kInf};
-  EXPECT_FALSE(PolygonCrossing::intersect(in_plane_ray, l.broadcast<float>(0), kInf, true, c));
+  EXPECT_FALSE(PolygonCrossing::intersect(PolygonCrossing::prepare(in_plane_ray), l.broadcast<float>(0), kInf, true, c));
   EXPECT_TRUE(std::isfinite(c.t));
   EXPECT_TRUE(std::isfinite(c.u) && std::isfinite(c.v));
 }
@@ -276,8 +305,8 @@ TEST(PolygonKernel, ClosestOfSeveralAndInactiveLanes) {
   EXPECT_EQ(h.id, 1);  // first of the two equal hits
   EXPECT_FLOAT_EQ(h.t, 4.f);
   Candidate<float> c;
-  EXPECT_FALSE(PolygonCrossing::intersect(Ray<float>{{0.5f, 0.5f, 5}, {0, 0, -1}, 0.f, kInf}, ps.broadcast<float>(0),
-                                          kInf, false, c));
+  EXPECT_FALSE(PolygonCrossing::intersect(PolygonCrossing::prepare(Ray<float>{{0.5f, 0.5f, 5}, {0, 0, -1}, 0.f, kInf}),
+                                          ps.broadcast<float>(0), kInf, false, c));
 }
 
 TEST(PolygonBuild, DropsDegenerateNonPlanarAndNonFinite) {
@@ -691,8 +720,9 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
 }
 
-// Each lane reads only its band's edges, yet every result equals the full
-// edge loop's bit for bit, at every width, in both orientations.
+// The band spans decide only lanes clear of every edge by their margin, so
+// every result equals the ray-space loop's over all edges (band_count 0)
+// bit for bit, at every width, in both orientations.
 TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
   RaySampler s(23);
   const std::vector<PolygonDesc> descs = banded_polygon_descs(s);

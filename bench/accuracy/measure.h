@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "bench/accuracy/closed_meshes.h"
 #include "bench/accuracy/methods.h"
 #include "bench/accuracy/stress.h"
 
@@ -62,16 +63,17 @@ struct FailurePoint {
 inline constexpr double kRelativeLimit = 1e-3;
 FailurePoint find_failure_point(const std::vector<SweepRow>& rows);
 
-// Rays from inside a closed mesh (origins within `inner` of center) aimed
-// exactly at shared edges (two thirds) and vertices (one third) through a
-// unit's any-hit packets; a ray that hits no face leaked
+// Rays from inside a closed mesh (origins from `origins`) aimed exactly at
+// shared edges (two thirds) and vertices (one third) through a unit's
+// any-hit packets; a ray that hits no face leaked
 // (bench/accuracy/robustness.cpp).
 struct LeakCount {
   std::size_t edge_rays = 0, vertex_rays = 0, edge_leaks = 0, vertex_leaks = 0;
 };
-struct ClosedMesh;
-LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& mesh, const Vec3<float>& center,
-                      float inner, std::size_t ray_count, std::uint32_t seed);
+LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& mesh, const OriginSampler& origins,
+                      std::size_t ray_count, std::uint32_t seed);
+// Origins within `inner` of center (a uniform direction and distance).
+OriginSampler ball_origins(const Vec3<float>& center, float inner);
 
 // Self-intersection: re-hits of the same primitive by rays spawned from its
 // hit points at a scene scale, per offset rule (robustness.cpp).

@@ -56,10 +56,11 @@ struct PlaneCrossing {
   DD denominator;  // n.dir; 0 for a parallel ray (then t is not set)
   DD t;
 };
-PlaneCrossing cross_plane(const Ray<float>& ray, const Vec3<float>& normal, float offset) {
+// The plane through the stored point p with the stored normal: d = -n.p exactly.
+PlaneCrossing cross_plane(const Ray<float>& ray, const Vec3<float>& normal, const Vec3<float>& point) {
   const DDVec3 n = exact(normal);
   PlaneCrossing c{dot(n, exact(ray.direction)), DD(0.0)};
-  if (c.denominator.hi != 0.0) c.t = -(DD(offset) + dot(n, exact(ray.origin))) / c.denominator;
+  if (c.denominator.hi != 0.0) c.t = dot(n, exact_difference(point, ray.origin)) / c.denominator;
   return c;
 }
 
@@ -97,12 +98,8 @@ Reference reference(const Ray<float>& ray, const SphereSoA& spheres, std::size_t
 }
 
 Reference reference(const Ray<float>& ray, const PlaneSoA& planes, std::size_t i) {
-  // The plane through the stored point p with the stored normal: d = -n.p exactly.
   const Vec3<float> normal = float_vertex(planes.nx, planes.ny, planes.nz, i);
-  const DDVec3 n = exact(normal);
-  const DDVec3 p_minus_o = exact_difference(float_vertex(planes.px, planes.py, planes.pz, i), ray.origin);
-  PlaneCrossing crossing{dot(n, exact(ray.direction)), DD(0.0)};
-  if (crossing.denominator.hi != 0.0) crossing.t = dot(n, p_minus_o) / crossing.denominator;
+  const PlaneCrossing crossing = cross_plane(ray, normal, float_vertex(planes.px, planes.py, planes.pz, i));
   Reference ref;
   const double d_length = std::sqrt(to_double(dot(exact(ray.direction), exact(ray.direction))));
   const double n_length = std::sqrt(to_double(dot(exact(normal), exact(normal))));
@@ -137,7 +134,10 @@ Reference reference(const Ray<float>& ray, const TriangleSoA& triangles, std::si
 }
 
 Reference reference(const Ray<float>& ray, const PolygonSoA& polygons, std::size_t i) {
-  const PlaneCrossing crossing = cross_plane(ray, float_vertex(polygons.nx, polygons.ny, polygons.nz, i), polygons.d[i]);
+  // The plane through the stored first vertex (the kernel's t is anchored there).
+  const PlaneCrossing crossing =
+      cross_plane(ray, float_vertex(polygons.nx, polygons.ny, polygons.nz, i),
+                  float_vertex(polygons.px, polygons.py, polygons.pz, polygons.first_vertex[i]));
   Reference ref;
   if (crossing.denominator.hi == 0.0) return ref;
   const DD t = crossing.t;

@@ -2,7 +2,8 @@
 // float ray hit this stored primitive, and at which t", computed in
 // double-double (bench/accuracy/double_double.h) from the same float
 // numbers the kernels read (the SoA store: sphere center and r^2, plane n
-// and point (the seed's float d is an approximation of it), triangle vertices, polygon plane and projected vertices, cone base,
+// and point (the seed's float d is an approximation of it), triangle
+// vertices, polygon normal, first vertex and projected vertices, cone base,
 // axis, height, radius and slope). Each reference follows its kernel's
 // definition of the surface and of the t-range (geometry/*.h): the nearest
 // root past tmin for spheres, edges and vertices inside for triangles, the

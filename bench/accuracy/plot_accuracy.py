@@ -155,12 +155,12 @@ def sweep_charts(errors):
 
 
 def watertight_chart(rows):
-    fig, ax = plt.subplots(figsize=(8, 4))
+    fig, ax = plt.subplots(figsize=(max(8, 0.9 * len(rows)), 4.4))
     labels, values, colors = [], [], []
     for r in rows:
         rays = int(r["edge_rays"]) + int(r["vertex_rays"])
         leaks = int(r["edge_leaks"]) + int(r["vertex_leaks"])
-        labels.append("%s\n%s\n%.1fM rays" % (r["mesh"], r["method"], rays / 1e6))
+        labels.append("%s\n%s\n%.1fM rays" % (r["mesh"].replace("_", "\n"), r["method"], rays / 1e6))
         values.append(max(leaks, 0.5))
         colors.append(COLORS[method_key(r)])
     bars = ax.bar(range(len(values)), values, color=colors)

@@ -17,7 +17,6 @@
 #include <random>
 #include <stdexcept>
 
-#include "bench/accuracy/closed_meshes.h"
 #include "bench/accuracy/measure.h"
 #include "integrator/optics.h"
 
@@ -37,8 +36,8 @@ Vec3<float> random_unit(std::mt19937_64& rng) {
 
 }  // namespace
 
-LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& mesh, const Vec3<float>& center,
-                      float inner, std::size_t ray_count, std::uint32_t seed) {
+LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& mesh, const OriginSampler& origins,
+                      std::size_t ray_count, std::uint32_t seed) {
   Primitives prims;
   prims.kind = method.kind;
   BuildReport report;
@@ -52,7 +51,7 @@ LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& m
   if (prims.size() != mesh.faces.size()) throw std::runtime_error("a closed mesh lost faces in the builder");
   const auto edges = mesh.edges();
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> along(0.f, 1.f), reach(0.f, inner);
+  std::uniform_real_distribution<float> along(0.f, 1.f);
   LeakCount count;
   constexpr std::size_t kChunk = std::size_t(1) << 18;
   RaySoA rays(kChunk);
@@ -61,7 +60,7 @@ LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& m
     const std::size_t n = std::min(kChunk, ray_count - done);
     rays.clear();
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3<float> origin = center + random_unit(rng) * reach(rng);
+      const Vec3<float> origin = origins(rng);
       // Two thirds at edges, one third at vertices.
       Vec3<float> target;
       at_vertex[i] = (done + i) % 3 == 2;
@@ -82,6 +81,13 @@ LeakCount count_leaks(const Method& method, KernelUnit unit, const ClosedMesh& m
     }
   }
   return count;
+}
+
+OriginSampler ball_origins(const Vec3<float>& center, float inner) {
+  return [center, inner](std::mt19937_64& rng) {
+    std::uniform_real_distribution<float> reach(0.f, inner);
+    return center + random_unit(rng) * reach(rng);
+  };
 }
 
 AcneCount count_acne(const Method& method, KernelUnit unit, double scale, OffsetRule rule, std::size_t ray_count,
