@@ -222,9 +222,13 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const Vec3<F> along_geometric = refract(incident, s.geometric, eta, through_geometric);
   const Vec3<F> refracted = select(retry, along_geometric, along_shading);
   const Mask<F> transmitted = (retry & through_geometric) | and_not(through_shading, retry);
-  // Total internal reflection: the transmitted share is reflected.
+  // Total internal reflection: the transmitted share kt is reflected. Like
+  // the kr share, it crosses no surface, so the colour (a filter where light
+  // refracts through the surface, entering or leaving) does not multiply
+  // it: through a tinted prism that folds a ray twice inside, the sky is
+  // kt^4 C^2, not kt^4 C^4 (issue 29: POV-Ray gives C^2).
   const Mask<F> total_internal = and_not(transmissive, transmitted);
-  reflect_weight = select(total_internal, reflect_weight + refract_weight, reflect_weight);
+  reflect_weight = select(total_internal, reflect_weight + weight * kt, reflect_weight);
   refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), refract_weight);
   // SPD (rules 8 and 9): a reflection ray off every reflective or
   // transmissive hit (a transmitter with Ks 0 too, its weight then 0 unless

@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "geometry/polygon_soa.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
 
@@ -28,6 +29,21 @@ struct Token {
   std::string_view text;
   std::size_t column;  // 1-based byte column of the first character
 };
+
+// A patch's winding disagrees with its vertex normals when its Newell normal
+// (the counter-clockwise side) points against the sum of its unit vertex
+// normals (zero normals left out); in double, so no sum overflows. A tie
+// (a degenerate patch, normals in its plane) keeps the order as written.
+bool wound_against_normals(const ScenePolygon& patch) {
+  const Vec3<double> winding = newell_normal(patch.polygon.vertices);
+  Vec3<double> facing{0.0, 0.0, 0.0};
+  for (const Vec3<float>& n : patch.normals) {
+    const Vec3<double> d{double(n.x), double(n.y), double(n.z)};
+    const double length = std::sqrt(dot(d, d));
+    if (length > 0.0) facing = facing + d / length;
+  }
+  return dot(winding, facing) < 0.0;
+}
 
 // The parts back to back (messages only; avoids operator+ on temporaries).
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -367,6 +383,13 @@ class NffParser {
       polygon.polygon.vertices.push_back(vec3("vertex"));
       if (with_normals) polygon.normals.push_back(vec3("vertex normal"));
       expect_end_of_line(with_normals ? "the vertex (x y z nx ny nz)" : "the vertex (x y z)");
+    }
+    // A patch faces where its normals face: one wound against them is
+    // reversed, its normals with it (one-sided surfaces are lit only from
+    // the winding's side).
+    if (with_normals && wound_against_normals(polygon)) {
+      std::reverse(polygon.polygon.vertices.begin(), polygon.polygon.vertices.end());
+      std::reverse(polygon.normals.begin(), polygon.normals.end());
     }
     scene_.polygons.push_back(std::move(polygon));
   }

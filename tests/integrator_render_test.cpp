@@ -331,6 +331,59 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
   EXPECT_EQ(centre_red(opaque), 0.f);
 }
 
+// ---- tinted glass under total internal reflection ---------------------------
+
+// A long right-angle glass prism (ior 1.5, colour C, kt) lying along x, its
+// hypotenuse face (z = 0) looking at the camera straight down the axis. The
+// centre pixel's ray enters that face head-on, meets both legs at 45 degrees
+// (past the 41.8-degree critical angle), is folded back by two total
+// internal reflections and leaves through the hypotenuse head-on, toward the
+// white background: two crossings and two folds, nothing lit, no ambient.
+SceneDesc porro_prism(const Vec3<float>& color, float kt) {
+  SceneDesc s;
+  s.camera = CameraDesc{{0.f, 0.f, 10.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f, 0.f, 33, 33};
+  s.background = {1.f, 1.f, 1.f};
+  s.ambient = {0.f, 0.f, 0.f};
+  MaterialDesc glass;
+  glass.color = color;
+  glass.ka = glass.kd = glass.ks = glass.kr = 0.f;
+  glass.kt = kt;
+  glass.ior = 1.5f;
+  s.materials.push_back(glass);
+  // Cross-section in (y, z): B (-1.5, 0), C (0.5, 0), right angle at A (-0.5, -1);
+  // every face wound counter-clockwise seen from outside.
+  const float x = 3.f;
+  const std::vector<std::vector<Vec3<float>>> faces = {
+      {{-x, -1.5f, 0.f}, {x, -1.5f, 0.f}, {x, 0.5f, 0.f}, {-x, 0.5f, 0.f}},     // hypotenuse, +z
+      {{-x, -0.5f, -1.f}, {-x, 0.5f, 0.f}, {x, 0.5f, 0.f}, {x, -0.5f, -1.f}},   // leg AC
+      {{-x, -1.5f, 0.f}, {-x, -0.5f, -1.f}, {x, -0.5f, -1.f}, {x, -1.5f, 0.f}}, // leg AB
+      {{x, -1.5f, 0.f}, {x, -0.5f, -1.f}, {x, 0.5f, 0.f}},                      // end, +x
+      {{-x, -1.5f, 0.f}, {-x, 0.5f, 0.f}, {-x, -0.5f, -1.f}}};                  // end, -x
+  for (const auto& face : faces) s.polygons.push_back({{face}, {}, 0});
+  return s;
+}
+
+TEST(Render, TintedGlassFiltersEachCrossingButNotTotalInternalReflections) {
+  const Vec3<float> color{0.5f, 0.8f, 1.f};
+  const float kt = 0.9f;
+  const Scene scene = build_scene(porro_prism(color, kt), {});
+  // kt at each of the four events; the colour only where the ray crosses
+  // the surface (in and out): kt^4 C^2, not kt^4 C^4.
+  const float kt4 = kt * kt * kt * kt;
+  const float expected[3] = {kt4 * color.x * color.x, kt4 * color.y * color.y, kt4 * color.z * color.z};
+  for (const Isa isa : {Isa::scalar, best_supported_isa()}) {
+    RenderSettings settings = small_settings(33, 33);
+    settings.isa = isa;
+    settings.trace.max_depth = 6;
+    const Framebuffer image = render(scene, settings).image;
+    const std::size_t centre = 16 * 33 + 16;
+    ASSERT_EQ(image.kind[centre], static_cast<std::int32_t>(PrimitiveKind::polygon));
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(image.rgb[3 * centre + std::size_t(c)], expected[c], 1e-5f) << "channel " << c;
+    }
+  }
+}
+
 // ---- the SPD ray tree (--preset spd) ------------------------------------------
 
 // A transmitter with Ks 0 (like SPD gears' glass gears) filling the view,

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include "integrator/render.h"
 #include "io/nff_reader.h"
 #include "io/parse_error.h"
 #include "tests/support/temporary_directory.h"
@@ -233,6 +234,51 @@ TEST(NffReader, NumberSpellings) {
   EXPECT_TRUE(std::signbit(tiny.y));
   EXPECT_EQ(tiny.z, 1e-40f);
   EXPECT_GT(tiny.z, 0.f);
+}
+
+// ---- patches face where their normals face ----
+
+// A `pp` triangle in the plane z = 0 wound clockwise seen from +z (its
+// Newell normal is -z) with vertex normals toward +z.
+constexpr std::string_view kClockwisePatch =
+    "pp 3\n"
+    "-5 -5 0 0 0 1\n"
+    "0 5 0 0 0.6 0.8\n"
+    "5 -5 0 0.6 0 0.8\n";
+
+TEST(NffReader, PatchWoundAgainstItsNormalsIsReversed) {
+  const SceneDesc scene = parse_nff(with_material(kClockwisePatch), "patch.nff");
+  ASSERT_EQ(scene.polygons.size(), 1u);
+  const ScenePolygon& patch = scene.polygons[0];
+  ASSERT_EQ(patch.polygon.vertices.size(), 3u);
+  ASSERT_EQ(patch.normals.size(), 3u);
+  // Vertices and normals reversed together: each normal stays with its vertex.
+  expect_vec3(patch.polygon.vertices[0], 5.f, -5.f, 0.f);
+  expect_vec3(patch.polygon.vertices[1], 0.f, 5.f, 0.f);
+  expect_vec3(patch.polygon.vertices[2], -5.f, -5.f, 0.f);
+  expect_vec3(patch.normals[0], 0.6f, 0.f, 0.8f);
+  expect_vec3(patch.normals[1], 0.f, 0.6f, 0.8f);
+  expect_vec3(patch.normals[2], 0.f, 0.f, 1.f);
+  // A plain polygon has no normals to agree with: kept as written.
+  const SceneDesc plain = parse_nff(with_material("p 3\n-5 -5 0\n0 5 0\n5 -5 0\n"), "polygon.nff");
+  ASSERT_EQ(plain.polygons.size(), 1u);
+  expect_vec3(plain.polygons[0].polygon.vertices[0], -5.f, -5.f, 0.f);
+  expect_vec3(plain.polygons[0].polygon.vertices[2], 5.f, -5.f, 0.f);
+}
+
+TEST(NffReader, PatchWoundAgainstItsNormalsRendersLit) {
+  // Camera and light on +z, where the normals point; the material is
+  // one-sided (T = 0). Kd 1 and one uncoloured light (intensity 0.5, the
+  // ambient too): the ambient term alone is 0.5, lit head-on 1.
+  const std::string text = std::string(kCamera) + "l 0 0 5\n" + std::string(kMaterial) +
+                           "pp 3\n-5 -5 0 0 0 1\n0 5 0 0 0 1\n5 -5 0 0 0 1\n";
+  const Scene scene = build_scene(parse_nff(text, "patch.nff"), {});
+  RenderSettings settings;
+  settings.width = settings.height = 33;
+  settings.isa = best_supported_isa();
+  const Framebuffer image = render(scene, settings).image;
+  const std::size_t centre = 16 * 33 + 16;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.rgb[3 * centre + std::size_t(c)], 1.f, 1e-5f) << "channel " << c;
 }
 
 // ---- one test per error path: exact position and expected text ----

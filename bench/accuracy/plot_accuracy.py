@@ -61,7 +61,25 @@ def method_key(row):
     return row["kind"] + "/" + row["method"]
 
 
-WIDTH_MARKERS = {("float", "1"): "o", ("float", "4"): "s", ("float", "8"): "^", ("double", "1"): "D"}
+WIDTH_MARKERS = {("float", "1"): "o", ("float", "4"): "s", ("float", "8"): "^", ("float", "16"): "P",
+                 ("double", "1"): "D"}
+SPARE_MARKERS = ["X", "v", "<", ">", "h", "p", "*", "d", "8"]  # widths without a marker of their own
+
+
+def width_marker(precision, width):
+    """The marker of a (precision, width) pair; a width the table lacks gets
+    the next spare marker (the same one for the rest of the run), never a KeyError."""
+    key = (precision, width)
+    if key not in WIDTH_MARKERS:
+        used = set(WIDTH_MARKERS.values())
+        WIDTH_MARKERS[key] = next((m for m in SPARE_MARKERS if m not in used), "x")
+    return WIDTH_MARKERS[key]
+
+
+def width_order(key):
+    """Float before double, then by width."""
+    precision, width = key
+    return (precision != "float", int(width) if width.isdigit() else 0, width)
 
 
 def pareto_charts(errors, speed, leaks):
@@ -82,6 +100,8 @@ def pareto_charts(errors, speed, leaks):
         total = leak_rate.setdefault(method_key(r), [0, 0])
         total[0] += int(r["edge_leaks"]) + int(r["vertex_leaks"])
         total[1] += int(r["edge_rays"]) + int(r["vertex_rays"])
+    widths = sorted({(row["precision"], row["width"]) for row in speed}, key=width_order)
+    float_widths = "/".join("w" + w for p, w in widths if p == "float")
     for kind in KINDS:
         with_leaks = any(k.startswith(kind + "/") for k in leak_rate)
         fig, axes = plt.subplots(1, 3 if with_leaks else 2, figsize=(16 if with_leaks else 11, 4.2))
@@ -91,7 +111,7 @@ def pareto_charts(errors, speed, leaks):
             key = method_key(row)
             s = summary[(key, row["precision"])]
             rate = float(row["tests_per_second"])
-            marker = WIDTH_MARKERS[(row["precision"], row["width"])]
+            marker = width_marker(row["precision"], row["width"])
             values = [floor(s["ulp"]), max(s["wrong"] / max(s["counted"], 1), 1e-6)]
             if with_leaks:
                 leaked, rays = leak_rate.get(key, (0, 0))
@@ -111,12 +131,13 @@ def pareto_charts(errors, speed, leaks):
             ax.grid(True, which="both", alpha=0.3)
         handles = [plt.Line2D([], [], color=c, marker="o", linestyle="", label=k)
                    for k, c in COLORS.items() if k.startswith(kind + "/")]
-        handles += [plt.Line2D([], [], color="gray", marker=m, linestyle="", label="%s w%s" % (p, w),
+        handles += [plt.Line2D([], [], color="gray", marker=width_marker(p, w), linestyle="", label="%s w%s" % (p, w),
                                markerfacecolor="none" if p == "double" else "gray")
-                    for (p, w), m in WIDTH_MARKERS.items()]
+                    for p, w in widths]
         axes[0].legend(handles=handles, fontsize=7, loc="best")
-        fig.suptitle("%s: speed against accuracy (distance, size and far sweeps; w1/w4/w8 float kernels, "
-                     "hollow diamond = the same template in double, one ray at a time)" % kind, fontsize=10)
+        fig.suptitle("%s: speed against accuracy (distance, size and far sweeps; %s float kernels, "
+                     "hollow diamond = the same template in double, one ray at a time)" % (kind, float_widths),
+                     fontsize=10)
         save(fig, "pareto_%s.png" % kind)
 
 
