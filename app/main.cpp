@@ -326,7 +326,11 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                                     "centres, N 1..64) | jitter:N (NxN stratified random rays, N 1..64) | "
                                     "adaptive:THRESHOLD:DEPTH (rays at square corners, a square split while its "
                                     "corner colours differ by more than THRESHOLD, up to DEPTH levels, 0..6) | "
-                                    "corners (SPD rule: (W+1)x(H+1) corner rays, pixel = mean of its 4). "
+                                    "corners (SPD rule: (W+1)x(H+1) corner rays, pixel = mean of its 4) | "
+                                    "refine:THRESHOLD:N (2x2 stratified random rays, a pixel's strata doubled per "
+                                    "side while its mean's standard error exceeds THRESHOLD or, after the first "
+                                    "pass, a neighbour's mean differs by more than 4 THRESHOLD; up to NxN, N 2, 4, 8 "
+                                    "or 16). "
                                     "Default: the scene file's setting, else none")
                       ->type_name("MODE");
   raw.max_depth_option = render.add_option("--max-depth", raw.max_depth,

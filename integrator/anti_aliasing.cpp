@@ -9,7 +9,8 @@ namespace quiver {
 
 namespace {
 
-const char* const kExpected = "expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH or corners";
+const char* const kExpected =
+    "expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH, corners or refine:THRESHOLD:N";
 
 std::vector<std::string_view> split(std::string_view text) {
   std::vector<std::string_view> parts;
@@ -63,6 +64,16 @@ AntiAliasing parse_anti_aliasing(std::string_view text) {
     aa.depth = parse_int(parts[2], 0, AntiAliasing::kMaxDepth, "depth");
     return aa;
   }
+  if (mode == "refine" && parts.size() == 3) {
+    aa.mode = AntiAliasing::Mode::refine;
+    aa.threshold = parse_threshold(parts[1]);
+    aa.n = parse_int(parts[2], 2, AntiAliasing::kMaxRefineSide, "rays per side");
+    if ((aa.n & (aa.n - 1)) != 0) {
+      throw std::invalid_argument("anti-aliasing rays per side: expected a power of two (2, 4, 8 or 16), found '" +
+                                  std::string(parts[2]) + "'");
+    }
+    return aa;
+  }
   throw std::invalid_argument(std::string("anti-aliasing: ") + kExpected + ", found '" + std::string(text) + "'");
 }
 
@@ -72,10 +83,12 @@ std::string to_string(const AntiAliasing& aa) {
     case AntiAliasing::Mode::corners: return "corners";
     case AntiAliasing::Mode::grid: return "grid:" + std::to_string(aa.n);
     case AntiAliasing::Mode::jitter: return "jitter:" + std::to_string(aa.n);
-    case AntiAliasing::Mode::adaptive: break;
+    case AntiAliasing::Mode::adaptive:
+    case AntiAliasing::Mode::refine: break;
   }
   char threshold[32];
   const auto end = std::to_chars(threshold, threshold + sizeof threshold, aa.threshold).ptr;
+  if (aa.mode == AntiAliasing::Mode::refine) return "refine:" + std::string(threshold, end) + ":" + std::to_string(aa.n);
   return "adaptive:" + std::string(threshold, end) + ":" + std::to_string(aa.depth);
 }
 

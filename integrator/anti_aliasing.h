@@ -8,7 +8,14 @@
 //                        (Whitted 1980; POV-Ray's method 2); a pixel is the
 //                        average of its squares;
 //   corners              the SPD rule: (W+1) x (H+1) rays at pixel corners,
-//                        each pixel the average of its four.
+//                        each pixel the average of its four;
+//   refine:T:N           2 x 2 stratified jittered rays per pixel; a pixel
+//                        whose mean's standard error exceeds T in some
+//                        channel (clamped to [0, 1]), or, after the first
+//                        pass, whose mean differs from a neighbour's by more
+//                        than 4 T, doubles its strata per side (each
+//                        stratum's ray kept, its three sibling sub-strata
+//                        sampled), up to N x N (N a power of two, 2..16).
 #pragma once
 
 #include <string>
@@ -17,14 +24,17 @@
 namespace quiver {
 
 struct AntiAliasing {
-  enum class Mode { none, grid, jitter, adaptive, corners };
+  enum class Mode { none, grid, jitter, adaptive, corners, refine };
   Mode mode = Mode::none;
-  int n = 1;               // grid, jitter: rays per side
-  float threshold = 0.1f;  // adaptive
+  int n = 1;               // grid, jitter: rays per side; refine: at most
+  float threshold = 0.1f;  // adaptive, refine
   int depth = 2;           // adaptive: levels of subdivision
 
   static constexpr int kMaxRaysPerSide = 64;
   static constexpr int kMaxDepth = 6;
+  static constexpr int kMaxRefineSide = 16;
+  // refine: a neighbour's mean this many thresholds away refines a pixel.
+  static constexpr float kNeighbourContrast = 4.f;
 };
 
 // Throws std::invalid_argument naming what was expected.

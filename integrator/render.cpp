@@ -17,9 +17,28 @@ namespace quiver {
 
 namespace {
 
+double largest_channel(const Vec3<double>& a) { return std::max(a.x, std::max(a.y, a.z)); }
+
 float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
   return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
 }
+
+// refine: a pixel's running sums (its samples, and their channels clamped to
+// [0, 1] for the error estimate) and its strata per side.
+struct RefinedPixel {
+  Vec3<float> sum{0.f, 0.f, 0.f};
+  Vec3<double> clamped_sum{0.0, 0.0, 0.0}, clamped_squares{0.0, 0.0, 0.0};
+  int count = 0;
+  int side = 0;
+  std::uint32_t first = 0;  // its strata's start in Worker::strata
+};
+
+// refine: one stratum of a pixel at the pixel's side, and its sample's
+// offset in the pixel.
+struct StratumSample {
+  int i, j;
+  double x, y;
+};
 
 // Per-thread state: a tracer and its buffers, reused tile after tile.
 struct Worker {
@@ -30,6 +49,9 @@ struct Worker {
   std::vector<Ray<float>> centre_rays;
   std::vector<FirstHit> first;
   std::vector<std::int32_t> lattice;  // adaptive: sample index per lattice point, -1 unset
+  std::vector<RefinedPixel> refined;  // refine: per pixel of the tile
+  std::vector<StratumSample> strata, next_strata;  // refine: per pixel, side^2 strata at a time
+  std::vector<std::uint32_t> owner;  // refine: the pixel of each traced sample
   Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
       : tracer(scene, intersector, settings) {}
 };
@@ -47,6 +69,7 @@ class TileRenderer {
       case AntiAliasing::Mode::jitter: render_supersampled(tile, w); break;
       case AntiAliasing::Mode::corners: render_corners(tile, w); break;
       case AntiAliasing::Mode::adaptive: render_adaptive(tile, w); break;
+      case AntiAliasing::Mode::refine: render_refined(tile, w); break;
     }
     if (settings_.aov_depth || settings_.aov_normal || settings_.aov_id) render_aovs(tile, w);
   }
@@ -202,6 +225,140 @@ class TileRenderer {
                           weight;
         }
         set_pixel(tile.x0 + x, tile.y0 + y, sum);
+      }
+    }
+  }
+
+  // refine:T:N (anti_aliasing.h). A stratum (i, j) at side s of pixel p has
+  // its sample at ((i + u) / s, (j + v) / s), u and v hashed from the seed,
+  // p and the stratum's number (strata of smaller sides first), so a pixel's
+  // rays depend on it alone, not on the tile or the thread.
+  void render_refined(const PixelTile& tile, Worker& w) const {
+    const std::uint64_t seed = settings_.trace.seed;
+    const auto stratum = [&](std::uint64_t pixel, int side, int i, int j) {
+      std::uint64_t number = 0;  // strata of sides 2, 4, ... before this side
+      for (int s = 2; s < side; s *= 2) number += std::uint64_t(s) * std::uint64_t(s);
+      number += std::uint64_t(j) * std::uint64_t(side) + std::uint64_t(i);
+      return StratumSample{i, j, (i + double(hash_uniform(seed, pixel, 2 * number))) / side,
+                           (j + double(hash_uniform(seed, pixel, 2 * number + 1))) / side};
+    };
+    const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
+    // The first pass also covers a one-pixel apron around the tile, so every
+    // pixel's neighbours are known whatever the tiles.
+    const int ex0 = std::max(0, tile.x0 - 1), ey0 = std::max(0, tile.y0 - 1);
+    const int ex1 = std::min(image_.width, x1 + 1), ey1 = std::min(image_.height, y1 + 1);
+    const auto local = [&](int x, int y) { return std::size_t(y - ey0) * std::size_t(ex1 - ex0) + std::size_t(x - ex0); };
+    const auto pixel_number = [&](int x, int y) { return std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x); };
+    w.refined.assign(std::size_t(ex1 - ex0) * std::size_t(ey1 - ey0), RefinedPixel{});
+    w.strata.clear();
+    w.samples.clear();
+    w.owner.clear();
+    // First pass: 2 x 2 strata for every pixel.
+    for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
+      RefinedPixel& px = w.refined[local(x, y)];
+      px.side = 2;
+      px.first = static_cast<std::uint32_t>(w.strata.size());
+      for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) w.strata.push_back(stratum(pixel_number(x, y), 2, i, j));
+      }
+    });
+    const auto trace_new = [&] {
+      trace(w);
+      for (std::size_t k = 0; k < w.samples.size(); ++k) {
+        RefinedPixel& px = w.refined[w.owner[k]];
+        const Vec3<float>& c = w.colors[k];
+        px.sum = px.sum + c;
+        const Vec3<double> clamped{std::clamp(double(c.x), 0.0, 1.0), std::clamp(double(c.y), 0.0, 1.0),
+                                   std::clamp(double(c.z), 0.0, 1.0)};
+        px.clamped_sum = px.clamped_sum + clamped;
+        px.clamped_squares = px.clamped_squares + mul(clamped, clamped);
+        ++px.count;
+      }
+      w.samples.clear();
+      w.owner.clear();
+    };
+    for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
+      const RefinedPixel& px = w.refined[local(x, y)];
+      for (int k = 0; k < 4; ++k) {
+        const StratumSample& st = w.strata[px.first + k];
+        w.samples.push_back(sample_at(x + st.x, y + st.y));
+        w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
+      }
+    });
+    trace_new();
+    const float threshold = settings_.aa.threshold;
+    const auto mean_clamped = [](const RefinedPixel& px) { return px.clamped_sum * (1.0 / px.count); };
+    const auto too_uncertain = [&](const RefinedPixel& px) {
+      const Vec3<double> mean = mean_clamped(px);
+      const Vec3<double> variance = (px.clamped_squares - mul(mean, px.clamped_sum)) * (1.0 / (px.count - 1));
+      const double largest = largest_channel(variance);
+      return largest > 0.0 && largest / px.count > double(threshold) * double(threshold);
+    };
+    // The first pass's verdict: the pixel's own error, or a neighbour's mean.
+    std::vector<std::uint8_t> refine(w.refined.size(), 0);
+    for (int y = tile.y0; y < y1; ++y) {
+      for (int x = tile.x0; x < x1; ++x) {
+        const RefinedPixel& px = w.refined[local(x, y)];
+        bool more = too_uncertain(px);
+        const Vec3<double> mean = mean_clamped(px);
+        const auto differs = [&](int nx, int ny) {
+          if (nx < ex0 || nx >= ex1 || ny < ey0 || ny >= ey1) return false;
+          const Vec3<double> d = mean - mean_clamped(w.refined[local(nx, ny)]);
+          const double contrast = largest_channel(Vec3<double>{std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+          return contrast > double(AntiAliasing::kNeighbourContrast) * double(threshold);
+        };
+        more = more || differs(x - 1, y) || differs(x + 1, y) || differs(x, y - 1) || differs(x, y + 1);
+        refine[local(x, y)] = more;
+      }
+    }
+    // Refinement passes: side s -> 2s for the pixels still uncertain.
+    for (int side = 2; side < settings_.aa.n; side *= 2) {
+      w.next_strata.clear();
+      bool any = false;
+      for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
+        RefinedPixel& px = w.refined[local(x, y)];
+        const std::uint32_t first = static_cast<std::uint32_t>(w.next_strata.size());
+        const int count = px.side * px.side;
+        if (!refine[local(x, y)]) {
+          w.next_strata.insert(w.next_strata.end(), w.strata.begin() + px.first, w.strata.begin() + px.first + count);
+          px.first = first;
+          return;
+        }
+        any = true;
+        const int child = 2 * side;
+        for (int k = 0; k < count; ++k) {
+          const StratumSample& st = w.strata[px.first + k];
+          // The sub-stratum holding this stratum's sample (clamped against rounding).
+          const int ci = std::clamp(int(st.x * child), 2 * st.i, 2 * st.i + 1);
+          const int cj = std::clamp(int(st.y * child), 2 * st.j, 2 * st.j + 1);
+          for (int b = 0; b < 2; ++b) {
+            for (int a = 0; a < 2; ++a) {
+              const int i = 2 * st.i + a, j = 2 * st.j + b;
+              if (i == ci && j == cj) {
+                w.next_strata.push_back({i, j, st.x, st.y});
+                continue;
+              }
+              const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
+              w.next_strata.push_back(fresh);
+              w.samples.push_back(sample_at(x + fresh.x, y + fresh.y));
+              w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
+            }
+          }
+        }
+        px.first = first;
+        px.side = child;
+      });
+      std::swap(w.strata, w.next_strata);
+      if (!any) break;
+      trace_new();
+      for (std::size_t k = 0; k < w.refined.size(); ++k) {
+        refine[k] = refine[k] && w.refined[k].side == 2 * side && too_uncertain(w.refined[k]);
+      }
+    }
+    for (int y = tile.y0; y < y1; ++y) {
+      for (int x = tile.x0; x < x1; ++x) {
+        const RefinedPixel& px = w.refined[local(x, y)];
+        set_pixel(x, y, px.sum * (1.f / float(px.count)));
       }
     }
   }

@@ -58,11 +58,16 @@ TEST(AntiAliasing, ParsesEveryModeAndRejectsTheRest) {
   EXPECT_EQ(a.mode, AntiAliasing::Mode::adaptive);
   EXPECT_EQ(a.threshold, 0.05f);
   EXPECT_EQ(a.depth, 3);
+  const AntiAliasing r = parse_anti_aliasing("refine:0.02:8");
+  EXPECT_EQ(r.mode, AntiAliasing::Mode::refine);
+  EXPECT_EQ(r.threshold, 0.02f);
+  EXPECT_EQ(r.n, 8);
   for (const char* bad : {"", "grid", "grid:0", "grid:65", "jitter:x", "adaptive:0.1", "adaptive:-1:2",
-                          "adaptive:nan:2", "adaptive:0.1:7", "corners:2", "none:1", "super"}) {
+                          "adaptive:nan:2", "adaptive:0.1:7", "corners:2", "none:1", "super", "refine",
+                          "refine:0.1", "refine:0.1:1", "refine:0.1:6", "refine:0.1:32", "refine:-0.1:4"}) {
     EXPECT_THROW(parse_anti_aliasing(bad), std::invalid_argument) << bad;
   }
-  for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3"}) {
+  for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3", "refine:0.02:8"}) {
     EXPECT_EQ(to_string(parse_anti_aliasing(text)), text);
   }
 }

@@ -117,7 +117,8 @@ TEST_P(RenderUnits, GiveTheScalarReferenceBits) {
     const char* aa;
   } cases[] = {{"default+mesh", every_kind_scene(), "jitter:2"},
                {"every_entity.nff", nff_scene(), "adaptive:0.05:2"},
-               {"default corners", default_scene(), "corners"}};
+               {"default corners", default_scene(), "corners"},
+               {"default refine", default_scene(), "refine:0.02:4"}};
   SceneBuildOptions every_store_indexed;
   every_store_indexed.bvh_min_primitives = 1;
   for (const auto& c : cases) {
@@ -179,7 +180,7 @@ TEST(Render, BvhGivesTheSameImageAsScanning) {
 TEST(Render, ThreadCountAndTileSizeDoNotChangeTheImage) {
   // Tiles of 16 and 7 cut the 4 x 2 pixel groups (and so the packets) differently.
   const Scene scene = build_scene(every_kind_scene(), {});
-  for (const char* aa : {"none", "jitter:2", "corners", "adaptive:0.05:2"}) {
+  for (const char* aa : {"none", "jitter:2", "corners", "adaptive:0.05:2", "refine:0.02:8"}) {
     RenderSettings settings = small_settings(40, 30, aa);
     settings.isa = best_supported_isa();
     settings.threads = 1;
@@ -190,6 +191,30 @@ TEST(Render, ThreadCountAndTileSizeDoNotChangeTheImage) {
     const RenderResult two = render(scene, settings);
     EXPECT_TRUE(same_bits(one.image.rgb, two.image.rgb)) << aa;
   }
+}
+
+// refine: 2 x 2 rays in every pixel; more only where a pixel's own samples
+// or its neighbours disagree, at most N x N.
+TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
+  const Scene scene = build_scene(default_scene(), {});
+  RenderSettings settings = small_settings(40, 30, "refine:1e9:8");
+  settings.isa = best_supported_isa();
+  settings.tile_size = 64;  // one tile: no apron outside the image
+  const std::uint64_t pixels = 40u * 30u;
+  EXPECT_EQ(render(scene, settings).stats.rays.primary, 4 * pixels);
+  settings.aa = parse_anti_aliasing("refine:0.02:8");
+  const std::uint64_t some = render(scene, settings).stats.rays.primary;
+  settings.aa = parse_anti_aliasing("refine:0:8");
+  const std::uint64_t most = render(scene, settings).stats.rays.primary;
+  EXPECT_GT(some, 4 * pixels);
+  EXPECT_LT(some, most);
+  EXPECT_LE(most, 64 * pixels);
+  // Tiles of 7 add each tile's apron to the first pass, and change no pixel.
+  const RenderResult whole = render(scene, settings);
+  settings.tile_size = 7;
+  const RenderResult tiled = render(scene, settings);
+  EXPECT_TRUE(same_bits(whole.image.rgb, tiled.image.rgb));
+  EXPECT_GT(tiled.stats.rays.primary, whole.stats.rays.primary);
 }
 
 TEST(Render, LaneStatisticsAddUp) {

@@ -328,7 +328,8 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
 // render began, with no file, line or column).
 TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
   EXPECT_TRUE(error_at("[render]\naa = \"bogus\"\n", 2, 6,
-                       "an anti-aliasing mode (expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH or corners, "
+                       "an anti-aliasing mode (expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH, corners or "
+                       "refine:THRESHOLD:N, "
                        "found 'bogus') (aa in [render])",
                        "found '\"bogus\"'"));
   EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));

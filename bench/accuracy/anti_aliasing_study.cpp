@@ -44,7 +44,9 @@ void anti_aliasing_study(const StudyOptions& options) {
                     int(640 * shrink), int(360 * shrink)});
   const char* modes[] = {"none",          "grid:2",         "grid:3",          "grid:4",
                          "jitter:2",      "jitter:3",       "jitter:4",        "adaptive:0.3:3",
-                         "adaptive:0.1:3", "adaptive:0.03:3", "adaptive:0.01:3", "corners"};
+                         "adaptive:0.1:3", "adaptive:0.03:3", "adaptive:0.01:3", "corners",
+                         "refine:0.1:4",   "refine:0.05:4",   "refine:0.03:4",   "refine:0.02:4",
+                         "refine:0.08:8",  "refine:0.04:8",   "refine:0.02:8",   "refine:0.01:8"};
   std::FILE* f = open_csv(options.out / "anti_aliasing.csv",
                           "scene,width,height,mode,render_ms,camera_rays,rmse,reference_mode,reference_ms");
   for (const SceneCase& sc : scenes) {

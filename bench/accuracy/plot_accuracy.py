@@ -227,7 +227,8 @@ def anti_aliasing_chart(rows):
         if r["scene"] not in scenes:
             scenes.append(r["scene"])
     fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5))
-    families = {"none": "k", "grid": "tab:blue", "jitter": "tab:orange", "adaptive": "tab:green", "corners": "tab:red"}
+    families = {"none": "k", "grid": "tab:blue", "jitter": "tab:orange", "adaptive": "tab:green", "corners": "tab:red",
+                "refine": "tab:purple"}
     for ax, scene in zip(axes, scenes):
         for family, color in families.items():
             pts = [r for r in rows if r["scene"] == scene and r["mode"].split(":")[0] == family]
