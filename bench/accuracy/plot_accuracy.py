@@ -226,7 +226,12 @@ def anti_aliasing_chart(rows):
     for r in rows:
         if r["scene"] not in scenes:
             scenes.append(r["scene"])
-    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5))
+    columns = min(3, len(scenes))
+    rows_of_charts = (len(scenes) + columns - 1) // columns
+    fig, axes = plt.subplots(rows_of_charts, columns, figsize=(6 * columns, 4.5 * rows_of_charts), squeeze=False)
+    axes = axes.flatten()
+    for ax in axes[len(scenes):]:
+        ax.set_visible(False)
     families = {"none": "k", "grid": "tab:blue", "jitter": "tab:orange", "adaptive": "tab:green", "corners": "tab:red",
                 "refine": "tab:purple"}
     for ax, scene in zip(axes, scenes):
