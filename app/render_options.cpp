@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <system_error>
 #include <tuple>
 
@@ -125,7 +126,9 @@ void check_render_options(const RenderOptions& options) {
 
 void check_crease_angle(const std::optional<double>& degrees) {
   if (degrees && !valid_crease_angle(*degrees)) {
-    throw UsageError("--crease-angle: expected degrees in [0, 180], found " + std::to_string(*degrees));
+    std::ostringstream shown;
+    shown << *degrees;
+    throw UsageError("--crease-angle: expected degrees in [0, 180], found " + shown.str());
   }
 }
 
