@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -26,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/vertex_normals.h"
 #include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "scene/scene.h"
@@ -74,16 +76,17 @@ struct TraceArgs {
 // The parsed values of `quiver trace`, before we know which were given.
 struct RawTraceFlags {
   int width = 0, height = 0;
+  double crease_angle = 0.0;
   std::string simd;
-  CLI::Option *width_option, *height_option, *simd_option;
+  CLI::Option *width_option, *height_option, *simd_option, *crease_angle_option;
 };
 
 // The parsed values, before we know which optional flags were given.
 struct RawRenderFlags {
   int width = 0, height = 0, max_depth = 0;
-  double min_weight = 0.0;
+  double min_weight = 0.0, crease_angle = 0.0;
   std::string aa, simd, aov, preset, seed;
-  CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option;
+  CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option, *crease_angle_option;
   CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option;
 };
 
@@ -115,9 +118,9 @@ fs::path default_output(const std::string& scene) {
 }
 
 // The scene, as read, with the time it took.
-quiver::SceneDesc load(const std::string& scene, double& load_ms) {
+quiver::SceneDesc load(const std::string& scene, const std::optional<double>& crease_angle, double& load_ms) {
   const Clock::time_point start = Clock::now();
-  quiver::SceneDesc desc = scene.empty() ? quiver::default_scene() : quiver::load_scene(scene);
+  quiver::SceneDesc desc = scene.empty() ? quiver::default_scene() : quiver::load_scene(scene, {crease_angle});
   load_ms = ms_since(start);
   return desc;
 }
@@ -178,7 +181,7 @@ int run_render(const RenderArgs& args) {
   quiver::install_interrupt_handlers();
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc = load(args.scene, load_ms);
+    quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
     try {
       quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
     } catch (const UsageError& error) {
@@ -223,10 +226,15 @@ int run_render(const RenderArgs& args) {
   }
 }
 
-int run_info(const std::string& scene_path) {
+int run_info(const std::string& scene_path, const std::optional<double>& crease_angle) {
+  try {
+    quiver::check_crease_angle(crease_angle);
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  }
   try {
     double load_ms = 0.0;
-    const quiver::SceneDesc as_read = load(scene_path, load_ms);
+    const quiver::SceneDesc as_read = load(scene_path, crease_angle, load_ms);
     quiver::SceneDesc desc = as_read;
     const bool default_view = !desc.camera;
     if (default_view) quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
@@ -259,7 +267,7 @@ int run_trace(const TraceArgs& args) {
 
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc = load(args.scene, load_ms);
+    quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
     const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
     if (!desc.camera) quiver::add_default_view(desc, width, height);
     double build_ms = 0.0;
@@ -273,6 +281,18 @@ int run_trace(const TraceArgs& args) {
   } catch (...) {
     return report_exception();
   }
+}
+
+// --crease-angle, the same for render, info and trace; the caller copies
+// the value when the option's count() is non-zero.
+CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
+  return command
+      .add_option("--crease-angle", degrees,
+                  "Smooth normals for OBJ meshes without normals: faces meeting at a vertex at an angle up to this "
+                  "many degrees, 0..180, are shaded smooth there (angle-weighted); sharper edges stay hard; 0: "
+                  "faceted. Meshes with normals keep theirs. Default: a TOML mesh's crease_angle, else " +
+                      std::to_string(int(quiver::kDefaultCreaseAngleDegrees)))
+      ->type_name("DEGREES");
 }
 
 void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
@@ -300,6 +320,7 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
                                      "(8) or avx512 (16); every choice finds the same hits. Default: $QUIVER_SIMD, "
                                      "else auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
+  raw.crease_angle_option = add_crease_angle_flag(trace, raw.crease_angle);
 }
 
 void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
@@ -374,6 +395,7 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_flag("--robust-methods", args.options.robust_methods,
                   "Use the robust sphere test in every scene. Default: the seed's algebraic test where no ray can "
                   "start more than 10 radii from a sphere (bench/ACCURACY.md), the robust one elsewhere");
+  raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
 }
 
 // Copies the flags that were given into the optional fields.
@@ -382,6 +404,7 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.height_option->count()) options.height = raw.height;
   if (raw.max_depth_option->count()) options.max_depth = raw.max_depth;
   if (raw.min_weight_option->count()) options.min_weight = raw.min_weight;
+  if (raw.crease_angle_option->count()) options.crease_angle = raw.crease_angle;
   if (raw.aa_option->count()) options.aa = raw.aa;
   if (raw.simd_option->count()) options.simd = raw.simd;
   if (raw.aov_option->count()) options.aov = raw.aov;
@@ -416,6 +439,8 @@ int main(int argc, char** argv) {
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
               "camera, lights, materials, textures, memory (bytes) per structure, load and build times (ms)");
   info->add_option("scene", info_scene, "Scene file: .nff, .toml or .obj")->required()->type_name("SCENE");
+  double info_crease_angle = 0.0;
+  CLI::Option* info_crease_angle_option = add_crease_angle_flag(*info, info_crease_angle);
 
   TraceArgs trace_args;
   RawTraceFlags raw_trace;
@@ -448,7 +473,10 @@ int main(int argc, char** argv) {
     if (raw_trace.width_option->count()) trace_args.options.width = raw_trace.width;
     if (raw_trace.height_option->count()) trace_args.options.height = raw_trace.height;
     if (raw_trace.simd_option->count()) trace_args.options.simd = raw_trace.simd;
+    if (raw_trace.crease_angle_option->count()) trace_args.options.crease_angle = raw_trace.crease_angle;
     return run_trace(trace_args);
   }
-  return run_info(info_scene);
+  std::optional<double> crease_angle;
+  if (info_crease_angle_option->count()) crease_angle = info_crease_angle;
+  return run_info(info_scene, crease_angle);
 }

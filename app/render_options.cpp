@@ -2,8 +2,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <system_error>
 #include <tuple>
+
+#include "geometry/vertex_normals.h"
 
 namespace quiver {
 
@@ -104,6 +107,7 @@ void check_render_options(const RenderOptions& options) {
                      std::to_string(options.threads));
   }
   if (options.aov) parse_aov_list(*options.aov);
+  check_crease_angle(options.crease_angle);
   std::optional<AntiAliasing> aa;
   if (options.aa) aa = parse_aa_flag(*options.aa);
   if (!options.preset_spd) return;
@@ -117,6 +121,14 @@ void check_render_options(const RenderOptions& options) {
   if (options.min_weight && *options.min_weight != 0.0) {
     throw UsageError("--preset spd sets --min-weight 0; it contradicts --min-weight " +
                      std::to_string(*options.min_weight));
+  }
+}
+
+void check_crease_angle(const std::optional<double>& degrees) {
+  if (degrees && !valid_crease_angle(*degrees)) {
+    std::ostringstream shown;
+    shown << *degrees;
+    throw UsageError("--crease-angle: expected degrees in [0, 180], found " + shown.str());
   }
 }
 

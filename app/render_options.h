@@ -50,6 +50,7 @@ struct RenderOptions {
   bool preset_spd = false;
   bool two_sided = false;
   bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
+  std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
 };
 
 struct AovSelection {
@@ -70,6 +71,9 @@ Isa choose_isa(const std::optional<std::string>& flag, const char* environment_v
 // Checks every flag on its own and against --preset spd, before any scene
 // is read.
 void check_render_options(const RenderOptions& options);
+
+// --crease-angle (of render, info and trace): degrees in [0, 180].
+void check_crease_angle(const std::optional<double>& degrees);
 
 // The image size: both flags as given; one flag and the other side from the
 // camera's aspect (rounded, at least 1); neither: the camera's resolution,

@@ -22,6 +22,7 @@ RenderOptions shared_render_options(const TraceOptions& options) {
   shared.height = options.height;
   shared.threads = options.threads;
   shared.simd = options.simd;
+  shared.crease_angle = options.crease_angle;
   return shared;
 }
 

@@ -38,6 +38,7 @@ struct TraceOptions {
   int threads = 0;                   // 0: every core
   int repeat = kDefaultTraceRepeat;
   std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
+  std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
 };
 
 // Checks every flag alone, before the scene is read; throws UsageError.

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "geometry/polygon_soa.h"
+#include "geometry/vertex_normals.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
 
@@ -429,8 +430,12 @@ constexpr int kCornerGivesNormal = 2;
 
 class ObjReader {
  public:
-  ObjReader(std::string_view text, std::string_view file, const MtlLookup& find_library, std::size_t triangle_budget)
-      : scan_(text, file), find_library_(find_library), triangle_budget_(triangle_budget) {}
+  ObjReader(std::string_view text, std::string_view file, const MtlLookup& find_library, std::size_t triangle_budget,
+            double crease_angle_degrees)
+      : scan_(text, file),
+        find_library_(find_library),
+        triangle_budget_(triangle_budget),
+        crease_angle_degrees_(crease_angle_degrees) {}
 
   SceneDesc run() {
     while (scan_.next_statement()) {
@@ -492,10 +497,25 @@ class ObjReader {
     if (scene_.triangles.empty()) {
       scan_.fail_at_end_of_file("at least one face ('f'; 'l' and 'p' draw nothing)", kNoObjectsFound);
     }
+    add_smooth_normals();
     return std::move(scene_);
   }
 
  private:
+  // Triangles of faces without `vn` get angle-weighted vertex normals over
+  // the triangles sharing each `v` (geometry/vertex_normals.h); those with
+  // `vn` keep theirs, and still count as neighbours.
+  void add_smooth_normals() {
+    const auto faceted = [](const SceneTriangle& t) { return !t.triangle.normals; };
+    if (crease_angle_degrees_ == 0.0 || std::none_of(scene_.triangles.begin(), scene_.triangles.end(), faceted)) {
+      return;
+    }
+    const auto normals = smooth_vertex_normals(positions_, triangle_vertices_, crease_angle_degrees_);
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+      if (normals[i] && faceted(scene_.triangles[i])) scene_.triangles[i].triangle.normals = *normals[i];
+    }
+  }
+
   // One more `v`, `vt` or `vn` than `stored` stays within kMaxObjVertices.
   void check_vertex_bound(std::size_t stored, const Token& keyword, std::string_view what) {
     if (stored == kMaxObjVertices) {
@@ -609,8 +629,10 @@ class ObjReader {
       SceneTriangle triangle{{}, material};
       std::array<Vec3<float>, 3> normals{};
       std::array<std::array<float, 2>, 3> uvs{};
+      TriangleIndices vertices{};
       for (std::size_t k = 0; k < 3; ++k) {
         const ObjCorner& c = corners_[triple[k]];
+        vertices[k] = static_cast<std::uint32_t>(c.position);  // below kMaxObjVertices
         triangle.triangle.p[k] = face_positions_[triple[k]];
         if (has_normals) normals[k] = normals_[c.normal];
         if (has_uvs) uvs[k] = uvs_[c.uv];
@@ -618,6 +640,7 @@ class ObjReader {
       if (has_normals) triangle.triangle.normals = normals;
       if (has_uvs) triangle.triangle.uvs = uvs;
       scene_.triangles.push_back(triangle);
+      triangle_vertices_.push_back(vertices);
     }
   }
 
@@ -681,6 +704,7 @@ class ObjReader {
   LineScanner scan_;
   const MtlLookup& find_library_;
   std::size_t triangle_budget_;
+  double crease_angle_degrees_;
 
   std::vector<Vec3<float>> positions_;
   std::vector<std::array<float, 2>> uvs_;
@@ -697,6 +721,7 @@ class ObjReader {
   std::map<std::pair<std::string, WrapMode>, std::size_t> texture_of_;
 
   SceneDesc scene_;
+  std::vector<TriangleIndices> triangle_vertices_;  // each triangle's `v` indices, 0-based
   // One face at a time.
   std::vector<ObjCorner> corners_;
   std::vector<Vec3<float>> face_positions_;
@@ -704,12 +729,15 @@ class ObjReader {
 };
 
 SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLookup& find_library,
-                    std::size_t triangle_budget) {
+                    std::size_t triangle_budget, double crease_angle_degrees) {
+  if (!valid_crease_angle(crease_angle_degrees)) {
+    throw std::invalid_argument("OBJ reader: the crease angle is not in [0, 180] degrees");
+  }
   if (text.size() > kMaxObjBytes) {
     throw ParseError::whole_file(file,
                                  joined({"larger than the OBJ limit of ", std::to_string(kMaxObjBytes), " bytes"}));
   }
-  return ObjReader(text, file, find_library, triangle_budget).run();
+  return ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees).run();
 }
 
 MtlLookup libraries_beside(const fs::path& obj_path) {
@@ -724,17 +752,18 @@ MtlLookup libraries_beside(const fs::path& obj_path) {
 
 }  // namespace
 
-SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library) {
-  return parse_obj(text, file_name, find_library, kMaxObjTriangles);
+SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library,
+                          double crease_angle_degrees) {
+  return parse_obj(text, file_name, find_library, kMaxObjTriangles, crease_angle_degrees);
 }
 
-SceneDesc read_obj_scene(const fs::path& path) {
+SceneDesc read_obj_scene(const fs::path& path, double crease_angle_degrees) {
   const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
-  return parse_obj(text, path.string(), libraries_beside(path), kMaxObjTriangles);
+  return parse_obj(text, path.string(), libraries_beside(path), kMaxObjTriangles, crease_angle_degrees);
 }
 
 void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transform,
-                     std::optional<std::size_t> material_override, SceneDesc& scene) {
+                     std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees) {
   if (material_override && *material_override >= scene.materials.size()) {
     throw std::invalid_argument("append_obj_mesh: material_override is not an index into scene.materials");
   }
@@ -750,7 +779,7 @@ void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transfor
   const std::string name = path.string();
   const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
   const std::size_t budget = kMaxObjTriangles - std::min(scene.triangles.size(), kMaxObjTriangles);
-  SceneDesc mesh = parse_obj(text, name, libraries_beside(path), budget);
+  SceneDesc mesh = parse_obj(text, name, libraries_beside(path), budget, crease_angle_degrees);
 
   auto not_finite = [&] {
     throw ParseError::whole_file(name, "a vertex is not finite after the mesh transform of the including scene");

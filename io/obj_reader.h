@@ -3,7 +3,8 @@
 // file:line:column (numbers, NaN/Inf, index ranges, counts) and builds the
 // scene as it reads. Faces become triangles (quads and convex n-gons as
 // fans, concave n-gons by ear clipping), with per-vertex normals and uvs
-// when the face gives them. The format rules, the MTL mapping and the
+// when the face gives them; faces without normals get angle-weighted vertex
+// normals with a crease angle (geometry/vertex_normals.h). The format rules, the MTL mapping and the
 // bounds are in io/README.md.
 #pragma once
 
@@ -15,6 +16,7 @@
 #include <string>
 #include <string_view>
 
+#include "geometry/vertex_normals.h"
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -50,12 +52,18 @@ using MtlLookup = std::function<std::optional<MtlLibrary>(std::string_view name)
 
 // Reads an OBJ file and the MTL libraries it names (relative to its folder).
 // Every face gets its MTL material, or the default MaterialDesc when it has
-// none. Throws ParseError.
-SceneDesc read_obj_scene(const std::filesystem::path& path);
+// none. Faces without `vn` get smooth normals: angle-weighted over the
+// faces that share each `v` index and whose normals lie within
+// crease_angle_degrees of the face's own ([0, 180]; 0 leaves them faceted).
+// Faces with `vn` keep theirs. Throws ParseError, and std::invalid_argument
+// for a crease angle outside [0, 180].
+SceneDesc read_obj_scene(const std::filesystem::path& path,
+                         double crease_angle_degrees = kDefaultCreaseAngleDegrees);
 
 // Parses OBJ text; file_name labels error messages; `mtllib` names go
 // through find_library.
-SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library);
+SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library,
+                          double crease_angle_degrees = kDefaultCreaseAngleDegrees);
 
 // Reads the OBJ file at `path` (as read_obj_scene) and appends its triangles
 // to `scene`, transformed by `transform` (a 4x4 matrix, column-major:
@@ -64,11 +72,13 @@ SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, con
 // determinant) reverses each triangle's winding. With material_override
 // (an index into scene.materials) every triangle uses it and the MTL
 // materials are not added; otherwise the mesh's materials and textures are
-// appended. Throws ParseError, also when scene.triangles would exceed
+// appended. Smooth normals (crease_angle_degrees, as read_obj_scene) are
+// computed before the transform, on the mesh as written. Throws ParseError, also when scene.triangles would exceed
 // kMaxObjTriangles or a transformed vertex is not finite, and
 // std::invalid_argument for a singular or non-finite transform or an
 // override that is not a material index; `scene` is then unchanged.
 void append_obj_mesh(const std::filesystem::path& path, const std::array<float, 16>& transform,
-                     std::optional<std::size_t> material_override, SceneDesc& scene);
+                     std::optional<std::size_t> material_override, SceneDesc& scene,
+                     double crease_angle_degrees = kDefaultCreaseAngleDegrees);
 
 }  // namespace quiver

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "geometry/vertex_normals.h"
 #include "io/file_extension.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
@@ -11,15 +12,15 @@
 
 namespace quiver {
 
-SceneDesc load_scene(const std::filesystem::path& path) {
+SceneDesc load_scene(const std::filesystem::path& path, const SceneLoadOptions& options) {
   const std::string extension = lowercase_extension(path);
   SceneDesc scene;
   if (extension == ".nff") {
     scene = read_nff(path);
   } else if (extension == ".toml") {
-    scene = read_toml_scene(path);
+    scene = read_toml_scene(path, options.crease_angle_degrees);
   } else if (extension == ".obj") {
-    scene = read_obj_scene(path);
+    scene = read_obj_scene(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees));
   } else {
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
     throw ParseError::whole_file(path.string(),

@@ -3,13 +3,23 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "scene/scene_desc.h"
 
 namespace quiver {
 
+struct SceneLoadOptions {
+  // The crease angle of every OBJ mesh (the scene itself, or a TOML
+  // [[meshes]] entry, over its `crease_angle` key), degrees in [0, 180];
+  // 0 is faceted. Absent: a mesh's own key, else kDefaultCreaseAngleDegrees
+  // (geometry/vertex_normals.h).
+  std::optional<double> crease_angle_degrees;
+};
+
 // Throws ParseError: from the reader or the texture images, or "file:
-// message" for an extension that names no reader.
-SceneDesc load_scene(const std::filesystem::path& path);
+// message" for an extension that names no reader; std::invalid_argument
+// for a crease angle outside [0, 180].
+SceneDesc load_scene(const std::filesystem::path& path, const SceneLoadOptions& options = {});
 
 }  // namespace quiver

@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/vertex_normals.h"
 #include "integrator/anti_aliasing.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
@@ -116,8 +117,9 @@ class SourceText {
 
 class TomlSceneReader {
  public:
-  TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir)
-      : text_(text), source_(text), file_(file), base_dir_(base_dir) {}
+  TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir,
+                  std::optional<double> crease_angle_override)
+      : text_(text), source_(text), file_(file), base_dir_(base_dir), crease_angle_override_(crease_angle_override) {}
 
   SceneDesc read() {
     const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
@@ -698,12 +700,20 @@ class TomlSceneReader {
 
   void read_mesh(const toml::table& t) {
     constexpr std::string_view s = "[[meshes]]";
-    check_keys(t, {"file", "material", "translate", "rotate", "scale"}, s);
+    check_keys(t, {"file", "material", "translate", "rotate", "scale", "crease_angle"}, s);
     const toml::node& file_node = required(t, "file", s);
     const std::string path = existing_file(file_node, "file", s, "an OBJ file");
     if (lowercase_extension(path) != ".obj") fail(file_node, expected_for("an OBJ file (.obj)", "file", s));
     std::optional<std::size_t> material;
     if (t.contains("material")) material = material_of(t, s);
+    double crease_angle = kDefaultCreaseAngleDegrees;
+    if (const toml::node* node = t.get("crease_angle")) {
+      crease_angle = number(*node, "crease_angle", s);
+      if (!valid_crease_angle(crease_angle)) {
+        fail(*node, expected_for("an angle from 0 to 180 degrees", "crease_angle", s));
+      }
+    }
+    if (crease_angle_override_) crease_angle = *crease_angle_override_;
 
     glm::dvec3 scale(1.0);
     if (const toml::node* node = t.get("scale")) {
@@ -729,7 +739,7 @@ class TomlSceneReader {
       for (int r = 0; r < 4; ++r) columns[static_cast<std::size_t>(4 * c + r)] = static_cast<float>(m[c][r]);
     }
     try {
-      append_obj_mesh(path, columns, material, scene_);
+      append_obj_mesh(path, columns, material, scene_, crease_angle);
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
     } catch (const ParseError& error) {
@@ -742,6 +752,7 @@ class TomlSceneReader {
   SourceText source_;
   std::string_view file_;
   fs::path base_dir_;
+  std::optional<double> crease_angle_override_;
   SceneDesc scene_;
   std::unordered_map<std::string, std::size_t> texture_names_;
   std::unordered_map<std::string, std::size_t> material_names_;
@@ -750,17 +761,21 @@ class TomlSceneReader {
 
 }  // namespace
 
-SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir) {
+SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir,
+                           std::optional<double> crease_angle_override) {
+  if (crease_angle_override && !valid_crease_angle(*crease_angle_override)) {
+    throw std::invalid_argument("TOML reader: the crease angle is not in [0, 180] degrees");
+  }
   if (text.size() > kMaxTomlBytes) {
     throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
                                                     " bytes (", kTomlBoundsHint, ")"}));
   }
-  return TomlSceneReader(text, file_name, base_dir).read();
+  return TomlSceneReader(text, file_name, base_dir, crease_angle_override).read();
 }
 
-SceneDesc read_toml_scene(const fs::path& path) {
+SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override) {
   const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
-  return parse_toml_scene(text, path.string(), path.parent_path());
+  return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override);
 }
 
 }  // namespace quiver

@@ -160,15 +160,17 @@ TEST_F(Cli, HelpDescribesEveryOption) {
   const Outcome render = run({"render", "--help"});
   EXPECT_EQ(render.exit_code, 0);
   for (const char* option : {"--output", "--width", "--height", "--aa", "--max-depth", "--min-weight", "--threads",
-                             "--simd", "--seed", "--stats", "--aov", "--quiet", "--preset", "--two-sided"}) {
+                             "--simd", "--seed", "--stats", "--aov", "--quiet", "--preset", "--two-sided",
+                             "--crease-angle"}) {
     EXPECT_NE(render.out.find(option), std::string::npos) << option;
   }
-  for (const char* fact : {"Default: 0", "else 5", "else 0.001", "quiver.png", "QUIVER_SIMD", "2^28"}) {
+  for (const char* fact : {"Default: 0", "else 5", "else 0.001", "quiver.png", "QUIVER_SIMD", "2^28", "else 60"}) {
     EXPECT_NE(render.out.find(fact), std::string::npos) << fact;
   }
   const Outcome info = run({"info", "--help"});
   EXPECT_EQ(info.exit_code, 0);
   EXPECT_NE(info.out.find("SCENE"), std::string::npos);
+  EXPECT_NE(info.out.find("--crease-angle"), std::string::npos);
 }
 
 TEST_F(Cli, VersionIsTheProjectVersion) {
@@ -273,6 +275,11 @@ TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
       {"render", scene, "-o", "out.png", "--stats", "out.png"},
       {"render", scene, "-o", ""},
       {"render", scene, "-o", "out.png", "--stats", ""},
+      {"render", scene, "-o", "out.png", "--crease-angle", "181"},
+      {"render", scene, "-o", "out.png", "--crease-angle", "-1"},
+      {"render", scene, "-o", "out.png", "--crease-angle", "sharp"},
+      {"info", scene, "--crease-angle", "nan"},
+      {"info", scene, "--crease-angle", "200"},
   };
   for (const auto& args : cases) {
     std::string joined;
@@ -468,6 +475,25 @@ std::vector<std::size_t> info_row(const std::string& report, const std::string& 
   return {};
 }
 
+// roof.obj has no normals: --crease-angle 0 renders it faceted, the
+// default smooth, so the two images differ; info and trace take it too.
+TEST_F(Cli, CreaseAngleReachesTheMeshesOfEveryCommand) {
+  const std::string roof = (fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "roof.obj").string();
+  const Outcome smooth = run({"render", roof, "-o", "smooth.exr", "--width", "24", "--height", "24", "-q"});
+  ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+  const Outcome faceted =
+      run({"render", roof, "-o", "faceted.exr", "--width", "24", "--height", "24", "-q", "--crease-angle", "0"});
+  ASSERT_EQ(faceted.exit_code, 0) << faceted.err;
+  const Outcome also_smooth =
+      run({"render", roof, "-o", "wide.exr", "--width", "24", "--height", "24", "-q", "--crease-angle", "180"});
+  ASSERT_EQ(also_smooth.exit_code, 0) << also_smooth.err;
+  const Image a = read_image(work() / "smooth.exr");
+  EXPECT_NE(a.pixels, read_image(work() / "faceted.exr").pixels);
+  EXPECT_EQ(a.pixels, read_image(work() / "wide.exr").pixels);
+  EXPECT_EQ(run({"info", roof, "--crease-angle", "0"}).exit_code, 0);
+  EXPECT_EQ(run({"trace", roof, "--crease-angle", "30.5", "--width", "8", "--repeat", "1"}).exit_code, 0);
+}
+
 TEST_F(Cli, InfoPrintsTheCounts) {
   const Outcome r = run({"info", kTiny.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -543,7 +569,8 @@ TEST_F(Cli, TraceHelpDescribesEveryOption) {
   EXPECT_NE(top.out.find("trace"), std::string::npos);
   const Outcome trace = run({"trace", "--help"});
   EXPECT_EQ(trace.exit_code, 0);
-  for (const char* fact : {"SCENE", "--width", "--height", "--threads", "--repeat", "--simd", "2^24", "Default: 5",
+  for (const char* fact : {"SCENE", "--width", "--height", "--threads", "--repeat", "--simd", "--crease-angle", "2^24",
+                           "Default: 5",
                            "Default: 0", "QUIVER_SIMD", "mrays_per_s", "t_sum"}) {
     EXPECT_NE(trace.out.find(fact), std::string::npos) << fact;
   }
@@ -605,6 +632,7 @@ TEST_F(Cli, TraceErrorsExitNonZeroAndPrintNoJson) {
       {{"trace", scene, "--width", "0"}, 2},
       {{"trace", scene, "--width", "5000", "--height", "5000"}, 2},
       {{"trace", scene, "--simd", "avx1024"}, 2},
+      {{"trace", scene, "--crease-angle", "180.5"}, 2},
       {{"trace", scene, "--bogus"}, 2},
       {{"trace", (io() / "missing.nff").string()}, 1},
   };

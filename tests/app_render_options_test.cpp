@@ -188,6 +188,28 @@ TEST(RenderOptions, DepthWeightAndThreadBounds) {
   }
 }
 
+TEST(RenderOptions, CreaseAngleIsDegreesFromZeroTo180) {
+  for (const double ok : {0.0, 1e-9, 60.0, 180.0}) {
+    RenderOptions options;
+    options.crease_angle = ok;
+    EXPECT_NO_THROW(check_render_options(options)) << ok;
+    EXPECT_NO_THROW(check_crease_angle(ok)) << ok;
+  }
+  EXPECT_NO_THROW(check_crease_angle(std::nullopt));
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {-1.0, -1e-9, 180.001, 360.0, nan, inf, -inf}) {
+    RenderOptions options;
+    options.crease_angle = bad;
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << bad;
+  }
+  try {
+    check_crease_angle(200.0);
+    ADD_FAILURE() << "no UsageError";
+  } catch (const UsageError& error) {
+    EXPECT_EQ(std::string(error.what()), "--crease-angle: expected degrees in [0, 180], found 200");
+  }
+}
+
 TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
   SceneDesc scene = scene_with_camera(20, 10);
   scene.render.aa = "grid:4";

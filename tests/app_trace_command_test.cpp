@@ -277,6 +277,11 @@ TEST(TraceCommand, OptionChecks) {
   bad = ok;
   bad.width = 0;
   EXPECT_THROW(check_trace_options(bad), UsageError);
+  bad = ok;
+  bad.crease_angle = 181.0;
+  EXPECT_THROW(check_trace_options(bad), UsageError);
+  bad.crease_angle = 180.0;
+  EXPECT_NO_THROW(check_trace_options(bad));
 
   TraceOptions size = ok;
   size.width = 4096;

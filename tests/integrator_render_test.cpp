@@ -1,11 +1,14 @@
 // Whole-image checks of the Whitted renderer: every kernel unit and thread
 // count gives the same bits; depth 0/1/2 differ where, and only where,
 // mirrors are; transparent shadows attenuate by kt times colour per surface;
-// no acne when the scene is scaled by 1e-4 or 1e6; lane statistics add up.
+// no acne when the scene is scaled by 1e-4 or 1e6; lane statistics add up;
+// an OBJ mesh without normals shades smoothly across its face edges.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -14,6 +17,8 @@
 #include "scene/default_scene.h"
 #include "integrator/render.h"
 #include "io/nff_reader.h"
+#include "io/obj_reader.h"
+#include "scene/auto_view.h"
 
 namespace quiver {
 namespace {
@@ -142,6 +147,76 @@ INSTANTIATE_TEST_SUITE_P(EveryUnit, RenderUnits, ::testing::ValuesIn(kUnits),
                          [](const ::testing::TestParamInfo<KernelUnit>& info) {
                            return std::string(kernel_unit_name(info.param));
                          });
+
+// A coarse UV sphere (12 segments, 6 rings) as OBJ text without `vn`.
+std::string coarse_sphere_obj() {
+  constexpr int kSegments = 12, kRings = 6;
+  const double pi = 3.141592653589793;
+  std::string text = "v 0 1 0\n";
+  for (int r = 1; r < kRings; ++r) {
+    for (int s = 0; s < kSegments; ++s) {
+      const double theta = pi * r / kRings, phi = 2.0 * pi * s / kSegments;
+      text += "v " + std::to_string(std::sin(theta) * std::cos(phi)) + " " + std::to_string(std::cos(theta)) + " " +
+              std::to_string(std::sin(theta) * std::sin(phi)) + "\n";
+    }
+  }
+  text += "v 0 -1 0\n";
+  const auto ring = [&](int r, int s) { return std::to_string(2 + (r - 1) * kSegments + s % kSegments); };
+  const std::string south = std::to_string(2 + (kRings - 1) * kSegments);
+  for (int s = 0; s < kSegments; ++s) {
+    text += "f 1 " + ring(1, s + 1) + " " + ring(1, s) + "\n";
+    for (int r = 1; r + 1 < kRings; ++r) {
+      text += "f " + ring(r, s) + " " + ring(r, s + 1) + " " + ring(r + 1, s + 1) + " " + ring(r + 1, s) + "\n";
+    }
+    text += "f " + south + " " + ring(kRings - 1, s) + " " + ring(kRings - 1, s + 1) + "\n";
+  }
+  return text;
+}
+
+// The largest change of brightness between neighbouring pixels of the
+// middle row, among pixels 3 or more from the silhouette (the sphere
+// covers them and their 3 neighbours either side).
+float largest_step_across_the_middle_row(const Framebuffer& image) {
+  const int y = image.height / 2;
+  const auto covered = [&](int x) { return std::isfinite(image.depth[std::size_t(y * image.width + x)]); };
+  const auto brightness = [&](int x) {
+    const std::size_t i = 3 * std::size_t(y * image.width + x);
+    return image.rgb[i] + image.rgb[i + 1] + image.rgb[i + 2];
+  };
+  float step = 0.f;
+  for (int x = 3; x + 4 < image.width; ++x) {
+    bool inside = true;
+    for (int d = -3; d <= 4; ++d) inside = inside && covered(x + d);
+    if (inside) step = std::max(step, std::fabs(brightness(x + 1) - brightness(x)));
+  }
+  return step;
+}
+
+// Before smooth normals an OBJ without `vn` rendered faceted: brightness
+// jumps where the row crosses a face edge. Smoothed (the default crease
+// angle; the sphere's faces meet at 30 degrees), it changes gradually.
+TEST(Render, AnObjMeshWithoutNormalsShadesSmoothlyAcrossFaceEdges) {
+  const std::string obj = coarse_sphere_obj();
+  const auto no_library = [](std::string_view) -> std::optional<MtlLibrary> { return std::nullopt; };
+  float steps[2] = {0.f, 0.f};
+  for (const bool smooth : {false, true}) {
+    SceneDesc desc = parse_obj_scene(obj, "sphere.obj", no_library, smooth ? kDefaultCreaseAngleDegrees : 0.0);
+    add_default_view(desc, 96, 96);
+    const Scene scene = build_scene(desc, {});
+    RenderSettings settings = small_settings(96, 96);
+    settings.isa = Isa::scalar;
+    const RenderResult reference = render(scene, settings);
+    steps[smooth] = largest_step_across_the_middle_row(reference.image);
+    // The smoothed normals render alike at every width.
+    for (const KernelUnit unit : kUnits) {
+      if (!kernel_unit_supported(unit)) continue;
+      settings.isa = isa_of(unit);
+      expect_same_image(reference.image, render(scene, settings).image, std::string(kernel_unit_name(unit)));
+    }
+  }
+  EXPECT_GT(steps[0], 0.05f);             // faceted: a visible jump at an edge
+  EXPECT_LT(steps[1], 0.25f * steps[0]);  // smooth: no jump
+}
 
 TEST(Render, BvhGivesTheSameImageAsScanning) {
   // Hit ids differ (a BVH reorders its store); everything seen does not.

@@ -626,6 +626,79 @@ TEST(ObjReader, AppendedMeshBringsItsMaterialsAndTextures) {
   EXPECT_EQ(*scene.materials[4].texture, 1u);
 }
 
+// The angle in degrees between a normal and a unit vector.
+double degrees_from(const Vec3<float>& n, double x, double y, double z) {
+  const double length = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
+  const double c = (n.x * x + n.y * y + n.z * z) / length;
+  return std::acos(std::min(1.0, std::max(-1.0, c))) * 180.0 / 3.141592653589793;
+}
+
+// roof.obj: faces 1 3 2 and 1 2 4, their normals 15 degrees either side
+// of +z, sharing the edge from v1 to v2.
+TEST(ObjReader, FacesWithoutNormalsAreSmoothByDefaultAndFacetedAtCreaseZero) {
+  const SceneDesc smooth = read_obj_scene(kTestData / "roof.obj");
+  ASSERT_EQ(smooth.triangles.size(), 2u);
+  const double tilt = 15.0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const TriangleDesc& t = smooth.triangles[i].triangle;
+    ASSERT_TRUE(t.normals.has_value()) << i;
+    // The shared corners (v1: corner 0, v2: corner 2 of the first face,
+    // corner 1 of the second) get the mean of the two, +z; the third keeps
+    // its face's normal.
+    const std::size_t shared = i == 0 ? 2 : 1, own = i == 0 ? 1 : 2;
+    EXPECT_LT(degrees_from((*t.normals)[0], 0, 0, 1), 1e-4) << i;
+    EXPECT_LT(degrees_from((*t.normals)[shared], 0, 0, 1), 1e-4) << i;
+    EXPECT_NEAR(degrees_from((*t.normals)[own], 0, 0, 1), tilt, 1e-3) << i;
+  }
+  const std::string text = "v 0 0 0\nv 0 1 0\nv 1 0 -0.26794919\nv -1 0 -0.26794919\nf 1 3 2\nf 1 2 4\n";
+  for (const double faceted : {0.0, 29.0}) {  // 0, or below the 30 degrees between the faces
+    const SceneDesc scene = parse_obj_scene(text, "roof.obj", libraries({}), faceted);
+    for (const SceneTriangle& t : scene.triangles) EXPECT_FALSE(t.triangle.normals.has_value()) << faceted;
+  }
+  const SceneDesc at_31 = parse_obj_scene(text, "roof.obj", libraries({}), 31.0);
+  EXPECT_TRUE(at_31.triangles[0].triangle.normals.has_value());
+}
+
+TEST(ObjReader, FacesWithNormalsKeepThemAndStillSmoothTheirNeighbours) {
+  const SceneDesc scene =
+      parse("v 0 0 0\nv 0 1 0\nv 1 0 -0.26794919\nv -1 0 -0.26794919\nvn 0 1 0\nf 1 3 2\nf 1//1 2//1 4//1\n");
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  const TriangleDesc& given = scene.triangles[1].triangle;
+  ASSERT_TRUE(given.normals.has_value());
+  for (const Vec3<float>& n : *given.normals) expect_vec3(n, 0.f, 1.f, 0.f);
+  const TriangleDesc& smoothed = scene.triangles[0].triangle;
+  ASSERT_TRUE(smoothed.normals.has_value());
+  EXPECT_LT(degrees_from((*smoothed.normals)[0], 0, 0, 1), 1e-4);  // the second face's geometry counts
+}
+
+TEST(ObjReader, ACreaseAngleOutsideZeroTo180IsRejected) {
+  for (const double bad : {-1.0, 180.01, std::nan("")}) {
+    EXPECT_THROW(parse_obj_scene("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj", libraries({}), bad),
+                 std::invalid_argument)
+        << bad;
+  }
+  EXPECT_NO_THROW(parse_obj_scene("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj", libraries({}), 180.0));
+}
+
+TEST(ObjReader, AppendedMeshesAreSmoothedBeforeTheTransform) {
+  std::array<float, 16> m{};
+  m[0] = -1.f;  // a mirror in x
+  m[5] = m[10] = m[15] = 1.f;
+  SceneDesc smooth;
+  smooth.materials.push_back(MaterialDesc{});
+  append_obj_mesh(kTestData / "roof.obj", m, std::size_t{0}, smooth);
+  ASSERT_EQ(smooth.triangles.size(), 2u);
+  for (const SceneTriangle& t : smooth.triangles) {
+    ASSERT_TRUE(t.triangle.normals.has_value());
+    EXPECT_GT(signed_area_z(t.triangle), 0.0);  // the winding still faces +z
+  }
+  EXPECT_LT(degrees_from((*smooth.triangles[0].triangle.normals)[0], 0, 0, 1), 1e-4);
+  SceneDesc faceted;
+  faceted.materials.push_back(MaterialDesc{});
+  append_obj_mesh(kTestData / "roof.obj", m, std::size_t{0}, faceted, 0.0);
+  for (const SceneTriangle& t : faceted.triangles) EXPECT_FALSE(t.triangle.normals.has_value());
+}
+
 // Every mesh of ../shared/meshes loads with the counts of its `f` lines.
 TEST(ObjReader, SharedMeshesLoad) {
   const char* env = std::getenv("QUIVER_SHARED_DIR");
@@ -646,6 +719,15 @@ TEST(ObjReader, SharedMeshesLoad) {
   }
   const SceneDesc spot = read_obj_scene(meshes / "spot.obj");
   for (const SceneTriangle& t : spot.triangles) ASSERT_TRUE(t.triangle.uvs.has_value());
+  // No shipped mesh has `vn`: by default most triangles get smooth normals,
+  // at crease angle 0 none.
+  const SceneDesc teapot = read_obj_scene(meshes / "teapot.obj");
+  const auto with_normals = [](const SceneDesc& scene) {
+    return std::count_if(scene.triangles.begin(), scene.triangles.end(),
+                         [](const SceneTriangle& t) { return t.triangle.normals.has_value(); });
+  };
+  EXPECT_GT(with_normals(teapot), std::ptrdiff_t(teapot.triangles.size() / 2));
+  EXPECT_EQ(with_normals(read_obj_scene(meshes / "teapot.obj", 0.0)), 0);
 }
 
 }  // namespace

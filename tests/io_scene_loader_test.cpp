@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,23 @@ TEST(SceneLoader, RecordsEveryFileItReads) {
 
   EXPECT_EQ(load_scene(kTestData / "scenes" / "tiny.nff").source_files,
             std::vector<std::string>{(kTestData / "scenes" / "tiny.nff").string()});
+}
+
+// roof.obj (two faces without normals, 30 degrees apart) alone and
+// through a TOML mesh: smooth by default, faceted with the option at 0.
+TEST(SceneLoader, TheCreaseAngleOptionReachesObjAndTomlMeshes) {
+  const testing::TemporaryDirectory dir;
+  const fs::path roof = kTestData / "obj" / "roof.obj";
+  std::ofstream(dir.path() / "roof.toml") << "[[meshes]]\nfile = \"" << roof.string() << "\"\ncrease_angle = 10\n";
+  const auto smoothed = [](const SceneDesc& scene) {
+    return std::count_if(scene.triangles.begin(), scene.triangles.end(),
+                         [](const SceneTriangle& t) { return t.triangle.normals.has_value(); });
+  };
+  EXPECT_EQ(smoothed(load_scene(roof)), 2);
+  EXPECT_EQ(smoothed(load_scene(roof, {0.0})), 0);
+  EXPECT_EQ(smoothed(load_scene(dir.path() / "roof.toml")), 0);  // its key: 10 degrees
+  EXPECT_EQ(smoothed(load_scene(dir.path() / "roof.toml", {45.0})), 2);
+  EXPECT_THROW(load_scene(roof, {-3.0}), std::invalid_argument);
 }
 
 }  // namespace

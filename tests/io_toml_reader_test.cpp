@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -444,6 +445,31 @@ TEST(TomlReader, AFileLargerThanTheBoundIsRefusedUnread) {
                                             0),
             0u)
       << error.what();
+}
+
+// ../obj/roof.obj: two faces without normals, 30 degrees apart.
+TEST(TomlReader, MeshCreaseAngleKeyAndTheCommandLineOverride) {
+  const std::string mesh = "[[meshes]]\nfile = \"../obj/roof.obj\"\n";
+  const auto smoothed = [](const SceneDesc& scene) {
+    std::size_t n = 0;
+    for (const SceneTriangle& t : scene.triangles) n += t.triangle.normals.has_value() ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(smoothed(parse(mesh)), 2u);  // the default, 60 degrees
+  EXPECT_EQ(smoothed(parse(mesh + "crease_angle = 0\n")), 0u);
+  EXPECT_EQ(smoothed(parse(mesh + "crease_angle = 29.5\n")), 0u);
+  EXPECT_EQ(smoothed(parse(mesh + "crease_angle = 180\n")), 2u);
+  // The override (--crease-angle) wins over the key, both ways.
+  EXPECT_EQ(smoothed(parse_toml_scene(mesh, "test.toml", kTestData, 0.0)), 0u);
+  EXPECT_EQ(smoothed(parse_toml_scene(mesh + "crease_angle = 0\n", "test.toml", kTestData, 60.0)), 2u);
+  EXPECT_THROW(parse_toml_scene(mesh, "test.toml", kTestData, 200.0), std::invalid_argument);
+  // Checked like every key, even when overridden.
+  EXPECT_TRUE(error_at(mesh + "crease_angle = 181\n", 3, 16, "an angle from 0 to 180 degrees (crease_angle in [[meshes]])",
+                       "'181'"));
+  EXPECT_TRUE(error_at(mesh + "crease_angle = -0.5\n", 3, 16, "an angle from 0 to 180 degrees"));
+  EXPECT_TRUE(error_at(mesh + "crease_angle = nan\n", 3, 16, "a finite number (crease_angle in [[meshes]])"));
+  EXPECT_TRUE(error_at(mesh + "crease_angle = \"60\"\n", 3, 16, "a number (crease_angle in [[meshes]])"));
+  EXPECT_TRUE(error_at(mesh + "crease_angel = 60\n", 3, 1, "a key of [[meshes]]", "'crease_angel'"));
 }
 
 TEST(TomlReader, FilesMustExist) {

@@ -1,0 +1,121 @@
+// Angle-weighted vertex normals with a crease angle (geometry/vertex_normals.h):
+// face normals and corner angles in double, the corners around each vertex
+// gathered in one compressed array (offsets per position), then each
+// corner's weighted sum over the faces within the crease angle of its own.
+#include "geometry/vertex_normals.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace quiver {
+
+namespace {
+
+struct Face {
+  Vec3<double> normal{0.0, 0.0, 0.0};  // unit; zero for a degenerate face
+  std::array<double, 3> angle{};       // radians at each corner
+  bool valid = false;
+};
+
+Vec3<double> widened(const Vec3<float>& p) { return {double(p.x), double(p.y), double(p.z)}; }
+
+Vec3<float> narrowed(const Vec3<double>& v) { return {float(v.x), float(v.y), float(v.z)}; }
+
+double norm(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
+
+// The angle at a between the edges to b and c: atan2 of |e1 x e2| and
+// e1.e2 keeps its digits for small and for obtuse angles alike.
+double corner_angle(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c) {
+  const Vec3<double> e1 = b - a;
+  const Vec3<double> e2 = c - a;
+  return std::atan2(norm(cross(e1, e2)), dot(e1, e2));
+}
+
+Face face_of(const std::array<Vec3<double>, 3>& p) {
+  Face face;
+  const Vec3<double> n = cross(p[1] - p[0], p[2] - p[0]);
+  const double length = norm(n);
+  if (!(length > 0.0) || !std::isfinite(length)) return face;
+  face.normal = n / length;
+  for (std::size_t k = 0; k < 3; ++k) face.angle[k] = corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+  face.valid = true;
+  return face;
+}
+
+}  // namespace
+
+bool valid_crease_angle(double crease_angle_degrees) {
+  return crease_angle_degrees >= 0.0 && crease_angle_degrees <= kMaxCreaseAngleDegrees;
+}
+
+std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const Vec3<float>> positions,
+                                                                std::span<const TriangleIndices> triangles,
+                                                                double crease_angle_degrees) {
+  if (!valid_crease_angle(crease_angle_degrees)) {
+    throw std::invalid_argument("smooth_vertex_normals: the crease angle is not in [0, 180] degrees");
+  }
+  for (const TriangleIndices& t : triangles) {
+    for (std::uint32_t i : t) {
+      if (i >= positions.size()) throw std::invalid_argument("smooth_vertex_normals: a vertex index is out of range");
+    }
+  }
+  std::vector<std::optional<CornerNormals>> result(triangles.size());
+  if (crease_angle_degrees == 0.0) return result;
+
+  std::vector<Face> faces(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const TriangleIndices& v = triangles[t];
+    faces[t] = face_of({widened(positions[v[0]]), widened(positions[v[1]]), widened(positions[v[2]])});
+  }
+
+  // The corners (3 t + k) of valid faces around each position:
+  // corners[first[v] .. first[v + 1]).
+  std::vector<std::size_t> first(positions.size() + 1, 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (!faces[t].valid) continue;
+    for (std::uint32_t v : triangles[t]) ++first[v + 1];
+  }
+  for (std::size_t v = 0; v < positions.size(); ++v) first[v + 1] += first[v];
+  std::vector<std::size_t> corners(first.back());
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (!faces[t].valid) continue;
+      for (std::size_t k = 0; k < 3; ++k) corners[next[triangles[t][k]]++] = 3 * t + k;
+    }
+  }
+
+  // Within the crease angle: the normals' dot product at least its cosine
+  // (every face at 180 degrees, whatever the rounding of the dot product).
+  const double min_cosine = crease_angle_degrees >= kMaxCreaseAngleDegrees
+                                ? -std::numeric_limits<double>::infinity()
+                                : std::cos(crease_angle_degrees * (std::numbers::pi / 180.0));
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Face& face = faces[t];
+    if (!face.valid) continue;
+    const Vec3<float> flat = narrowed(face.normal);
+    CornerNormals normals{flat, flat, flat};
+    bool smoothed = false;  // some corner's normal is not the face normal
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = triangles[t][k];
+      if (first[v + 1] - first[v] > kMaxSmoothedValence) continue;
+      Vec3<double> sum{0.0, 0.0, 0.0};
+      for (std::size_t c = first[v]; c < first[v + 1]; ++c) {
+        const std::size_t s = corners[c] / 3;
+        const Face& other = faces[s];
+        if (s != t && dot(other.normal, face.normal) < min_cosine) continue;
+        sum = sum + other.angle[corners[c] % 3] * other.normal;
+      }
+      const double length = norm(sum);
+      if (!(length > 0.0)) continue;  // opposite faces cancelled out
+      normals[k] = narrowed(sum / length);
+      smoothed = smoothed || normals[k].x != flat.x || normals[k].y != flat.y || normals[k].z != flat.z;
+    }
+    if (smoothed) result[t] = normals;
+  }
+  return result;
+}
+
+}  // namespace quiver
