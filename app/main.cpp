@@ -84,10 +84,11 @@ struct RawTraceFlags {
 // The parsed values, before we know which optional flags were given.
 struct RawRenderFlags {
   int width = 0, height = 0, max_depth = 0;
-  double min_weight = 0.0, crease_angle = 0.0;
-  std::string aa, simd, aov, preset, seed;
+  double min_weight = 0.0, crease_angle = 0.0, fov = 0.0;
+  std::string aa, simd, aov, preset, seed, look_from, look_at, up;
   CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option, *crease_angle_option;
   CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option;
+  CLI::Option *look_from_option, *look_at_option, *up_option, *fov_option;
 };
 
 int report(std::string_view message, int exit_code) {
@@ -189,6 +190,11 @@ int run_render(const RenderArgs& args) {
     }
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
     if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
+    try {
+      quiver::apply_camera_options(args.options, *desc.camera);
+    } catch (const UsageError& error) {
+      return report(error.what(), kExitUsage);
+    }
 
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, plan.build, args.scene, build_ms);
@@ -326,7 +332,8 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
 void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("scene", args.scene,
                     "Scene file: .nff, .toml or .obj (any case). Absent: the built-in scene. A scene without a "
-                    "camera (OBJ) gets a default view framing it (and a light if it has none)")
+                    "camera (OBJ) gets a default view framing it (and, if it has no lights, a white point light "
+                    "above and to the right of that view)")
       ->type_name("SCENE");
   render.add_option("-o,--output", args.output,
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "
@@ -396,6 +403,18 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                   "Use the robust sphere test in every scene. Default: the seed's algebraic test where no ray can "
                   "start more than 10 radii from a sphere (bench/ACCURACY.md), the robust one elsewhere");
   raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
+  raw.look_from_option = render.add_option("--look-from", raw.look_from,
+                                           "Camera position x,y,z, over the scene's camera (or the default view "
+                                           "of a scene without one)")
+                             ->type_name("X,Y,Z");
+  raw.look_at_option = render.add_option("--look-at", raw.look_at, "The point the camera looks at, x,y,z")
+                           ->type_name("X,Y,Z");
+  raw.up_option = render.add_option("--up", raw.up, "The camera's up direction x,y,z (its part across the view "
+                                                    "is used)")
+                      ->type_name("X,Y,Z");
+  raw.fov_option = render.add_option("--fov", raw.fov, "Field of view in degrees, (0, 180), as the scene's camera "
+                                                       "angle")
+                       ->type_name("DEGREES");
 }
 
 // Copies the flags that were given into the optional fields.
@@ -405,6 +424,10 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.max_depth_option->count()) options.max_depth = raw.max_depth;
   if (raw.min_weight_option->count()) options.min_weight = raw.min_weight;
   if (raw.crease_angle_option->count()) options.crease_angle = raw.crease_angle;
+  if (raw.look_from_option->count()) options.look_from = raw.look_from;
+  if (raw.look_at_option->count()) options.look_at = raw.look_at;
+  if (raw.up_option->count()) options.up = raw.up;
+  if (raw.fov_option->count()) options.fov = raw.fov;
   if (raw.aa_option->count()) options.aa = raw.aa;
   if (raw.simd_option->count()) options.simd = raw.simd;
   if (raw.aov_option->count()) options.aov = raw.aov;

@@ -7,12 +7,20 @@
 #include <tuple>
 
 #include "geometry/vertex_normals.h"
+#include "scene/camera_frame.h"
 
 namespace quiver {
 
 namespace {
 
 std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
+
+// A flag's number as the user would write it (200, not 200.000000).
+std::string format_flag_number(double value) {
+  std::ostringstream shown;
+  shown << value;
+  return shown.str();
+}
 
 void check_side(int side, const char* flag) {
   if (side < 1 || side > kMaxImageSide) {
@@ -108,6 +116,12 @@ void check_render_options(const RenderOptions& options) {
   }
   if (options.aov) parse_aov_list(*options.aov);
   check_crease_angle(options.crease_angle);
+  if (options.look_from) parse_vector_flag("--look-from", *options.look_from);
+  if (options.look_at) parse_vector_flag("--look-at", *options.look_at);
+  if (options.up) parse_vector_flag("--up", *options.up);
+  if (options.fov && !(*options.fov > 0.0 && *options.fov < 180.0)) {
+    throw UsageError("--fov: expected degrees in (0, 180), found " + format_flag_number(*options.fov));
+  }
   std::optional<AntiAliasing> aa;
   if (options.aa) aa = parse_aa_flag(*options.aa);
   if (!options.preset_spd) return;
@@ -126,9 +140,34 @@ void check_render_options(const RenderOptions& options) {
 
 void check_crease_angle(const std::optional<double>& degrees) {
   if (degrees && !valid_crease_angle(*degrees)) {
-    std::ostringstream shown;
-    shown << *degrees;
-    throw UsageError("--crease-angle: expected degrees in [0, 180], found " + shown.str());
+    throw UsageError("--crease-angle: expected degrees in [0, 180], found " + format_flag_number(*degrees));
+  }
+}
+
+Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text) {
+  float xyz[3];
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
+    const std::string_view part = comma == std::string_view::npos ? std::string_view{} : text.substr(start, comma - start);
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), xyz[k]);
+    if (part.empty() || ec != std::errc() || end != part.data() + part.size() || !std::isfinite(xyz[k])) {
+      throw UsageError(std::string(flag) + ": expected three finite numbers x,y,z, found " + quoted(text));
+    }
+    start = comma + 1;
+  }
+  return {xyz[0], xyz[1], xyz[2]};
+}
+
+void apply_camera_options(const RenderOptions& options, CameraDesc& camera) {
+  if (options.look_from) camera.from = parse_vector_flag("--look-from", *options.look_from);
+  if (options.look_at) camera.at = parse_vector_flag("--look-at", *options.look_at);
+  if (options.up) camera.up = parse_vector_flag("--up", *options.up);
+  if (options.fov) camera.angle_degrees = static_cast<float>(*options.fov);
+  try {
+    camera_frame(camera);
+  } catch (const std::invalid_argument& error) {
+    throw UsageError(std::string("--look-from, --look-at, --up: ") + error.what());
   }
 }
 

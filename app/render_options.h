@@ -51,6 +51,10 @@ struct RenderOptions {
   bool two_sided = false;
   bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
+  // The camera, each field over the scene's (or the default view's): points
+  // and the up direction as "x,y,z", the field of view in degrees.
+  std::optional<std::string> look_from, look_at, up;
+  std::optional<double> fov;
 };
 
 struct AovSelection {
@@ -74,6 +78,13 @@ void check_render_options(const RenderOptions& options);
 
 // --crease-angle (of render, info and trace): degrees in [0, 180].
 void check_crease_angle(const std::optional<double>& degrees);
+
+// "x,y,z": three finite numbers; throws UsageError naming the flag.
+Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text);
+
+// --look-from, --look-at, --up and --fov over the camera; throws UsageError
+// when the result has no view direction (from = at, or up along it).
+void apply_camera_options(const RenderOptions& options, CameraDesc& camera);
 
 // The image size: both flags as given; one flag and the other side from the
 // camera's aspect (rounded, at least 1); neither: the camera's resolution,

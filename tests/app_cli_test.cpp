@@ -494,6 +494,27 @@ TEST_F(Cli, CreaseAngleReachesTheMeshesOfEveryCommand) {
   EXPECT_EQ(run({"trace", roof, "--crease-angle", "30.5", "--width", "8", "--repeat", "1"}).exit_code, 0);
 }
 
+// The camera flags move the view of any scene, the default view included;
+// a bad one exits 2 and writes nothing.
+TEST_F(Cli, CameraFlagsMoveTheView) {
+  const Outcome plain = run({"render", "-o", "plain.exr", "--width", "24", "--height", "18", "-q"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const Outcome above = run({"render", "-o", "above.exr", "--width", "24", "--height", "18", "-q", "--look-from",
+                             "0,8,6", "--look-at", "0,0.5,0", "--up", "0,1,0", "--fov", "40"});
+  ASSERT_EQ(above.exit_code, 0) << above.err;
+  EXPECT_NE(read_image(work() / "plain.exr").pixels, read_image(work() / "above.exr").pixels);
+  const Outcome tiny = run({"render", kTiny.string(), "-o", "tiny.exr", "--width", "8", "-q", "--fov", "20"});
+  EXPECT_EQ(tiny.exit_code, 0) << tiny.err;
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--look-from", "1,2"}, {"--fov", "0"}, {"--look-at", "0,2.2,7"}}) {
+    std::vector<std::string> args{"render", "-o", "bad.png", "--width", "8", "-q"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << bad[0] << " " << bad[1] << ": " << r.err;
+    EXPECT_FALSE(fs::exists(work() / "bad.png"));
+  }
+}
+
 TEST_F(Cli, InfoPrintsTheCounts) {
   const Outcome r = run({"info", kTiny.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;

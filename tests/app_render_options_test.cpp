@@ -210,6 +210,62 @@ TEST(RenderOptions, CreaseAngleIsDegreesFromZeroTo180) {
   }
 }
 
+bool same_vector(const Vec3<float>& a, const Vec3<float>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+// --look-from, --look-at, --up: three finite numbers; --fov: (0, 180).
+TEST(RenderOptions, CameraFlagsAreCheckedBeforeTheScene) {
+  EXPECT_TRUE(same_vector(parse_vector_flag("--up", "0,1,0"), Vec3<float>{0.f, 1.f, 0.f}));
+  EXPECT_TRUE(same_vector(parse_vector_flag("--look-at", "-1.5,2e3,0.25"), Vec3<float>{-1.5f, 2000.f, 0.25f}));
+  for (const char* bad : {"", "1,2", "1,2,3,4", "1,,3", "1, 2,3", "a,b,c", "1,2,nan", "1,2,inf", "1e39,0,0", ",1,2"}) {
+    EXPECT_TRUE(throws_usage_error([&] { parse_vector_flag("--look-from", bad); })) << bad;
+    RenderOptions options;
+    options.look_from = bad;
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << bad;
+  }
+  try {
+    parse_vector_flag("--look-from", "1,2");
+    ADD_FAILURE() << "no UsageError";
+  } catch (const UsageError& error) {
+    EXPECT_EQ(std::string(error.what()), "--look-from: expected three finite numbers x,y,z, found '1,2'");
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const double fov : {0.0, -10.0, 180.0, 270.0, nan}) {
+    RenderOptions options;
+    options.fov = fov;
+    EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << fov;
+  }
+  RenderOptions options;
+  options.fov = 1e-3;
+  EXPECT_NO_THROW(check_render_options(options));
+}
+
+// Each camera flag replaces its field of the scene's camera, the others
+// stay; a camera with no view direction is a usage error.
+TEST(RenderOptions, CameraFlagsOverrideTheScenesCamera) {
+  const CameraDesc scene_camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 45.f, 0.f, 64, 48};
+  CameraDesc camera = scene_camera;
+  RenderOptions options;
+  apply_camera_options(options, camera);
+  EXPECT_TRUE(same_vector(camera.from, scene_camera.from));
+  EXPECT_EQ(camera.angle_degrees, 45.f);
+  options.look_from = "3,4,5";
+  options.fov = 30.0;
+  apply_camera_options(options, camera);
+  EXPECT_TRUE(same_vector(camera.from, Vec3<float>{3, 4, 5}));
+  EXPECT_TRUE(same_vector(camera.at, scene_camera.at));
+  EXPECT_TRUE(same_vector(camera.up, scene_camera.up));
+  EXPECT_EQ(camera.angle_degrees, 30.f);
+  EXPECT_EQ(camera.width, 64);
+  RenderOptions onto_eye;
+  onto_eye.look_at = "3,4,5";
+  EXPECT_TRUE(throws_usage_error([&] { apply_camera_options(onto_eye, camera); }));
+  RenderOptions along_view;
+  along_view.up = "-3,-4,-5";
+  camera = scene_camera;
+  camera.from = {3, 4, 5};
+  EXPECT_TRUE(throws_usage_error([&] { apply_camera_options(along_view, camera); }));
+}
+
 TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
   SceneDesc scene = scene_with_camera(20, 10);
   scene.render.aa = "grid:4";
