@@ -73,22 +73,30 @@ struct TraceArgs {
   quiver::TraceOptions options;
 };
 
+// The camera flags of render and trace, before we know which were given.
+struct RawCameraFlags {
+  std::string look_from, look_at, up;
+  double fov = 0.0;
+  CLI::Option *look_from_option, *look_at_option, *up_option, *fov_option;
+};
+
 // The parsed values of `quiver trace`, before we know which were given.
 struct RawTraceFlags {
   int width = 0, height = 0;
   double crease_angle = 0.0;
   std::string simd;
   CLI::Option *width_option, *height_option, *simd_option, *crease_angle_option;
+  RawCameraFlags camera;
 };
 
 // The parsed values, before we know which optional flags were given.
 struct RawRenderFlags {
   int width = 0, height = 0, max_depth = 0;
-  double min_weight = 0.0, crease_angle = 0.0, fov = 0.0;
-  std::string aa, simd, aov, preset, seed, look_from, look_at, up;
+  double min_weight = 0.0, crease_angle = 0.0;
+  std::string aa, simd, aov, preset, seed;
   CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option, *crease_angle_option;
   CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option;
-  CLI::Option *look_from_option, *look_at_option, *up_option, *fov_option;
+  RawCameraFlags camera;
 };
 
 int report(std::string_view message, int exit_code) {
@@ -191,7 +199,7 @@ int run_render(const RenderArgs& args) {
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
     if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
     try {
-      quiver::apply_camera_options(args.options, *desc.camera);
+      quiver::apply_camera_flags(args.options.camera, *desc.camera);
     } catch (const UsageError& error) {
       return report(error.what(), kExitUsage);
     }
@@ -276,6 +284,7 @@ int run_trace(const TraceArgs& args) {
     quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
     const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
     if (!desc.camera) quiver::add_default_view(desc, width, height);
+    quiver::apply_camera_flags(args.options.camera, *desc.camera);
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, {}, args.scene, build_ms);
     const quiver::PrimaryTraceResult result =
@@ -299,6 +308,32 @@ CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
                   "faceted. Meshes with normals keep theirs. Default: a TOML mesh's crease_angle, else " +
                       std::to_string(int(quiver::kDefaultCreaseAngleDegrees)))
       ->type_name("DEGREES");
+}
+
+// --look-from, --look-at, --up, --fov, the same for render and trace.
+void add_camera_flags(CLI::App& command, RawCameraFlags& raw) {
+  raw.look_from_option = command.add_option("--look-from", raw.look_from,
+                                            "Camera position x,y,z, over the scene's camera (or the default view "
+                                            "of a scene without one)")
+                             ->type_name("X,Y,Z");
+  raw.look_at_option = command.add_option("--look-at", raw.look_at, "The point the camera looks at, x,y,z")
+                           ->type_name("X,Y,Z");
+  raw.up_option = command.add_option("--up", raw.up, "The camera's up direction x,y,z (its part across the view "
+                                                     "is used)")
+                      ->type_name("X,Y,Z");
+  raw.fov_option = command.add_option("--fov", raw.fov, "Field of view in degrees, (0, 180), as the scene's camera "
+                                                        "angle")
+                       ->type_name("DEGREES");
+}
+
+// The camera flags that were given.
+quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
+  quiver::CameraFlags flags;
+  if (raw.look_from_option->count()) flags.look_from = raw.look_from;
+  if (raw.look_at_option->count()) flags.look_at = raw.look_at;
+  if (raw.up_option->count()) flags.up = raw.up;
+  if (raw.fov_option->count()) flags.fov = raw.fov;
+  return flags;
 }
 
 void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
@@ -327,6 +362,7 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
                                      "else auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
   raw.crease_angle_option = add_crease_angle_flag(trace, raw.crease_angle);
+  add_camera_flags(trace, raw.camera);
 }
 
 void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
@@ -403,18 +439,7 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                   "Use the robust sphere test in every scene. Default: the seed's algebraic test where no ray can "
                   "start more than 10 radii from a sphere (bench/ACCURACY.md), the robust one elsewhere");
   raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
-  raw.look_from_option = render.add_option("--look-from", raw.look_from,
-                                           "Camera position x,y,z, over the scene's camera (or the default view "
-                                           "of a scene without one)")
-                             ->type_name("X,Y,Z");
-  raw.look_at_option = render.add_option("--look-at", raw.look_at, "The point the camera looks at, x,y,z")
-                           ->type_name("X,Y,Z");
-  raw.up_option = render.add_option("--up", raw.up, "The camera's up direction x,y,z (its part across the view "
-                                                    "is used)")
-                      ->type_name("X,Y,Z");
-  raw.fov_option = render.add_option("--fov", raw.fov, "Field of view in degrees, (0, 180), as the scene's camera "
-                                                       "angle")
-                       ->type_name("DEGREES");
+  add_camera_flags(render, raw.camera);
 }
 
 // Copies the flags that were given into the optional fields.
@@ -424,10 +449,7 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.max_depth_option->count()) options.max_depth = raw.max_depth;
   if (raw.min_weight_option->count()) options.min_weight = raw.min_weight;
   if (raw.crease_angle_option->count()) options.crease_angle = raw.crease_angle;
-  if (raw.look_from_option->count()) options.look_from = raw.look_from;
-  if (raw.look_at_option->count()) options.look_at = raw.look_at;
-  if (raw.up_option->count()) options.up = raw.up;
-  if (raw.fov_option->count()) options.fov = raw.fov;
+  options.camera = given_camera_flags(raw.camera);
   if (raw.aa_option->count()) options.aa = raw.aa;
   if (raw.simd_option->count()) options.simd = raw.simd;
   if (raw.aov_option->count()) options.aov = raw.aov;
@@ -497,6 +519,7 @@ int main(int argc, char** argv) {
     if (raw_trace.height_option->count()) trace_args.options.height = raw_trace.height;
     if (raw_trace.simd_option->count()) trace_args.options.simd = raw_trace.simd;
     if (raw_trace.crease_angle_option->count()) trace_args.options.crease_angle = raw_trace.crease_angle;
+    trace_args.options.camera = given_camera_flags(raw_trace.camera);
     return run_trace(trace_args);
   }
   std::optional<double> crease_angle;

@@ -116,12 +116,7 @@ void check_render_options(const RenderOptions& options) {
   }
   if (options.aov) parse_aov_list(*options.aov);
   check_crease_angle(options.crease_angle);
-  if (options.look_from) parse_vector_flag("--look-from", *options.look_from);
-  if (options.look_at) parse_vector_flag("--look-at", *options.look_at);
-  if (options.up) parse_vector_flag("--up", *options.up);
-  if (options.fov && !(*options.fov > 0.0 && *options.fov < 180.0)) {
-    throw UsageError("--fov: expected degrees in (0, 180), found " + format_flag_number(*options.fov));
-  }
+  check_camera_flags(options.camera);
   std::optional<AntiAliasing> aa;
   if (options.aa) aa = parse_aa_flag(*options.aa);
   if (!options.preset_spd) return;
@@ -159,11 +154,20 @@ Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text) {
   return {xyz[0], xyz[1], xyz[2]};
 }
 
-void apply_camera_options(const RenderOptions& options, CameraDesc& camera) {
-  if (options.look_from) camera.from = parse_vector_flag("--look-from", *options.look_from);
-  if (options.look_at) camera.at = parse_vector_flag("--look-at", *options.look_at);
-  if (options.up) camera.up = parse_vector_flag("--up", *options.up);
-  if (options.fov) camera.angle_degrees = static_cast<float>(*options.fov);
+void check_camera_flags(const CameraFlags& flags) {
+  if (flags.look_from) parse_vector_flag("--look-from", *flags.look_from);
+  if (flags.look_at) parse_vector_flag("--look-at", *flags.look_at);
+  if (flags.up) parse_vector_flag("--up", *flags.up);
+  if (flags.fov && !(*flags.fov > 0.0 && *flags.fov < 180.0)) {
+    throw UsageError("--fov: expected degrees in (0, 180), found " + format_flag_number(*flags.fov));
+  }
+}
+
+void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera) {
+  if (flags.look_from) camera.from = parse_vector_flag("--look-from", *flags.look_from);
+  if (flags.look_at) camera.at = parse_vector_flag("--look-at", *flags.look_at);
+  if (flags.up) camera.up = parse_vector_flag("--up", *flags.up);
+  if (flags.fov) camera.angle_degrees = static_cast<float>(*flags.fov);
   try {
     camera_frame(camera);
   } catch (const std::invalid_argument& error) {

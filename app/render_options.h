@@ -38,6 +38,14 @@ inline constexpr int kMaxThreads = 1024;
 // weight cut-off, every surface two-sided.
 inline constexpr int kSpdMaxDepth = 4;
 
+// --look-from, --look-at, --up, --fov (render and trace): each field over
+// the scene's camera (or the default view's); points and the up direction
+// as "x,y,z", the field of view in degrees.
+struct CameraFlags {
+  std::optional<std::string> look_from, look_at, up;
+  std::optional<double> fov;
+};
+
 struct RenderOptions {
   std::optional<int> width, height;
   std::optional<std::string> aa;
@@ -51,10 +59,7 @@ struct RenderOptions {
   bool two_sided = false;
   bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
-  // The camera, each field over the scene's (or the default view's): points
-  // and the up direction as "x,y,z", the field of view in degrees.
-  std::optional<std::string> look_from, look_at, up;
-  std::optional<double> fov;
+  CameraFlags camera;
 };
 
 struct AovSelection {
@@ -82,9 +87,12 @@ void check_crease_angle(const std::optional<double>& degrees);
 // "x,y,z": three finite numbers; throws UsageError naming the flag.
 Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text);
 
-// --look-from, --look-at, --up and --fov over the camera; throws UsageError
-// when the result has no view direction (from = at, or up along it).
-void apply_camera_options(const RenderOptions& options, CameraDesc& camera);
+// Each camera flag alone (three finite numbers; fov in (0, 180)); throws UsageError.
+void check_camera_flags(const CameraFlags& flags);
+
+// The camera flags over the camera; throws UsageError when the result has
+// no view direction (from = at, or up along it).
+void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera);
 
 // The image size: both flags as given; one flag and the other side from the
 // camera's aspect (rounded, at least 1); neither: the camera's resolution,

@@ -23,6 +23,7 @@ RenderOptions shared_render_options(const TraceOptions& options) {
   shared.threads = options.threads;
   shared.simd = options.simd;
   shared.crease_angle = options.crease_angle;
+  shared.camera = options.camera;
   return shared;
 }
 

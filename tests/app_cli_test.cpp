@@ -505,6 +505,15 @@ TEST_F(Cli, CameraFlagsMoveTheView) {
   EXPECT_NE(read_image(work() / "plain.exr").pixels, read_image(work() / "above.exr").pixels);
   const Outcome tiny = run({"render", kTiny.string(), "-o", "tiny.exr", "--width", "8", "-q", "--fov", "20"});
   EXPECT_EQ(tiny.exit_code, 0) << tiny.err;
+  // trace takes them too: looking away from every object, no ray hits.
+  const Outcome hits = run({"trace", kTiny.string(), "--width", "8", "--height", "8", "--repeat", "1"});
+  ASSERT_EQ(hits.exit_code, 0) << hits.err;
+  const Outcome away = run({"trace", kTiny.string(), "--width", "8", "--height", "8", "--repeat", "1",
+                            "--look-from", "0,0,1000", "--look-at", "0,0,2000"});
+  ASSERT_EQ(away.exit_code, 0) << away.err;
+  EXPECT_EQ(hits.out.find("\"hits\":0,"), std::string::npos) << hits.out;
+  EXPECT_NE(away.out.find("\"hits\":0,"), std::string::npos) << away.out;
+  EXPECT_EQ(run({"trace", kTiny.string(), "--fov", "180"}).exit_code, 2);
   for (const std::vector<std::string>& bad :
        {std::vector<std::string>{"--look-from", "1,2"}, {"--fov", "0"}, {"--look-at", "0,2.2,7"}}) {
     std::vector<std::string> args{"render", "-o", "bad.png", "--width", "8", "-q"};

@@ -219,7 +219,7 @@ TEST(RenderOptions, CameraFlagsAreCheckedBeforeTheScene) {
   for (const char* bad : {"", "1,2", "1,2,3,4", "1,,3", "1, 2,3", "a,b,c", "1,2,nan", "1,2,inf", "1e39,0,0", ",1,2"}) {
     EXPECT_TRUE(throws_usage_error([&] { parse_vector_flag("--look-from", bad); })) << bad;
     RenderOptions options;
-    options.look_from = bad;
+    options.camera.look_from = bad;
     EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << bad;
   }
   try {
@@ -231,11 +231,11 @@ TEST(RenderOptions, CameraFlagsAreCheckedBeforeTheScene) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const double fov : {0.0, -10.0, 180.0, 270.0, nan}) {
     RenderOptions options;
-    options.fov = fov;
+    options.camera.fov = fov;
     EXPECT_TRUE(throws_usage_error([&] { check_render_options(options); })) << fov;
   }
   RenderOptions options;
-  options.fov = 1e-3;
+  options.camera.fov = 1e-3;
   EXPECT_NO_THROW(check_render_options(options));
 }
 
@@ -244,26 +244,26 @@ TEST(RenderOptions, CameraFlagsAreCheckedBeforeTheScene) {
 TEST(RenderOptions, CameraFlagsOverrideTheScenesCamera) {
   const CameraDesc scene_camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 45.f, 0.f, 64, 48};
   CameraDesc camera = scene_camera;
-  RenderOptions options;
-  apply_camera_options(options, camera);
+  CameraFlags options;
+  apply_camera_flags(options, camera);
   EXPECT_TRUE(same_vector(camera.from, scene_camera.from));
   EXPECT_EQ(camera.angle_degrees, 45.f);
   options.look_from = "3,4,5";
   options.fov = 30.0;
-  apply_camera_options(options, camera);
+  apply_camera_flags(options, camera);
   EXPECT_TRUE(same_vector(camera.from, Vec3<float>{3, 4, 5}));
   EXPECT_TRUE(same_vector(camera.at, scene_camera.at));
   EXPECT_TRUE(same_vector(camera.up, scene_camera.up));
   EXPECT_EQ(camera.angle_degrees, 30.f);
   EXPECT_EQ(camera.width, 64);
-  RenderOptions onto_eye;
+  CameraFlags onto_eye;
   onto_eye.look_at = "3,4,5";
-  EXPECT_TRUE(throws_usage_error([&] { apply_camera_options(onto_eye, camera); }));
-  RenderOptions along_view;
+  EXPECT_TRUE(throws_usage_error([&] { apply_camera_flags(onto_eye, camera); }));
+  CameraFlags along_view;
   along_view.up = "-3,-4,-5";
   camera = scene_camera;
   camera.from = {3, 4, 5};
-  EXPECT_TRUE(throws_usage_error([&] { apply_camera_options(along_view, camera); }));
+  EXPECT_TRUE(throws_usage_error([&] { apply_camera_flags(along_view, camera); }));
 }
 
 TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
