@@ -184,16 +184,8 @@ inline Mask<F> ray_space_inside(const WatertightRay<F>& r, const PolygonLanes<F>
 // ray_space_inside in the ray's frame: fixed when every lane shares it.
 template <class F>
 inline Mask<F> ray_space_inside(const WatertightRay<F>& r, const PolygonLanes<F>& poly, const Mask<F>& lanes) {
-  using namespace triangle_detail;
-  switch (r.shared_axes) {
-    case 0: return ray_space_inside<AxesFixed<0, false>>(r, poly, lanes);
-    case 1: return ray_space_inside<AxesFixed<0, true>>(r, poly, lanes);
-    case 2: return ray_space_inside<AxesFixed<1, false>>(r, poly, lanes);
-    case 3: return ray_space_inside<AxesFixed<1, true>>(r, poly, lanes);
-    case 4: return ray_space_inside<AxesFixed<2, false>>(r, poly, lanes);
-    case 5: return ray_space_inside<AxesFixed<2, true>>(r, poly, lanes);
-    default: return ray_space_inside<AxesPerLane>(r, poly, lanes);
-  }
+  return triangle_detail::in_ray_frame(
+      r, [&](auto axes) { return ray_space_inside<decltype(axes)>(r, poly, lanes); });
 }
 
 // The parity of the lanes in `lanes` over the edges of one band, in the

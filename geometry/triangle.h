@@ -164,6 +164,22 @@ struct AxesFixed {
   static F z(const Vec3<F>& a, const WatertightRay<F>&) { return axis<KZ>(a); }
 };
 
+
+// visit(Axes{}) in the ray's sheared frame: AxesFixed when every lane
+// shares it, else AxesPerLane.
+template <class F, class Visit>
+[[gnu::always_inline]] inline decltype(auto) in_ray_frame(const WatertightRay<F>& r, const Visit& visit) {
+  switch (r.shared_axes) {
+    case 0: return visit(AxesFixed<0, false>{});
+    case 1: return visit(AxesFixed<0, true>{});
+    case 2: return visit(AxesFixed<1, false>{});
+    case 3: return visit(AxesFixed<1, true>{});
+    case 4: return visit(AxesFixed<2, false>{});
+    case 5: return visit(AxesFixed<2, true>{});
+    default: return visit(AxesPerLane{});
+  }
+}
+
 }  // namespace triangle_detail
 
 struct TriangleWatertight {
@@ -287,15 +303,9 @@ struct TriangleWatertight {
   static Mask<F> intersect(const WatertightRay<F>& ray, const TriangleLanes<F>& tri, const F& tmax,
                            const Mask<F>& active, Candidate<F>& out) {
     using namespace triangle_detail;
-    switch (ray.shared_axes) {
-      case 0: return intersect_in<AxesFixed<0, false>>(ray, tri, tmax, active, out);
-      case 1: return intersect_in<AxesFixed<0, true>>(ray, tri, tmax, active, out);
-      case 2: return intersect_in<AxesFixed<1, false>>(ray, tri, tmax, active, out);
-      case 3: return intersect_in<AxesFixed<1, true>>(ray, tri, tmax, active, out);
-      case 4: return intersect_in<AxesFixed<2, false>>(ray, tri, tmax, active, out);
-      case 5: return intersect_in<AxesFixed<2, true>>(ray, tri, tmax, active, out);
-      default: return intersect_in<AxesPerLane>(ray, tri, tmax, active, out);
-    }
+    return in_ray_frame(ray, [&](auto axes) __attribute__((always_inline)) {
+      return intersect_in<decltype(axes)>(ray, tri, tmax, active, out);
+    });
   }
 
   // for_each_lane_by_frame's lanes of one frame.
