@@ -252,7 +252,6 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
     soa.nx.push_back(n.x);
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);
-    soa.d.push_back(d);
     soa.origin_u.push_back(v0[au]);
     soa.origin_v.push_back(v0[av]);
     soa.umin.push_back(*std::min_element(us.begin(), us.end()));
@@ -278,7 +277,7 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
+  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
                            &soa.vmin, &soa.vmax, &soa.reach, &soa.plane_slack, &soa.band_scale}) {
     pad_column(*c, soa.count);
   }
@@ -290,7 +289,7 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 
 std::size_t PolygonSoA::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach,
+  for (const AlignedFloats* c : {&nx, &ny, &nz, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach,
                                  &plane_slack, &pu, &pv, &px, &py, &pz, &band_scale}) {
     bytes += c->capacity() * sizeof(float);
   }

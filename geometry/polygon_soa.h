@@ -1,4 +1,4 @@
-// Planar polygons in SoA: per polygon the unit plane (nx, ny, nz, d), the kept
+// Planar polygons in SoA: per polygon the unit plane normal (nx, ny, nz), the kept
 // axes of the dominant projection, the first vertex projected, the 2D bounding
 // rectangle, the lane margin's reach and plane slack (geometry/polygon.h) and
 // the vertex range; the vertices live in flat columns, projected relative to
@@ -35,7 +35,7 @@ inline constexpr std::size_t kMaxBandRefsPerEdge = 4;
 
 struct PolygonSoA {
   // Per polygon, padded to kMaxLanes like every SoA column.
-  AlignedFloats nx, ny, nz, d;
+  AlignedFloats nx, ny, nz;
   AlignedFloats origin_u, origin_v;
   AlignedFloats umin, umax, vmin, vmax;
   AlignedFloats reach, plane_slack;

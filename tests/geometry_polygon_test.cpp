@@ -338,7 +338,7 @@ TEST(PolygonBuild, DropsDegenerateNonPlanarAndNonFinite) {
   EXPECT_EQ(soa.vertex_count[2], 4);
   EXPECT_EQ(soa.first_vertex[2], 8u);
   EXPECT_EQ(soa.nx.size() % kMaxLanes, 0u);
-  for (const AlignedFloats* column : {&soa.nx, &soa.ny, &soa.nz, &soa.d, &soa.umin, &soa.umax, &soa.pu, &soa.pv}) {
+  for (const AlignedFloats* column : {&soa.nx, &soa.ny, &soa.nz, &soa.umin, &soa.umax, &soa.pu, &soa.pv}) {
     for (float v : *column) EXPECT_TRUE(std::isfinite(v));
   }
   EXPECT_EQ(soa.vertex_count[7], 4);  // padding copies the last polygon
