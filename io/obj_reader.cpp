@@ -687,7 +687,6 @@ class ObjReader {
       try {
         library = find_library_(name.text);
       } catch (const ParseError& error) {
-        if (error.line() != 0) throw;  // at its place in the library
         throw ParseError::in_named_file(scan_.position_of(name), "MTL library", error);
       }
       if (!library) scan_.fail_at(name, "an MTL library that exists");

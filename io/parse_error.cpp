@@ -37,6 +37,7 @@ ParseError ParseError::whole_file(std::string_view file, std::string_view messag
 }
 
 ParseError ParseError::in_named_file(const FilePosition& at, std::string_view role, const ParseError& cause) {
+  if (cause.line() != 0) return cause;  // already at its place in the named file
   return ParseError(at.file, at.line, at.column,
                     joined({at.file, ":", std::to_string(at.line), ":", std::to_string(at.column), ": in the ", role,
                             " named here: ", cause.what()}));

@@ -24,7 +24,8 @@ class ParseError : public std::runtime_error {
              std::string_view found);
   static ParseError whole_file(std::string_view file, std::string_view message);
   // cause (an error in a file the scene text names at `at`), reported
-  // there; role says what the file is ("OBJ mesh").
+  // there when it concerns the file as a whole; role says what the file is
+  // ("OBJ mesh"). A cause with its own line is returned as it is.
   static ParseError in_named_file(const FilePosition& at, std::string_view role, const ParseError& cause);
 
   const std::string& file() const { return file_; }

@@ -743,7 +743,6 @@ class TomlSceneReader {
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
     } catch (const ParseError& error) {
-      if (error.line() != 0) throw;  // at its place in the mesh
       throw ParseError::in_named_file(named_at(file_node), "OBJ mesh", error);
     }
   }
