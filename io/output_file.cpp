@@ -111,10 +111,4 @@ void StagedOutputs::discard() noexcept {
   staged_.clear();
 }
 
-void write_file_atomically(const fs::path& path, const StagedOutputs::Writer& write) {
-  StagedOutputs outputs;
-  outputs.stage(path, write);
-  outputs.commit();
-}
-
 }  // namespace quiver

@@ -51,7 +51,4 @@ class StagedOutputs {
   std::vector<Staged> staged_;
 };
 
-// One output on its own: StagedOutputs with a single stage and commit.
-void write_file_atomically(const std::filesystem::path& path, const StagedOutputs::Writer& write);
-
 }  // namespace quiver

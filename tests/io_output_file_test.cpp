@@ -97,12 +97,18 @@ TEST_F(Staged, AFailedRenamePutsBackTheTargetsAlreadyReplaced) {
   EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "c.json"}));  // new.exr did not exist: removed
 }
 
-TEST_F(Staged, WriteFileAtomicallyKeepsTheOldFileWhenTheWriteFails) {
+TEST_F(Staged, OneOutputKeepsTheOldFileWhenTheWriteFails) {
   std::ofstream(at("a.png")) << "OLD";
-  EXPECT_THROW(write_file_atomically(at("a.png"), [](const fs::path&) { throw std::runtime_error("no"); }),
-               std::runtime_error);
+  {
+    StagedOutputs outputs;
+    EXPECT_THROW(outputs.stage(at("a.png"), [](const fs::path&) { throw std::runtime_error("no"); }),
+                 std::runtime_error);
+    outputs.commit();
+  }
   EXPECT_EQ(read_text(at("a.png")), "OLD");
-  write_file_atomically(at("a.png"), writing("NEW"));
+  StagedOutputs outputs;
+  outputs.stage(at("a.png"), writing("NEW"));
+  outputs.commit();
   EXPECT_EQ(read_text(at("a.png")), "NEW");
   EXPECT_EQ(names(), std::vector<std::string>{"a.png"});
 }
