@@ -191,18 +191,11 @@ int run_render(const RenderArgs& args) {
   try {
     double load_ms = 0.0;
     quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
-    try {
-      quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
-    } catch (const UsageError& error) {
-      return report(error.what(), kExitUsage);
-    }
+    // UsageError from here on exits 2 through report_exception.
+    quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
     if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
-    try {
-      quiver::apply_camera_flags(args.options.camera, *desc.camera);
-    } catch (const UsageError& error) {
-      return report(error.what(), kExitUsage);
-    }
+    quiver::apply_camera_flags(args.options.camera, *desc.camera);
 
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, plan.build, args.scene, build_ms);

@@ -52,6 +52,7 @@ struct Worker {
   std::vector<RefinedPixel> refined;  // refine: per pixel of the tile
   std::vector<StratumSample> strata, next_strata;  // refine: per pixel, side^2 strata at a time
   std::vector<std::uint32_t> owner;  // refine: the pixel of each traced sample
+  std::vector<std::uint8_t> uncertain;  // refine: per pixel, refined in the next pass
   Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
       : tracer(scene, intersector, settings) {}
 };
@@ -295,7 +296,8 @@ class TileRenderer {
       return largest > 0.0 && largest / px.count > double(threshold) * double(threshold);
     };
     // The first pass's verdict: the pixel's own error, or a neighbour's mean.
-    std::vector<std::uint8_t> refine(w.refined.size(), 0);
+    std::vector<std::uint8_t>& refine = w.uncertain;
+    refine.assign(w.refined.size(), 0);
     for (int y = tile.y0; y < y1; ++y) {
       for (int x = tile.x0; x < x1; ++x) {
         const RefinedPixel& px = w.refined[local(x, y)];
