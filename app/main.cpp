@@ -93,9 +93,9 @@ struct RawTraceFlags {
 struct RawRenderFlags {
   int width = 0, height = 0, max_depth = 0;
   double min_weight = 0.0, crease_angle = 0.0;
-  std::string aa, simd, aov, preset, seed;
+  std::string aa, simd, aov, preset, seed, texture_filter;
   CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option, *crease_angle_option;
-  CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option;
+  CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option, *texture_filter_option;
   RawCameraFlags camera;
 };
 
@@ -431,6 +431,12 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_flag("--robust-methods", args.options.robust_methods,
                   "Use the robust sphere test in every scene. Default: the seed's algebraic test where no ray can "
                   "start more than 10 radii from a sphere (bench/ACCURACY.md), the robust one elsewhere");
+  raw.texture_filter_option =
+      render.add_option("--texture-filter", raw.texture_filter,
+                        "box: checker textures box-filtered over each sample's footprint, from ray differentials "
+                        "carried through reflection and refraction (image textures stay bilinear); none: point "
+                        "sampling. Default: box")
+          ->type_name("FILTER");
   raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
   add_camera_flags(render, raw.camera);
 }
@@ -446,6 +452,7 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.aa_option->count()) options.aa = raw.aa;
   if (raw.simd_option->count()) options.simd = raw.simd;
   if (raw.aov_option->count()) options.aov = raw.aov;
+  if (raw.texture_filter_option->count()) options.texture_filter = raw.texture_filter;
   if (raw.preset_option->count() && raw.preset != "spd") {
     throw UsageError("--preset: expected spd, found '" + raw.preset + "'");
   }

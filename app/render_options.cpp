@@ -102,6 +102,12 @@ Isa choose_isa(const std::optional<std::string>& flag, const char* environment_v
   }
 }
 
+bool parse_texture_filter(std::string_view name) {
+  if (name == "box") return true;
+  if (name == "none") return false;
+  throw UsageError("--texture-filter: expected box or none, found '" + std::string(name) + "'");
+}
+
 void check_render_options(const RenderOptions& options) {
   if (options.width) check_side(*options.width, "--width");
   if (options.height) check_side(*options.height, "--height");
@@ -115,6 +121,7 @@ void check_render_options(const RenderOptions& options) {
                      std::to_string(options.threads));
   }
   if (options.aov) parse_aov_list(*options.aov);
+  if (options.texture_filter) parse_texture_filter(*options.texture_filter);
   check_crease_angle(options.crease_angle);
   check_camera_flags(options.camera);
   std::optional<AntiAliasing> aa;
@@ -243,6 +250,7 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   }
 
   s.trace.seed = options.seed;
+  if (options.texture_filter) s.trace.filter_textures = parse_texture_filter(*options.texture_filter);
   s.threads = options.threads;
   s.isa = isa;
   if (options.aov) {

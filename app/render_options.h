@@ -58,6 +58,7 @@ struct RenderOptions {
   bool preset_spd = false;
   bool two_sided = false;
   bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
+  std::optional<std::string> texture_filter;  // box (the default) or none
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
   CameraFlags camera;
 };
@@ -66,6 +67,9 @@ struct AovSelection {
   bool depth = false, normal = false, id = false;
   bool any() const { return depth || normal || id; }
 };
+
+// --texture-filter: "box" (true) or "none" (false); throws UsageError.
+bool parse_texture_filter(std::string_view name);
 
 // A decimal unsigned 64-bit integer (no sign, no spaces); throws UsageError.
 std::uint64_t parse_seed(std::string_view text);

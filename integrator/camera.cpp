@@ -20,14 +20,29 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : width_(width), h
   pixel_size_ = 2.0 * std::tan(half_angle) / double(std::max(span, 1));
 }
 
+Vec3<double> Camera::film_point(double x, double y) const {
+  return {(x - 0.5 * width_) * pixel_size_, (0.5 * height_ - y) * pixel_size_, 0.0};
+}
+
 Ray<float> Camera::ray(double x, double y) const {
-  const double sx = (x - 0.5 * width_) * pixel_size_;
-  const double sy = (0.5 * height_ - y) * pixel_size_;
-  const Vec3<double> d = frame_.direction(sx, sy);
+  const Vec3<double> film = film_point(x, y);
+  const Vec3<double> d = frame_.direction(film.x, film.y);
   return {{float(frame_.eye.x), float(frame_.eye.y), float(frame_.eye.z)},
           {float(d.x), float(d.y), float(d.z)},
           0.f,
           std::numeric_limits<float>::infinity()};
+}
+
+Camera::DirectionDifferentials Camera::direction_differentials(double x, double y, double spacing) const {
+  const Vec3<double> film = film_point(x, y);
+  const Vec3<double> d = frame_.forward + frame_.right * film.x + frame_.up * film.y;
+  const double length = std::sqrt(dot(d, d));
+  const Vec3<double> unit = d / length;
+  auto unit_change = [&](const Vec3<double>& change) {
+    const Vec3<double> dd = (change - unit * dot(unit, change)) / length;
+    return Vec3<float>(float(dd.x), float(dd.y), float(dd.z));
+  };
+  return {unit_change(frame_.right * (pixel_size_ * spacing)), unit_change(frame_.up * (-pixel_size_ * spacing))};
 }
 
 }  // namespace quiver

@@ -21,10 +21,21 @@ class Camera {
   // The unit-direction primary ray through film point (x, y), t in (0, inf).
   Ray<float> ray(double x, double y) const;
 
+  // The change of that ray's unit direction when (x, y) moves by `spacing`
+  // pixels along x and along y (a pinhole's origin does not change):
+  // dD = (dd - D (D.dd)) / |d| for d the unnormalised direction.
+  struct DirectionDifferentials {
+    Vec3<float> dx, dy;
+  };
+  DirectionDifferentials direction_differentials(double x, double y, double spacing) const;
+
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
+  // Film point (x, y) on the tangent plane at unit distance: (sx, sy, 0).
+  Vec3<double> film_point(double x, double y) const;
+
   int width_, height_;
   CameraFrame frame_;
   double pixel_size_;  // tangent-plane size of one pixel at unit distance

@@ -76,8 +76,17 @@ class TileRenderer {
   }
 
  private:
-  CameraSample sample_at(double x, double y) const {
-    return {camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
+  // The camera sample at film point (x, y); with texture filtering, its
+  // differentials over `spacing` pixels (the distance to the neighbouring
+  // samples: a pixel over the rays per side).
+  CameraSample sample_at(double x, double y, double spacing) const {
+    CameraSample sample{camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
+    if (settings_.trace.filter_textures) {
+      const Camera::DirectionDifferentials d = camera_.direction_differentials(x, y, spacing);
+      sample.direction_dx = d.dx;
+      sample.direction_dy = d.dy;
+    }
+    return sample;
   }
 
   void trace(Worker& w) const {
@@ -106,7 +115,7 @@ class TileRenderer {
           ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
           oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
         }
-        w.samples.push_back(sample_at(x + ox, y + oy));
+        w.samples.push_back(sample_at(x + ox, y + oy, 1.0 / n));
       }
     });
     trace(w);
@@ -126,7 +135,7 @@ class TileRenderer {
     const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
     const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
     w.samples.clear();
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.samples.push_back(sample_at(x, y)); });
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.samples.push_back(sample_at(x, y, 1.0)); });
     trace(w);
     std::size_t k = 0;
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
@@ -155,7 +164,8 @@ class TileRenderer {
       w.samples.clear();
       for (std::int32_t p : pending) {
         const int X = p % lw, Y = p / lw;
-        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale));
+        // Filtered over a pixel at every level: the subdivision is for edges.
+        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, 1.0));
       }
       trace(w);
       for (std::size_t k = 0; k < pending.size(); ++k) {
@@ -282,7 +292,7 @@ class TileRenderer {
       const RefinedPixel& px = w.refined[local(x, y)];
       for (int k = 0; k < 4; ++k) {
         const StratumSample& st = w.strata[px.first + k];
-        w.samples.push_back(sample_at(x + st.x, y + st.y));
+        w.samples.push_back(sample_at(x + st.x, y + st.y, 0.5));
         w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
       }
     });
@@ -342,7 +352,7 @@ class TileRenderer {
               }
               const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
               w.next_strata.push_back(fresh);
-              w.samples.push_back(sample_at(x + fresh.x, y + fresh.y));
+              w.samples.push_back(sample_at(x + fresh.x, y + fresh.y, 1.0 / child));
               w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
             }
           }

@@ -45,14 +45,28 @@ void inverse_bilinear(const double q[4][2], double px, double py, float& s_out, 
 
 namespace {
 
-Vec3<float> material_color(const Scene& scene, const MaterialDesc& m, float u, float v, const Vec3<float>& p) {
-  if (!m.texture) return m.color;
-  return mul(evaluate(scene.textures[*m.texture], u, v, p), m.color);
+// d(atan2(y, x)) for a change (dx, dy) of (x, y), over 2 pi: the change of a
+// longitude u.
+float longitude_change(float x, float y, float dx, float dy) {
+  return (x * dy - y * dx) / (x * x + y * y) * kInvTwoPi;
+}
+
+// The change of the barycentrics (b1, b2) of a triangle with edges e1, e2
+// for a change dp of the point in its plane (least squares in double).
+void barycentric_change(const Vec3<float>& e1, const Vec3<float>& e2, const Vec3<float>& dp, double& db1,
+                        double& db2) {
+  const Vec3<double> a(e1.x, e1.y, e1.z), b(e2.x, e2.y, e2.z), d(dp.x, dp.y, dp.z);
+  const double aa = dot(a, a), ab = dot(a, b), bb = dot(b, b);
+  const double da = dot(d, a), db = dot(d, b);
+  const double det = aa * bb - ab * ab;
+  db1 = (bb * da - ab * db) / det;
+  db2 = (aa * db - ab * da) / det;
 }
 
 }  // namespace
 
-SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
+SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit,
+                             const PointDifferentials* footprint) {
   SurfaceDetail s;
   s.ref = scene.locate(hit.id);
   const GeometryLayer& g = scene.layer(s.ref.transmissive);
@@ -64,14 +78,30 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   s.material = &scene.materials[s.material_index];
   // Texture coordinates only for textured materials (atan2 and asin are dear).
   const bool textured = s.material->texture.has_value();
-  const Vec3<float> position = textured ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f);
+  const Vec3<float> position =
+      textured || footprint != nullptr ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f);
+  // Per film axis (x, y): the point's change and that of (u, v).
+  const Vec3<float> dp[2] = {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
+                             footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)};
+  float du[2] = {0.f, 0.f}, dv[2] = {0.f, 0.f};
+  Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
   switch (s.ref.kind) {
     case PrimitiveKind::sphere: {
-      if (!textured) break;
+      if (!textured && footprint == nullptr) break;
       const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
       const Vec3<float> d = normalize(position - c);
-      s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
-      s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
+      if (textured) {
+        s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
+        s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
+      }
+      if (footprint == nullptr) break;
+      for (int a = 0; a < 2; ++a) {
+        // The unit outward normal d's change: dp less its radial part, over r.
+        const Vec3<float> dd = (dp[a] - d * dot(d, dp[a])) * g.spheres.inv_r[i];
+        *dn[a] = dd;
+        du[a] = longitude_change(d.x, -d.z, dd.x, -dd.z);
+        dv[a] = dd.y / std::sqrt(std::max(1.f - d.y * d.y, 0.f)) * kInvPi;
+      }
       break;
     }
     case PrimitiveKind::plane: {
@@ -80,27 +110,56 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
       tangent_axes(normalize(hit.ng), t1, t2);
       s.u = dot(position, t1);
       s.v = dot(position, t2);
+      for (int a = 0; a < 2; ++a) {
+        du[a] = dot(dp[a], t1);
+        dv[a] = dot(dp[a], t2);
+      }
       break;
     }
     case PrimitiveKind::triangle: {
       const TriangleSoA& tri = g.triangles;
       const float w0 = 1.f - hit.u - hit.v;
+      double db1[2] = {0.0, 0.0}, db2[2] = {0.0, 0.0};
+      if (footprint != nullptr) {
+        const Vec3<float> v0 = tri.vertex(i, 0);
+        for (int a = 0; a < 2; ++a) barycentric_change(tri.vertex(i, 1) - v0, tri.vertex(i, 2) - v0, dp[a], db1[a], db2[a]);
+      }
+      for (int a = 0; a < 2; ++a) {
+        du[a] = float(db1[a]);
+        dv[a] = float(db2[a]);
+      }
       if (tri.has_uvs()) {
         const auto a = tri.uv(i, 0), b = tri.uv(i, 1), c = tri.uv(i, 2);
         s.u = w0 * a[0] + hit.u * b[0] + hit.v * c[0];
         s.v = w0 * a[1] + hit.u * b[1] + hit.v * c[1];
+        for (int k = 0; k < 2; ++k) {
+          du[k] = float(db1[k] * (double(b[0]) - a[0]) + db2[k] * (double(c[0]) - a[0]));
+          dv[k] = float(db1[k] * (double(b[1]) - a[1]) + db2[k] * (double(c[1]) - a[1]));
+        }
       }
       if (tri.has_normals()) {
-        const Vec3<float> n = tri.normal(i, 0) * w0 + tri.normal(i, 1) * hit.u + tri.normal(i, 2) * hit.v;
+        const Vec3<float> n0 = tri.normal(i, 0), n1 = tri.normal(i, 1), n2 = tri.normal(i, 2);
+        const Vec3<float> n = n0 * w0 + n1 * hit.u + n2 * hit.v;
         if (dot(n, n) > 0.f) {
           s.smooth = true;
           s.interpolated = normalize(n);
+          // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
+          const float length = std::sqrt(dot(n, n));
+          for (int a = 0; a < 2; ++a) {
+            const Vec3<float> change = (n1 - n0) * float(db1[a]) + (n2 - n0) * float(db2[a]);
+            *dn[a] = (change - s.interpolated * dot(s.interpolated, change)) / length;
+          }
         }
       }
       break;
     }
     case PrimitiveKind::polygon: {
       const PolygonSoA& p = g.polygons;
+      const int axis_u = p.axis_u[i], axis_v = p.axis_v[i];
+      for (int a = 0; a < 2; ++a) {
+        du[a] = dp[a][axis_u];
+        dv[a] = dp[a][axis_v];
+      }
       if (textured && p.vertex_count[i] == 4) {
         double quad[4][2];
         for (int k = 0; k < 4; ++k) {
@@ -108,6 +167,13 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
           quad[k][1] = p.pv[p.first_vertex[i] + k];
         }
         inverse_bilinear(quad, hit.u, hit.v, s.u, s.v);
+        // The bilinear map's change by a finite difference over the footprint.
+        for (int a = 0; a < 2 && footprint != nullptr; ++a) {
+          float u_moved, v_moved;
+          inverse_bilinear(quad, double(hit.u) + du[a], double(hit.v) + dv[a], u_moved, v_moved);
+          du[a] = u_moved - s.u;
+          dv[a] = v_moved - s.v;
+        }
       }
       break;
     }
@@ -121,10 +187,22 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
       tangent_axes(axis, t1, t2);
       s.u = 0.5f + std::atan2(dot(radial, t2), dot(radial, t1)) * kInvTwoPi;
       s.v = hit.u;
+      for (int a = 0; a < 2; ++a) {
+        const Vec3<float> radial_change = dp[a] - axis * dot(dp[a], axis);
+        du[a] = longitude_change(dot(radial, t1), dot(radial, t2), dot(radial_change, t1), dot(radial_change, t2));
+        dv[a] = dot(dp[a], axis) / c.height[i];
+      }
       break;
     }
   }
-  s.color = material_color(scene, *s.material, s.u, s.v, position);
+  if (!textured) {
+    s.color = s.material->color;
+  } else if (footprint == nullptr) {
+    s.color = mul(evaluate(scene.textures[*s.material->texture], s.u, s.v, position), s.material->color);
+  } else {
+    const TextureFootprint f{du[0], dv[0], du[1], dv[1], dp[0], dp[1]};
+    s.color = mul(evaluate_filtered(scene.textures[*s.material->texture], s.u, s.v, position, f), s.material->color);
+  }
   return s;
 }
 

@@ -29,13 +29,28 @@ struct SurfaceDetail {
   Vec3<float> interpolated;  // unit, the primitive's orientation; set where smooth
   float u, v;                // texture coordinates (the kernel's u, v when untextured)
   Vec3<float> color;         // the material's colour at the point (texture times colour)
+  // With a footprint: the shading normal's change (the primitive's
+  // orientation) over it: spheres and interpolated normals; 0 on flat
+  // surfaces and, as an approximation, on cones.
+  Vec3<float> normal_dx{0.f, 0.f, 0.f}, normal_dy{0.f, 0.f, 0.f};
+};
+
+// The hit point's change over one sample spacing along film x and y
+// (integrator/ray_differentials.h).
+struct PointDifferentials {
+  Vec3<float> dx, dy;
 };
 
 // One ray's surface: its frame and its detail.
 struct SurfacePoint : SurfaceFrame<float>, SurfaceDetail {};
 
 // The detail of hit (id != kNoHit) of ray (unit or not; t in its units).
-SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);
+// With a footprint the texture is box-filtered over it (texture.h), its
+// (u, v) derivatives from the primitive's mapping: exact on planes and
+// triangles, differentiated on spheres and cones, by a finite difference
+// of the inverse bilinear map on quads.
+SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit,
+                             const PointDifferentials* footprint = nullptr);
 
 // The surface at hit (id != kNoHit) of ray (unit or not; t in its units).
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit);

@@ -19,6 +19,33 @@ bool odd_cell(float coordinate, float scale) {
 
 float finite_or_zero(float x) { return std::isfinite(x) ? x : 0.f; }
 
+// Integral of the square wave (-1)^floor(t) from 0 to x: a triangle wave
+// of period 2 rising from 0 to 1 on [0, 1].
+double integrated_square_wave(double x) {
+  const double r = x - 2.0 * std::floor(0.5 * x);
+  return r < 1.0 ? r : 2.0 - r;
+}
+
+// The square wave (-1)^floor(c) averaged over [c - w/2, c + w/2], all in
+// cells; exactly +-1 below kPointFootprint, 0 for an unbounded width.
+double box_filtered_square_wave(double c, double w) {
+  if (!(w > kPointFootprint)) return std::fmod(std::floor(c), 2.0) != 0.0 ? -1.0 : 1.0;
+  if (!(w < 1e9)) return 0.0;
+  return (integrated_square_wave(c + 0.5 * w) - integrated_square_wave(c - 0.5 * w)) / w;
+}
+
+// a where the product of the square waves is +1, b where -1, linear between.
+Vec3<float> checker_mix(const Vec3<float>& a, const Vec3<float>& b, double product) {
+  const double share_a = 0.5 * (1.0 + product), share_b = 0.5 * (1.0 - product);
+  return {float(share_a * a.x + share_b * b.x), float(share_a * a.y + share_b * b.y),
+          float(share_a * a.z + share_b * b.z)};
+}
+
+// The box width of one axis in cells: |d/dx| + |d/dy| times the scale.
+double footprint_cells(float d_dx, float d_dy, float scale) {
+  return (std::fabs(double(d_dx)) + std::fabs(double(d_dy))) * double(scale);
+}
+
 // Texel index for an integer-valued cell (any magnitude) under the wrap mode.
 std::size_t wrapped_index(double cell, int size, WrapMode wrap) {
   const double n = size;
@@ -62,7 +89,52 @@ Vec3<float> bilinear(const TextureImage& image, WrapMode wrap, float u, float v)
   return result;
 }
 
+// Trilinear MIP mapping (Williams 1983): the footprint's longer side in
+// texels picks the level, log2 of it, between two levels linearly; a
+// footprint of at most one texel is the bilinear lookup of evaluate.
+Vec3<float> mip_mapped(const Texture& texture, float u, float v, const TextureFootprint& f) {
+  const double w = texture.image.width, h = texture.image.height;
+  const double along_x = std::hypot(double(f.du_dx) * w, double(f.dv_dx) * h);
+  const double along_y = std::hypot(double(f.du_dy) * w, double(f.dv_dy) * h);
+  const double texels = std::max(along_x, along_y);
+  if (!(texels > 1.0)) return bilinear(texture.image, texture.wrap, u, v);
+  const int coarsest = int(texture.coarser.size());
+  const double level = std::min(std::log2(texels), double(coarsest));  // inf: the coarsest
+  const int finer = std::min(int(level), coarsest);
+  const double blend = level - finer;
+  auto at = [&](int l) { return bilinear(l == 0 ? texture.image : texture.coarser[std::size_t(l - 1)], texture.wrap, u, v); };
+  const Vec3<float> a = at(finer);
+  if (finer == coarsest || blend == 0.0) return a;
+  const Vec3<float> b = at(finer + 1);
+  return {float(a.x + (double(b.x) - a.x) * blend), float(a.y + (double(b.y) - a.y) * blend),
+          float(a.z + (double(b.z) - a.z) * blend)};
+}
+
 }  // namespace
+
+Vec3<float> evaluate_filtered(const Texture& texture, float u, float v, const Vec3<float>& world_point,
+                              const TextureFootprint& f) {
+  const double scale = texture.scale;
+  switch (texture.kind) {
+    case TextureDesc::Kind::checker2d: {
+      const double product =
+          box_filtered_square_wave(double(finite_or_zero(u)) * scale, footprint_cells(f.du_dx, f.du_dy, texture.scale)) *
+          box_filtered_square_wave(double(finite_or_zero(v)) * scale, footprint_cells(f.dv_dx, f.dv_dy, texture.scale));
+      return checker_mix(texture.color_a, texture.color_b, product);
+    }
+    case TextureDesc::Kind::checker3d: {
+      double product = 1.0;
+      for (int axis = 0; axis < 3; ++axis) {
+        product *= box_filtered_square_wave(double(finite_or_zero(world_point[axis])) * scale,
+                                            footprint_cells(f.dp_dx[axis], f.dp_dy[axis], texture.scale));
+      }
+      return checker_mix(texture.color_a, texture.color_b, product);
+    }
+    case TextureDesc::Kind::image:
+    default:
+      return mip_mapped(texture, u, v, f);
+  }
+}
 
 Vec3<float> evaluate(const Texture& texture, float u, float v, const Vec3<float>& world_point) {
   switch (texture.kind) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "integrator/ray_differentials.h"
+
 namespace quiver {
 
 namespace {
@@ -25,6 +27,7 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
       intersector_(intersector),
       settings_(settings),
       width_(std::size_t(intersector.lanes())),
+      differentials_(settings.filter_textures && !scene.textures.empty()),
       materials_(scene.materials),
       shade_wave_(with_kernel_unit(intersector.unit(),
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
@@ -36,12 +39,21 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
   rays_.clear();
   paths_.clear();
+  differentials_of_rays_.clear();
   for (std::size_t i = 0; i < samples.size(); ++i) {
     rays_.push(samples[i].ray);
     paths_.push(static_cast<std::uint32_t>(i), {1.f, 1.f, 1.f}, samples[i].key);
+    if (differentials_) {
+      // A pinhole: the origin does not change.
+      differentials_of_rays_.origin_dx.push({0.f, 0.f, 0.f});
+      differentials_of_rays_.origin_dy.push({0.f, 0.f, 0.f});
+      differentials_of_rays_.direction_dx.push(samples[i].direction_dx);
+      differentials_of_rays_.direction_dy.push(samples[i].direction_dy);
+    }
   }
   rays_.pad();
   paths_.pad();
+  if (differentials_) differentials_of_rays_.pad(rays_.count);
   stats.rays.primary += samples.size();
   WaveLanes& primary = stats.wave(0);
   primary.active += samples.size();
@@ -56,15 +68,25 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     clock.charge(stats.phases.intersection);
     next_rays_.clear();
     next_paths_.clear();
+    next_differentials_.clear();
     for (ShadowSlot& slot : slots_) slot.clear();
     resolve_surfaces();
     shaded_.slots = &slots_;
     shaded_.next_rays = &next_rays_;
     shaded_.next_paths = &next_paths_;
+    shaded_.next_differentials = differentials_ ? &next_differentials_ : nullptr;
     shaded_.counts = {};
-    const WaveShadingInput in{&scene_,           &materials_,         &rays_,         &hits_,
-                              &paths_,           &surfaces_,          depth < settings_.max_depth,
-                              settings_.min_weight, settings_.seed, settings_.spawn_every_ray};
+    const WaveShadingInput in{&scene_,
+                              &materials_,
+                              &rays_,
+                              &hits_,
+                              &paths_,
+                              &surfaces_,
+                              differentials_ ? &differentials_of_rays_ : nullptr,
+                              depth < settings_.max_depth,
+                              settings_.min_weight,
+                              settings_.seed,
+                              settings_.spawn_every_ray};
     shade_wave_(in, shaded_);
     // The ambient terms (the background on a miss), in ray order.
     for (std::size_t i = 0; i < rays_.count; ++i) {
@@ -88,17 +110,23 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     }
     std::swap(rays_, next_rays_);
     std::swap(paths_, next_paths_);
+    std::swap(differentials_of_rays_, next_differentials_);
     rays_.pad();
     paths_.pad();
+    if (differentials_) differentials_of_rays_.pad(rays_.count);
   }
   clock.charge(stats.phases.shading);
 }
 
 void Tracer::resolve_surfaces() {
-  surfaces_.resize(rays_.ox.size());
+  surfaces_.resize(rays_.ox.size(), differentials_);
   for (std::size_t i = 0; i < rays_.count; ++i) {
     const std::int32_t id = hits_.id[i];
     if (id == kNoHit) continue;
+    if (differentials_) {
+      resolve_surface_with_footprint(i);
+      continue;
+    }
     if (scene_.plain_of_id[std::size_t(id)] != 0) {
       // A plain surface: its material's colour.
       const std::uint32_t material = scene_.material_of_id[std::size_t(id)];
@@ -109,18 +137,36 @@ void Tracer::resolve_surfaces() {
       surfaces_.color_b[i] = color.z;
       continue;
     }
-    const SurfaceDetail d = surface_detail(scene_, rays_.get(i), hits_.get(i));
-    surfaces_.material[i] = static_cast<std::int32_t>(d.material_index);
-    if (d.smooth) {
-      surfaces_.smooth[i] = 1;
-      surfaces_.nx[i] = d.interpolated.x;
-      surfaces_.ny[i] = d.interpolated.y;
-      surfaces_.nz[i] = d.interpolated.z;
-    }
-    surfaces_.color_r[i] = d.color.x;
-    surfaces_.color_g[i] = d.color.y;
-    surfaces_.color_b[i] = d.color.z;
+    store_surface(i, surface_detail(scene_, rays_.get(i), hits_.get(i)));
   }
+}
+
+void Tracer::store_surface(std::size_t i, const SurfaceDetail& d) {
+  surfaces_.material[i] = static_cast<std::int32_t>(d.material_index);
+  if (d.smooth) {
+    surfaces_.smooth[i] = 1;
+    surfaces_.nx[i] = d.interpolated.x;
+    surfaces_.ny[i] = d.interpolated.y;
+    surfaces_.nz[i] = d.interpolated.z;
+  }
+  surfaces_.color_r[i] = d.color.x;
+  surfaces_.color_g[i] = d.color.y;
+  surfaces_.color_b[i] = d.color.z;
+}
+
+void Tracer::resolve_surface_with_footprint(std::size_t i) {
+  const Ray<float> ray = rays_.get(i);
+  const Hit<float> hit = hits_.get(i);
+  const DifferentialColumns& r = differentials_of_rays_;
+  const PointDifferentials footprint{
+      transfer_differential(r.origin_dx.get(i), r.direction_dx.get(i), ray.direction, hit.t, hit.ng),
+      transfer_differential(r.origin_dy.get(i), r.direction_dy.get(i), ray.direction, hit.t, hit.ng)};
+  const SurfaceDetail d = surface_detail(scene_, ray, hit, &footprint);
+  store_surface(i, d);
+  surfaces_.point_dx.set(i, footprint.dx);
+  surfaces_.point_dy.set(i, footprint.dy);
+  surfaces_.normal_dx.set(i, d.normal_dx);
+  surfaces_.normal_dy.set(i, d.normal_dy);
 }
 
 void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats) {

@@ -40,11 +40,19 @@ struct TraceSettings {
   // and every lit hit a shadow ray toward each light it faces, whatever the
   // weights (zero-weight rays are traced and add nothing to the image).
   bool spawn_every_ray = false;
+  // Box-filter checker textures over each hit's footprint, from ray
+  // differentials carried through reflection and refraction
+  // (integrator/ray_differentials.h); only in scenes with textures. Off:
+  // textures are point-sampled.
+  bool filter_textures = true;
 };
 
 struct CameraSample {
   Ray<float> ray;
   std::uint64_t key;  // identifies the sample for random numbers (see sample_key)
+  // The change of the ray's unit direction over one sample spacing along
+  // film x and y (read only when the tracer filters textures).
+  Vec3<float> direction_dx{0.f, 0.f, 0.f}, direction_dy{0.f, 0.f, 0.f};
 };
 
 // First-hit data for AOVs: distance along the unit ray, shading normal
@@ -67,8 +75,11 @@ class Tracer {
   void first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out);
 
  private:
-  // The scalar pass: surface_detail of every hit of the wave into surfaces_.
+  // The scalar pass: surface_detail of every hit of the wave into surfaces_
+  // (with the footprints its differentials give, when they are carried).
   void resolve_surfaces();
+  void resolve_surface_with_footprint(std::size_t i);
+  void store_surface(std::size_t i, const SurfaceDetail& detail);
   // Traces every slot's shadow stream and adds the light seen to colors.
   void resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats);
   // Transparent shadows: scales the slot's transmittance by each
@@ -79,12 +90,14 @@ class Tracer {
   const SceneIntersector& intersector_;
   TraceSettings settings_;
   std::size_t width_;
+  bool differentials_;  // rays carry differentials: filter_textures in a scene with textures
   MaterialTable materials_;
   ShadeWaveFunction shade_wave_;
 
   RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;
   PathColumns paths_, next_paths_;
+  DifferentialColumns differentials_of_rays_, next_differentials_;
   SurfaceColumns surfaces_;
   WaveShadingOutput shaded_;
   // Per light sample slot (sum of the lights' sample counts).

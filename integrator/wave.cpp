@@ -2,6 +2,38 @@
 
 namespace quiver {
 
+void Vec3Columns::clear() {
+  for (AlignedFloats* c : {&x, &y, &z}) c->clear();
+}
+
+void Vec3Columns::push(const Vec3<float>& v) {
+  x.push_back(v.x);
+  y.push_back(v.y);
+  z.push_back(v.z);
+}
+
+void Vec3Columns::pad(std::size_t count) {
+  for (AlignedFloats* c : {&x, &y, &z}) pad_column(*c, count);
+}
+
+void Vec3Columns::assign(std::size_t padded) {
+  for (AlignedFloats* c : {&x, &y, &z}) c->assign(padded, 0.f);
+}
+
+void Vec3Columns::set(std::size_t i, const Vec3<float>& v) {
+  x[i] = v.x;
+  y[i] = v.y;
+  z[i] = v.z;
+}
+
+void DifferentialColumns::clear() {
+  for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->clear();
+}
+
+void DifferentialColumns::pad(std::size_t count) {
+  for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->pad(count);
+}
+
 void PathColumns::clear() {
   for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) c->clear();
   sample.clear();
@@ -24,9 +56,16 @@ void PathColumns::pad() {
   key.resize(padded_size(count), count > 0 ? key[count - 1] : 0);
 }
 
-void SurfaceColumns::resize(std::size_t padded) {
+void SurfaceColumns::resize(std::size_t padded, bool differentials) {
   for (AlignedInts* c : {&material, &smooth}) c->assign(padded, 0);
   for (AlignedFloats* c : {&nx, &ny, &nz, &color_r, &color_g, &color_b}) c->assign(padded, 0.f);
+  for (Vec3Columns* c : {&point_dx, &point_dy, &normal_dx, &normal_dy}) {
+    if (differentials) {
+      c->assign(padded);
+    } else {
+      c->clear();
+    }
+  }
 }
 
 MaterialTable::MaterialTable(const std::vector<MaterialDesc>& scene_materials) {
@@ -49,6 +88,41 @@ void ShadowSlot::clear() {
   rays.clear();
   point.clear();
   for (AlignedFloats* c : {&light_r, &light_g, &light_b}) c->clear();
+}
+
+namespace {
+
+void grow_rays(RaySoA& rays, std::size_t size) {
+  for (AlignedFloats* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.tmin, &rays.tmax}) {
+    c->resize(size);
+  }
+  rays.count = size;
+}
+
+}  // namespace
+
+std::size_t ShadowSlot::grow(std::size_t n) {
+  const std::size_t first = rays.ox.size();
+  grow_rays(rays, first + n);
+  point.resize(first + n);
+  for (AlignedFloats* c : {&light_r, &light_g, &light_b}) c->resize(first + n);
+  return first;
+}
+
+std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, DifferentialColumns* differentials) {
+  const std::size_t first = rays.ox.size(), size = first + n;
+  grow_rays(rays, size);
+  for (AlignedFloats* c : {&paths.weight_r, &paths.weight_g, &paths.weight_b}) c->resize(size);
+  paths.sample.resize(size);
+  paths.key.resize(size);
+  paths.count = size;
+  if (differentials != nullptr) {
+    for (Vec3Columns* v : {&differentials->origin_dx, &differentials->origin_dy, &differentials->direction_dx,
+                           &differentials->direction_dy}) {
+      for (AlignedFloats* c : {&v->x, &v->y, &v->z}) c->resize(size);
+    }
+  }
+  return first;
 }
 
 int samples_per_side(const LightDesc& light) {

@@ -16,6 +16,27 @@
 
 namespace quiver {
 
+// Three float columns: one vector per ray.
+struct Vec3Columns {
+  AlignedFloats x, y, z;
+
+  void clear();
+  void push(const Vec3<float>& v);
+  void pad(std::size_t count);
+  void assign(std::size_t padded);  // zeros
+  void set(std::size_t i, const Vec3<float>& v);
+  Vec3<float> get(std::size_t i) const { return {x[i], y[i], z[i]}; }
+};
+
+// Per ray, its differentials (integrator/ray_differentials.h): the change
+// of origin and unit direction over one sample spacing along film x and y.
+struct DifferentialColumns {
+  Vec3Columns origin_dx, origin_dy, direction_dx, direction_dy;
+
+  void clear();
+  void pad(std::size_t count);
+};
+
 struct PathColumns {
   AlignedInts sample;
   AlignedFloats weight_r, weight_g, weight_b;
@@ -33,8 +54,11 @@ struct SurfaceColumns {
   AlignedInts smooth;                  // 1: (nx, ny, nz) is the interpolated shading normal
   AlignedFloats nx, ny, nz;            // unit, the primitive's orientation
   AlignedFloats color_r, color_g, color_b;
+  // With ray differentials only: the point's change and the shading
+  // normal's (in the primitive's orientation) over one sample spacing.
+  Vec3Columns point_dx, point_dy, normal_dx, normal_dy;
 
-  void resize(std::size_t padded);
+  void resize(std::size_t padded, bool differentials);
 };
 
 // Every material's parameters, one column each (two_sided as 0 or 1).
@@ -53,7 +77,15 @@ struct ShadowSlot {
   AlignedFloats light_r, light_g, light_b;
 
   void clear();
+  // n more rays, unset; returns the first one's index.
+  std::size_t grow(std::size_t n);
 };
+
+// The spawned rays' columns (and their differentials, when given) grown by
+// n unset entries; returns the first new index. Growth lives in the host
+// unit, not in the lane code: vector growth instantiated in every kernel
+// unit would be one function defined in several (the units' symbol test).
+std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, DifferentialColumns* differentials);
 
 // Shadow rays per side of a light's sample grid: n x n for area lights, one ray otherwise.
 int samples_per_side(const LightDesc& light);

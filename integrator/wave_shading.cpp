@@ -6,8 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "integrator/optics.h"
+#include "integrator/ray_differentials.h"
 #include "integrator/sample_hash.h"
 #include "integrator/surface_frame.h"
 #include "simd/power.h"
@@ -39,15 +41,6 @@ struct Vec3Lanes {
   }
 };
 
-// Columns grown by n unset entries (a stream being built: size == count);
-// returns the first new index.
-template <class Column, class... Columns>
-std::size_t grow(std::size_t n, Column& first_column, Columns&... columns) {
-  const std::size_t first = first_column.size();
-  first_column.resize(first + n);
-  (columns.resize(first + n), ...);
-  return first;
-}
 
 void set_vec3(AlignedFloats& x, AlignedFloats& y, AlignedFloats& z, std::size_t i, const LaneArray& lx,
               const LaneArray& ly, const LaneArray& lz, int k) {
@@ -71,9 +64,7 @@ void append_shadow_rays(ShadowSlot& slot, unsigned bits, std::size_t first, cons
                         const Vec3<F>& direction, float tmax, const Vec3<F>& light) {
   const Vec3Lanes<F> from(origin), toward(direction), carried(light);
   RaySoA& r = slot.rays;
-  std::size_t i = grow(std::size_t(std::popcount(bits)), r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax,
-                       slot.point, slot.light_r, slot.light_g, slot.light_b);
-  r.count = r.ox.size();
+  std::size_t i = slot.grow(std::size_t(std::popcount(bits)));
   for (; bits != 0; bits &= bits - 1, ++i) {
     const int k = std::countr_zero(bits);
     set_ray(r, i, from, toward, k, tmax);
@@ -135,6 +126,52 @@ Vec3<F> light_sample_direction(const WaveShadingInput& in, std::size_t light_ind
   return on_disk - origin;
 }
 
+// The differentials of a packet's reflection and refraction rays
+// (ray_differentials.h): their origins change as the hit point does, their
+// directions with the incident direction and the shading normal. The
+// normal's stored change is in the primitive's orientation, so it turns
+// with the normal; where a ray leaves through the geometric normal instead
+// (the shading normal would bend it behind the surface) that normal's
+// change is taken as 0.
+template <class F>
+struct SpawnedDifferentials {
+  Vec3Lanes<F> point_dx, point_dy, reflected_dx, reflected_dy, refracted_dx, refracted_dy;
+};
+
+template <class F>
+Vec3<F> load_vec3_columns(const Vec3Columns& c, std::size_t first) {
+  return load_vec3<F>(c.x, c.y, c.z, first);
+}
+
+template <class F>
+SpawnedDifferentials<F> spawned_differentials(const WaveShadingInput& in, std::size_t first, const SurfaceFrame<F>& s,
+                                              const Vec3<F>& oriented_normal, const Vec3<F>& incident,
+                                              const Mask<F>& mirrored_outward, const F& eta,
+                                              const Mask<F>& refract_through_geometric,
+                                              const Vec3<F>& along_shading, const Vec3<F>& along_geometric) {
+  const Vec3<F> none(F(0.f), F(0.f), F(0.f));
+  const F turn = select(dot(s.shading, oriented_normal) < F(0.f), F(-1.f), F(1.f));
+  auto reflected = [&](const Vec3<F>& d_incident, const Vec3<F>& d_normal) {
+    return select(mirrored_outward, reflect_differential(incident, d_incident, s.shading, d_normal * turn),
+                  reflect_differential(incident, d_incident, s.geometric, none));
+  };
+  auto refracted = [&](const Vec3<F>& d_incident, const Vec3<F>& d_normal) {
+    return select(refract_through_geometric,
+                  refract_differential(incident, d_incident, s.geometric, none, eta, along_geometric),
+                  refract_differential(incident, d_incident, s.shading, d_normal * turn, eta, along_shading));
+  };
+  const Vec3<F> d_incident_x = load_vec3_columns<F>(in.differentials->direction_dx, first);
+  const Vec3<F> d_incident_y = load_vec3_columns<F>(in.differentials->direction_dy, first);
+  const Vec3<F> d_normal_x = load_vec3_columns<F>(in.surfaces->normal_dx, first);
+  const Vec3<F> d_normal_y = load_vec3_columns<F>(in.surfaces->normal_dy, first);
+  return {Vec3Lanes<F>(load_vec3_columns<F>(in.surfaces->point_dx, first)),
+          Vec3Lanes<F>(load_vec3_columns<F>(in.surfaces->point_dy, first)),
+          Vec3Lanes<F>(reflected(d_incident_x, d_normal_x)),
+          Vec3Lanes<F>(reflected(d_incident_y, d_normal_y)),
+          Vec3Lanes<F>(refracted(d_incident_x, d_normal_x)),
+          Vec3Lanes<F>(refracted(d_incident_y, d_normal_y))};
+}
+
 // Largest weight above 0 and at least the cut-off.
 template <class F>
 Mask<F> worth_casting(const Vec3<F>& weight, float min_weight) {
@@ -153,8 +190,9 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const Mask<F> hit_mask = active & nonzero_lanes(hit.id - IntLanes<F>(kNoHit));
   const Vec3<F> weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
   const SurfaceColumns& columns = *in.surfaces;
-  const SurfaceFrame<F> s = surface_frame(ray, hit, nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first)),
-                                          load_vec3<F>(columns.nx, columns.ny, columns.nz, first));
+  const Mask<F> smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
+  const Vec3<F> interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
+  const SurfaceFrame<F> s = surface_frame(ray, hit, smooth, interpolated);
   const Vec3<F> color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
   const IntLanes<F> material = load_int_lanes<F>(columns.material.data() + first);
   out.counts.hits += std::popcount(lane_bits(hit_mask));
@@ -242,7 +280,8 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   if ((reflection_bits | refraction_bits) == 0) return;
 
   const Vec3<F> mirrored = reflect(incident, s.shading);
-  const Vec3<F> reflected = select(dot(mirrored, s.geometric) > F(0.f), mirrored, reflect(incident, s.geometric));
+  const Mask<F> mirrored_outward = dot(mirrored, s.geometric) > F(0.f);
+  const Vec3<F> reflected = select(mirrored_outward, mirrored, reflect(incident, s.geometric));
   if (reflection_bits != 0) out.counts.next_uncompacted += W;
   if (refraction_bits != 0) out.counts.next_uncompacted += W;
   out.counts.reflection += std::popcount(reflection_bits);
@@ -253,22 +292,45 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const Vec3Lanes<F> reflect_weights(reflect_weight), refract_weights(refract_weight);
   RaySoA& r = *out.next_rays;
   PathColumns& p = *out.next_paths;
-  std::size_t i = grow(std::size_t(std::popcount(reflection_bits) + std::popcount(refraction_bits)), r.ox, r.oy,
-                       r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax, p.sample, p.weight_r, p.weight_g, p.weight_b, p.key);
-  r.count = p.count = r.ox.size();
+  std::size_t i = grow_spawned(std::size_t(std::popcount(reflection_bits) + std::popcount(refraction_bits)), r, p,
+                               out.next_differentials);
+  std::optional<SpawnedDifferentials<F>> spawned;
+  if (in.differentials != nullptr) {
+    spawned = spawned_differentials(in, first, s, select(smooth, interpolated, hit.ng), incident, mirrored_outward,
+                                    eta, retry, along_shading, along_geometric);
+  }
+  DifferentialColumns* const next_differentials = out.next_differentials;
   auto append = [&](std::size_t parent, int k, const Vec3Lanes<F>& from, const Vec3Lanes<F>& direction,
-                    const Vec3Lanes<F>& weights, std::uint64_t tag) {
+                    const Vec3Lanes<F>& weights, std::uint64_t tag, const Vec3Lanes<F>* direction_dx,
+                    const Vec3Lanes<F>* direction_dy) {
     set_ray(r, i, from, direction, k, kInfinity);
     p.sample[i] = in.paths->sample[parent];
     set_vec3(p.weight_r, p.weight_g, p.weight_b, i, weights.x, weights.y, weights.z, k);
     p.key[i] = mix64(in.paths->key[parent] ^ tag);
+    if (spawned) {
+      DifferentialColumns& d = *next_differentials;
+      const Vec3Lanes<F>& point_dx = spawned->point_dx;
+      const Vec3Lanes<F>& point_dy = spawned->point_dy;
+      set_vec3(d.origin_dx.x, d.origin_dx.y, d.origin_dx.z, i, point_dx.x, point_dx.y, point_dx.z, k);
+      set_vec3(d.origin_dy.x, d.origin_dy.y, d.origin_dy.z, i, point_dy.x, point_dy.y, point_dy.z, k);
+      set_vec3(d.direction_dx.x, d.direction_dx.y, d.direction_dx.z, i, direction_dx->x, direction_dx->y,
+               direction_dx->z, k);
+      set_vec3(d.direction_dy.x, d.direction_dy.y, d.direction_dy.z, i, direction_dy->x, direction_dy->y,
+               direction_dy->z, k);
+    }
     ++i;
   };
   for (unsigned bits = reflection_bits | refraction_bits; bits != 0; bits &= bits - 1) {
     const int k = std::countr_zero(bits);
     const std::size_t parent = first + std::size_t(k);
-    if ((reflection_bits >> k & 1u) != 0) append(parent, k, outside, reflected_lanes, reflect_weights, kReflectionTag);
-    if ((refraction_bits >> k & 1u) != 0) append(parent, k, inside, refracted_lanes, refract_weights, kRefractionTag);
+    if ((reflection_bits >> k & 1u) != 0) {
+      append(parent, k, outside, reflected_lanes, reflect_weights, kReflectionTag,
+             spawned ? &spawned->reflected_dx : nullptr, spawned ? &spawned->reflected_dy : nullptr);
+    }
+    if ((refraction_bits >> k & 1u) != 0) {
+      append(parent, k, inside, refracted_lanes, refract_weights, kRefractionTag,
+             spawned ? &spawned->refracted_dx : nullptr, spawned ? &spawned->refracted_dy : nullptr);
+    }
   }
 }
 

@@ -30,6 +30,7 @@ struct WaveShadingInput {
   const HitSoA* hits;
   const PathColumns* paths;
   const SurfaceColumns* surfaces;  // from surface_detail, per ray
+  const DifferentialColumns* differentials;  // per ray; null when rays carry none
   bool spawn;                      // below the maximum depth
   float min_weight;
   std::uint64_t seed;
@@ -52,6 +53,7 @@ struct WaveShadingOutput {
   std::vector<ShadowSlot>* slots;  // one per light sample slot; appended to
   RaySoA* next_rays;               // the spawned rays, appended densely
   PathColumns* next_paths;
+  DifferentialColumns* next_differentials;  // appended to with next_rays; null when rays carry none
   WaveShadingCounts counts;        // added to
 };
 

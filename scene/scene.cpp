@@ -148,7 +148,10 @@ const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
 std::size_t Scene::memory_bytes() const {
   std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes() + bytes_of(material_of_id) +
                       bytes_of(plain_of_id);
-  for (const Texture& t : textures) bytes += bytes_of(t.image.rgb);
+  for (const Texture& t : textures) {
+    bytes += bytes_of(t.image.rgb);
+    for (const TextureImage& level : t.coarser) bytes += bytes_of(level.rgb);
+  }
   return bytes;
 }
 

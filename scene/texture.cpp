@@ -1,5 +1,6 @@
 #include "scene/texture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,6 +30,29 @@ TextureImage image_from_memory(const TextureDesc& desc) {
   return {desc.width, desc.height, desc.rgb};
 }
 
+// The next MIP level: each texel the mean of a 2 x 2 block of `finer`.
+TextureImage half_size(const TextureImage& finer) {
+  TextureImage coarser{(finer.width + 1) / 2, (finer.height + 1) / 2, {}};
+  coarser.rgb.resize(std::size_t(coarser.width) * std::size_t(coarser.height) * 3);
+  for (int y = 0; y < coarser.height; ++y) {
+    for (int x = 0; x < coarser.width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (int dy = 0; dy < 2; ++dy) {
+          for (int dx = 0; dx < 2; ++dx) {
+            const std::size_t fx = std::size_t(std::min(2 * x + dx, finer.width - 1));
+            const std::size_t fy = std::size_t(std::min(2 * y + dy, finer.height - 1));
+            sum += finer.rgb[(fy * std::size_t(finer.width) + fx) * 3 + std::size_t(c)];
+          }
+        }
+        coarser.rgb[(std::size_t(y) * std::size_t(coarser.width) + std::size_t(x)) * 3 + std::size_t(c)] =
+            float(0.25 * sum);
+      }
+    }
+  }
+  return coarser;
+}
+
 }  // namespace
 
 std::string texture_size_limit_text() {
@@ -45,6 +69,10 @@ Texture build_texture(const TextureDesc& desc) {
   texture.wrap = desc.wrap;
   if (desc.kind == TextureDesc::Kind::image) {
     texture.image = image_from_memory(desc);
+    for (const TextureImage* level = &texture.image; level->width > 1 || level->height > 1;
+         level = &texture.coarser.back()) {
+      texture.coarser.push_back(half_size(*level));
+    }
     return texture;
   }
   if (!std::isfinite(desc.scale) || desc.scale <= 0.f) {

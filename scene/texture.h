@@ -34,6 +34,10 @@ struct Texture {
   float scale = 1.f;
   WrapMode wrap = WrapMode::repeat;
   TextureImage image;  // image textures only
+  // Image textures: the MIP pyramid's levels below `image`, each a 2 x 2
+  // box of the one above (half the size, odd sides rounded up, the last
+  // row and column repeated), down to 1 x 1.
+  std::vector<TextureImage> coarser;
 };
 
 // Checks desc and takes its in-memory image (desc.width x desc.height

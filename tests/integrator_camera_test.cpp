@@ -2,6 +2,7 @@
 // pixel columns; up need not be perpendicular; film y grows downward.
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +32,27 @@ TEST(Camera, AngleSpansOutermostPixelCentres) {
   EXPECT_GT(top.direction.y, 0.f);     // film y grows downward
   EXPECT_GT(right.direction.x, 0.f);   // and x to the right
   EXPECT_NEAR(top.direction.x, 0.f, 1e-7f);
+}
+
+TEST(Camera, DirectionDifferentialsMatchFiniteDifferencesOfTheRays) {
+  const CameraDesc desc{{1.f, 2.f, 3.f}, {0.f, 0.5f, -4.f}, {0.2f, 1.f, 0.f}, 50.f, 0.f, 64, 48};
+  const Camera camera(desc, 64, 48);
+  for (const auto& [x, y] : {std::pair{0.5, 0.5}, std::pair{31.7, 20.2}, std::pair{63.5, 47.5}}) {
+    for (double spacing : {1.0, 0.25}) {
+      const Camera::DirectionDifferentials d = camera.direction_differentials(x, y, spacing);
+      // Central differences over a small step, scaled to the spacing.
+      const double h = 1e-3;
+      const Ray<float> xp = camera.ray(x + h, y), xm = camera.ray(x - h, y);
+      const Ray<float> yp = camera.ray(x, y + h), ym = camera.ray(x, y - h);
+      const double k = spacing / (2.0 * h);
+      EXPECT_NEAR(d.dx.x, (double(xp.direction.x) - xm.direction.x) * k, 2e-4 * spacing);
+      EXPECT_NEAR(d.dx.y, (double(xp.direction.y) - xm.direction.y) * k, 2e-4 * spacing);
+      EXPECT_NEAR(d.dx.z, (double(xp.direction.z) - xm.direction.z) * k, 2e-4 * spacing);
+      EXPECT_NEAR(d.dy.x, (double(yp.direction.x) - ym.direction.x) * k, 2e-4 * spacing);
+      EXPECT_NEAR(d.dy.y, (double(yp.direction.y) - ym.direction.y) * k, 2e-4 * spacing);
+      EXPECT_NEAR(d.dy.z, (double(yp.direction.z) - ym.direction.z) * k, 2e-4 * spacing);
+    }
+  }
 }
 
 TEST(Camera, WiderSideCarriesTheAngleAndPixelsAreSquare) {

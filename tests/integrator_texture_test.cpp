@@ -85,6 +85,100 @@ TEST(TextureChecker, ThreeDimensionalParityOverTheWorldPoint) {
   EXPECT_TRUE(same(evaluate(texture, 0.f, 0.f, {kNaN, 0.5f, 0.5f}), a));
 }
 
+// ---- box-filtered checkers ----
+
+TEST(TextureCheckerFiltered, ATinyFootprintGivesThePointSampledBits) {
+  for (TextureDesc::Kind kind : {TextureDesc::Kind::checker2d, TextureDesc::Kind::checker3d}) {
+    const Texture texture = checker(kind, 3.f);
+    TextureFootprint tiny;
+    tiny.du_dx = tiny.dv_dy = 1e-6f;
+    tiny.dp_dx = {1e-6f, 0.f, 0.f};
+    tiny.dp_dy = {0.f, 1e-6f, 1e-6f};
+    for (int k = 0; k < 200; ++k) {
+      const float u = -5.f + 0.0517f * float(k), v = 3.f - 0.0391f * float(k);
+      const Vec3<float> p{u, v, 0.7f * u - v};
+      SCOPED_TRACE(::testing::Message() << "u=" << u << " v=" << v);
+      EXPECT_TRUE(same(evaluate_filtered(texture, u, v, p, tiny), evaluate(texture, u, v, p)));
+      EXPECT_TRUE(same(evaluate_filtered(texture, u, v, p, TextureFootprint{}), evaluate(texture, u, v, p)));
+    }
+  }
+}
+
+TEST(TextureCheckerFiltered, AWholePeriodOrAnUnboundedFootprintGivesTheMeanColour) {
+  const Texture texture = checker(TextureDesc::Kind::checker2d, 2.f);
+  const Vec3<float> mean = (texture.color_a + texture.color_b) * 0.5f;
+  // Two cells of u (one period of the square wave) average it to 0 whatever v does.
+  TextureFootprint period;
+  period.du_dx = 0.6f;
+  period.du_dy = -0.4f;  // |0.6| + |-0.4| = 1 unit = 2 cells
+  for (float u : {0.f, 0.13f, 0.25f, -7.3f}) {
+    for (float v : {0.1f, 0.6f}) {
+      const Vec3<float> c = evaluate_filtered(texture, u, v, {0.f, 0.f, 0.f}, period);
+      EXPECT_NEAR(c.x, mean.x, 1e-6f);
+      EXPECT_NEAR(c.z, mean.z, 1e-6f);
+    }
+  }
+  TextureFootprint unbounded;
+  unbounded.du_dx = kInf;
+  unbounded.dv_dy = 1e-3f;
+  EXPECT_TRUE(same(evaluate_filtered(texture, 0.1f, 0.1f, {0.f, 0.f, 0.f}, unbounded), mean));
+  // NaN derivatives sample the point (never a NaN colour).
+  TextureFootprint broken;
+  broken.du_dx = broken.dv_dy = kNaN;
+  EXPECT_TRUE(same(evaluate_filtered(texture, 0.1f, 0.1f, {0.f, 0.f, 0.f}, broken), texture.color_a));
+}
+
+TEST(TextureCheckerFiltered, HalfACellAcrossAnEdgeMixesTheTwoCellsByTheirShares) {
+  // scale 1: a box of width 0.5 from u = 0.85 to 1.35 covers 0.15 of cell 0
+  // (s = +1) and 0.35 of cell 1 (s = -1): mean s = -0.4, so with v in cell 0
+  // the colour is 0.3 a + 0.7 b.
+  const Texture texture = checker(TextureDesc::Kind::checker2d, 1.f);
+  TextureFootprint f;
+  f.du_dx = 0.5f;
+  const Vec3<float> c = evaluate_filtered(texture, 1.1f, 0.5f, {0.f, 0.f, 0.f}, f);
+  EXPECT_NEAR(c.x, 0.3f, 1e-6f);
+  EXPECT_NEAR(c.z, 0.7f, 1e-6f);
+  // The same box along x in 3D, y and z inside cell 0.
+  const Texture solid = checker(TextureDesc::Kind::checker3d, 1.f);
+  TextureFootprint g;
+  g.dp_dy = {0.5f, 0.f, 0.f};
+  const Vec3<float> d = evaluate_filtered(solid, 0.f, 0.f, {1.1f, 0.5f, 0.5f}, g);
+  EXPECT_NEAR(d.x, 0.3f, 1e-6f);
+  EXPECT_NEAR(d.z, 0.7f, 1e-6f);
+}
+
+TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
+  // 4 x 4 texels in a 2 x 2 pattern of 0 and 1 (level 1: all 0.5).
+  std::vector<float> values;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) values.push_back(float((x + y) % 2));
+  }
+  TextureDesc desc;
+  desc.kind = TextureDesc::Kind::image;
+  desc.width = desc.height = 4;
+  for (float value : values) desc.rgb.insert(desc.rgb.end(), {value, value, value});
+  const Texture texture = build_texture(desc);
+  const Vec3<float> p{0.f, 0.f, 0.f};
+  const float u = 0.375f, v = 0.625f;  // a texel centre
+  // Up to one texel: the bilinear lookup's bits.
+  TextureFootprint one_texel;
+  one_texel.du_dx = 0.25f;
+  EXPECT_TRUE(same(evaluate_filtered(texture, u, v, p, one_texel), evaluate(texture, u, v, p)));
+  // Two texels: level 1 (every texel 0.5).
+  TextureFootprint two_texels;
+  two_texels.dv_dy = 0.5f;
+  EXPECT_FLOAT_EQ(evaluate_filtered(texture, u, v, p, two_texels).x, 0.5f);
+  // Sqrt 2 texels: halfway between level 0 and level 1.
+  TextureFootprint between;
+  between.du_dx = 0.25f * std::sqrt(2.f);
+  const float level0 = evaluate(texture, u, v, p).x;
+  EXPECT_NEAR(evaluate_filtered(texture, u, v, p, between).x, 0.5f * (level0 + 0.5f), 1e-6f);
+  // Unbounded: the coarsest level, the mean.
+  TextureFootprint unbounded;
+  unbounded.du_dx = kInf;
+  EXPECT_FLOAT_EQ(evaluate_filtered(texture, u, v, p, unbounded).x, 0.5f);
+}
+
 // ---- bilinear lookups and wrap modes ----
 
 TEST(TextureImageLookup, TexelCentresGiveTexelValuesAndMidpointsTheAverage) {

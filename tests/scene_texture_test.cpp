@@ -67,5 +67,30 @@ TEST(TextureBuild, AnImageFileNotYetReadIsRefused) {
   }
 }
 
+TEST(TextureBuild, ImagesGetAMipPyramidOfTwoByTwoBoxesDownToOneTexel) {
+  // 3 x 2 grey texels 0..5: level 1 is 2 x 1, its right texel repeating the
+  // last column; level 2 is 1 x 1, the mean of level 1.
+  TextureDesc desc;
+  desc.kind = TextureDesc::Kind::image;
+  desc.width = 3;
+  desc.height = 2;
+  for (float value : {0.f, 1.f, 2.f, 3.f, 4.f, 5.f}) desc.rgb.insert(desc.rgb.end(), {value, value, 2.f * value});
+  const Texture texture = build_texture(desc);
+  ASSERT_EQ(texture.coarser.size(), 2u);
+  const TextureImage& half = texture.coarser[0];
+  ASSERT_EQ(half.width, 2);
+  ASSERT_EQ(half.height, 1);
+  EXPECT_FLOAT_EQ(half.rgb[0], (0.f + 1.f + 3.f + 4.f) / 4.f);
+  EXPECT_FLOAT_EQ(half.rgb[3], (2.f + 2.f + 5.f + 5.f) / 4.f);
+  EXPECT_FLOAT_EQ(half.rgb[5], 2.f * (2.f + 2.f + 5.f + 5.f) / 4.f);
+  const TextureImage& last = texture.coarser[1];
+  ASSERT_EQ(last.width, 1);
+  ASSERT_EQ(last.height, 1);
+  EXPECT_FLOAT_EQ(last.rgb[0], (half.rgb[0] + half.rgb[3]) / 2.f);
+  // Checkers have none.
+  TextureDesc checks;
+  EXPECT_TRUE(build_texture(checks).coarser.empty());
+}
+
 }  // namespace
 }  // namespace quiver

@@ -1,6 +1,7 @@
 // Anti-aliasing: RMSE of each mode's image against a high-sample reference
-// (jitter:16, 256 stratified rays per pixel, another seed), against render
-// time, on the built-in scene and io/examples/adaptive_aa.toml (thin wires
+// (jitter:16, 256 stratified rays per pixel, another seed, with the same
+// texture filter), against render time, with textures point-sampled and, in
+// scenes with textures, box-filtered (--texture-filter box), on the built-in scene and io/examples/adaptive_aa.toml (thin wires
 // and a fine checkerboard) at its own 640x360 (the built-in scene at a
 // quarter of its 640x480, to keep the run short), and from the shared data
 // ($QUIVER_SHARED_DIR, else ../shared; each skipped with a note when absent)
@@ -90,25 +91,32 @@ void anti_aliasing_study(const StudyOptions& options) {
                          "refine:0.1:4",   "refine:0.05:4",   "refine:0.03:4",   "refine:0.02:4",
                          "refine:0.08:8",  "refine:0.04:8",   "refine:0.02:8",   "refine:0.01:8"};
   std::FILE* f = open_csv(options.out / "anti_aliasing.csv",
-                          "scene,width,height,mode,render_ms,camera_rays,rmse,reference_mode,reference_ms");
+                          "scene,width,height,mode,texture_filter,render_ms,camera_rays,rmse,reference_mode,reference_ms");
   for (const SceneCase& sc : scenes) {
     const Scene scene = build_scene(sc.desc, SceneBuildOptions{});
-    RenderSettings settings;
-    settings.width = sc.width;
-    settings.height = sc.height;
-    settings.threads = 1;
-    settings.isa = best_supported_isa();
-    settings.trace.seed = 12345;
-    settings.aa = parse_anti_aliasing("jitter:16");
-    const RenderResult reference = render(scene, settings);
-    settings.trace.seed = 0;
-    for (const char* mode : modes) {
-      settings.aa = parse_anti_aliasing(mode);
-      const RenderResult r = render(scene, settings);
-      std::fprintf(f, "%s,%d,%d,%s,%.3f,%llu,%.9g,jitter:16,%.3f\n", sc.name, sc.width, sc.height, mode, r.render_ms,
-                   static_cast<unsigned long long>(r.stats.rays.primary), rmse(r.image, reference.image), reference.render_ms);
-      std::printf("%-14s %-16s %8.1f ms  RMSE %.5f\n", sc.name, mode, r.render_ms, rmse(r.image, reference.image));
-      std::fflush(f);
+    for (const bool filter : {false, true}) {
+      if (filter && sc.desc.textures.empty()) continue;  // the same image
+      const char* filter_name = filter ? "box" : "none";
+      RenderSettings settings;
+      settings.width = sc.width;
+      settings.height = sc.height;
+      settings.threads = 1;
+      settings.isa = best_supported_isa();
+      settings.trace.filter_textures = filter;
+      settings.trace.seed = 12345;
+      settings.aa = parse_anti_aliasing("jitter:16");
+      const RenderResult reference = render(scene, settings);
+      settings.trace.seed = 0;
+      for (const char* mode : modes) {
+        settings.aa = parse_anti_aliasing(mode);
+        const RenderResult r = render(scene, settings);
+        const double error = rmse(r.image, reference.image);
+        std::fprintf(f, "%s,%d,%d,%s,%s,%.3f,%llu,%.9g,jitter:16,%.3f\n", sc.name, sc.width, sc.height, mode,
+                     filter_name, r.render_ms, static_cast<unsigned long long>(r.stats.rays.primary), error,
+                     reference.render_ms);
+        std::printf("%-14s %-16s %-4s %8.1f ms  RMSE %.5f\n", sc.name, mode, filter_name, r.render_ms, error);
+        std::fflush(f);
+      }
     }
   }
   std::fclose(f);

@@ -234,14 +234,20 @@ def anti_aliasing_chart(rows):
         ax.set_visible(False)
     families = {"none": "k", "grid": "tab:blue", "jitter": "tab:orange", "adaptive": "tab:green", "corners": "tab:red",
                 "refine": "tab:purple"}
+    # Point-sampled textures solid, box-filtered ones dashed (scenes with textures only).
+    filters = {"none": ("-o", ""), "box": ("--s", " (box-filtered textures)")}
     for ax, scene in zip(axes, scenes):
         for family, color in families.items():
-            pts = [r for r in rows if r["scene"] == scene and r["mode"].split(":")[0] == family]
-            ax.plot([float(r["render_ms"]) for r in pts], [float(r["rmse"]) for r in pts], "-o", color=color,
-                    label=family, markersize=4)
-            for r in pts:
-                ax.annotate(r["mode"], (float(r["render_ms"]), float(r["rmse"])), fontsize=7, xytext=(3, 3),
-                            textcoords="offset points")
+            for texture_filter, (style, suffix) in filters.items():
+                pts = [r for r in rows if r["scene"] == scene and r["mode"].split(":")[0] == family
+                       and r.get("texture_filter", "none") == texture_filter]
+                if not pts:
+                    continue
+                ax.plot([float(r["render_ms"]) for r in pts], [float(r["rmse"]) for r in pts], style, color=color,
+                        label=family + suffix, markersize=4)
+                for r in pts:
+                    ax.annotate(r["mode"], (float(r["render_ms"]), float(r["rmse"])), fontsize=7, xytext=(3, 3),
+                                textcoords="offset points")
         first = next(r for r in rows if r["scene"] == scene)
         ax.set_title("%s %sx%s (reference %s, %.0f ms)" % (scene, first["width"], first["height"],
                                                              first["reference_mode"], float(first["reference_ms"])),
