@@ -126,11 +126,13 @@ fs::path default_output(const std::string& scene) {
   return fs::path(scene).stem().string() + ".png";
 }
 
-// The scene, as read, with the time it took.
-quiver::SceneDesc load(const std::string& scene, const std::optional<double>& crease_angle, double& load_ms) {
+// The scene, as read, with the time it took; what the readers forgave is
+// printed, one warning a line.
+quiver::SceneDesc load(const std::string& scene, const quiver::SceneLoadOptions& options, double& load_ms) {
   const Clock::time_point start = Clock::now();
-  quiver::SceneDesc desc = scene.empty() ? quiver::default_scene() : quiver::load_scene(scene, {crease_angle});
+  quiver::SceneDesc desc = scene.empty() ? quiver::default_scene() : quiver::load_scene(scene, options);
   load_ms = ms_since(start);
+  for (const std::string& warning : desc.warnings) std::cerr << "quiver: " << warning << "\n";
   return desc;
 }
 
@@ -190,7 +192,7 @@ int run_render(const RenderArgs& args) {
   quiver::install_interrupt_handlers();
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
+    quiver::SceneDesc desc = load(args.scene, {args.options.crease_angle, args.options.strict}, load_ms);
     // UsageError from here on exits 2 through report_exception.
     quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
@@ -233,15 +235,15 @@ int run_render(const RenderArgs& args) {
   }
 }
 
-int run_info(const std::string& scene_path, const std::optional<double>& crease_angle) {
+int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load_options) {
   try {
-    quiver::check_crease_angle(crease_angle);
+    quiver::check_crease_angle(load_options.crease_angle_degrees);
   } catch (const UsageError& error) {
     return report(error.what(), kExitUsage);
   }
   try {
     double load_ms = 0.0;
-    const quiver::SceneDesc as_read = load(scene_path, crease_angle, load_ms);
+    const quiver::SceneDesc as_read = load(scene_path, load_options, load_ms);
     quiver::SceneDesc desc = as_read;
     const bool default_view = !desc.camera;
     if (default_view) quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
@@ -274,7 +276,7 @@ int run_trace(const TraceArgs& args) {
 
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
+    quiver::SceneDesc desc = load(args.scene, {args.options.crease_angle, args.options.strict}, load_ms);
     const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
     if (!desc.camera) quiver::add_default_view(desc, width, height);
     quiver::apply_camera_flags(args.options.camera, *desc.camera);
@@ -301,6 +303,13 @@ CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
                   "faceted. Meshes with normals keep theirs. Default: a TOML mesh's crease_angle, else " +
                       std::to_string(int(quiver::kDefaultCreaseAngleDegrees)))
       ->type_name("DEGREES");
+}
+
+// --strict, the same for render, info and trace.
+void add_strict_flag(CLI::App& command, bool& strict) {
+  command.add_flag("--strict", strict,
+                   "Refuse what the OBJ/MTL reader otherwise forgives with a warning (a missing mtllib file or "
+                   "map_Kd image, a usemtl of an undefined material, a trailing comment)");
 }
 
 // --look-from, --look-at, --up, --fov, the same for render and trace.
@@ -355,6 +364,7 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
                                      "else auto. A choice this CPU lacks is an error")
                         ->type_name("ISA");
   raw.crease_angle_option = add_crease_angle_flag(trace, raw.crease_angle);
+  add_strict_flag(trace, args.options.strict);
   add_camera_flags(trace, raw.camera);
 }
 
@@ -438,6 +448,7 @@ void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
                         "sampling. Default: box")
           ->type_name("FILTER");
   raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
+  add_strict_flag(render, args.options.strict);
   add_camera_flags(render, raw.camera);
 }
 
@@ -486,6 +497,8 @@ int main(int argc, char** argv) {
   info->add_option("scene", info_scene, "Scene file: .nff, .toml or .obj")->required()->type_name("SCENE");
   double info_crease_angle = 0.0;
   CLI::Option* info_crease_angle_option = add_crease_angle_flag(*info, info_crease_angle);
+  quiver::SceneLoadOptions info_load_options;
+  add_strict_flag(*info, info_load_options.strict);
 
   TraceArgs trace_args;
   RawTraceFlags raw_trace;
@@ -522,7 +535,6 @@ int main(int argc, char** argv) {
     trace_args.options.camera = given_camera_flags(raw_trace.camera);
     return run_trace(trace_args);
   }
-  std::optional<double> crease_angle;
-  if (info_crease_angle_option->count()) crease_angle = info_crease_angle;
-  return run_info(info_scene, crease_angle);
+  if (info_crease_angle_option->count()) info_load_options.crease_angle_degrees = info_crease_angle;
+  return run_info(info_scene, info_load_options);
 }

@@ -60,6 +60,7 @@ struct RenderOptions {
   bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
   std::optional<std::string> texture_filter;  // box (the default) or none
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
+  bool strict = false;                 // SceneLoadOptions::strict
   CameraFlags camera;
 };
 

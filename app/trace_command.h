@@ -39,6 +39,7 @@ struct TraceOptions {
   int repeat = kDefaultTraceRepeat;
   std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
+  bool strict = false;                 // SceneLoadOptions::strict
   CameraFlags camera;
 };
 

@@ -31,6 +31,7 @@
 #include "geometry/polygon_soa.h"
 #include "geometry/vertex_normals.h"
 #include "io/parse_error.h"
+#include "io/reader_warnings.h"
 #include "io/text_file.h"
 
 namespace quiver {
@@ -53,11 +54,13 @@ bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // Lines and tokens: a line ends at "\n", "\r\n" or a lone "\r"; tokens are
 // separated by spaces and tabs; a line whose first token starts with '#' is
-// a comment (a '#' later on a line is an ordinary character); a NUL byte
-// anywhere is an error.
+// a comment; a '#' after a blank later on a statement's line starts a
+// trailing comment, which the format does not have: a warning, and the
+// statement ends there; a NUL byte anywhere is an error.
 class LineScanner {
  public:
-  LineScanner(std::string_view text, std::string_view file) : text_(text), file_(file) {
+  LineScanner(std::string_view text, std::string_view file, ReaderWarnings& warnings)
+      : text_(text), file_(file), warnings_(warnings) {
     const std::size_t nul = text.find('\0');
     if (nul != std::string_view::npos) {
       std::size_t line = 1, line_start = 0;
@@ -85,7 +88,9 @@ class LineScanner {
       scan_ = 0;
       taken_end_ = 0;
       skip_blanks();
-      if (!at_end_of_line() && line_text_[scan_] != '#') return true;
+      if (at_end_of_line() || line_text_[scan_] == '#') continue;
+      end_at_trailing_comment();
+      return true;
     }
     return false;
   }
@@ -206,8 +211,23 @@ class LineScanner {
     while (scan_ < line_text_.size() && is_blank(line_text_[scan_])) ++scan_;
   }
 
+  // Cuts the line before a '#' that follows a blank (and the blanks before it).
+  void end_at_trailing_comment() {
+    for (std::size_t i = scan_ + 1; i < line_text_.size(); ++i) {
+      if (line_text_[i] != '#' || !is_blank(line_text_[i - 1])) continue;
+      warnings_.warn(joined({"trailing comment in ", file_}), {std::string(file_), line_, i + 1},
+                     "end of line (in OBJ and MTL a comment is a line of its own)",
+                     quoted_token(line_text_.substr(i)), "the statement ends before it");
+      std::size_t end = i;
+      while (end > scan_ && is_blank(line_text_[end - 1])) --end;
+      line_text_ = line_text_.substr(0, end);
+      return;
+    }
+  }
+
   std::string_view text_;
   std::string_view file_;
+  ReaderWarnings& warnings_;
   std::size_t next_ = 0;
   std::size_t line_ = 0;
   std::string_view line_text_;
@@ -261,7 +281,8 @@ using MtlMaterials = std::unordered_map<std::string, MtlMaterial>;
 
 // Reads a texture statement's options and file name; for map_Kd records
 // the texture in `material`.
-void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& directory, MtlMaterial& material) {
+void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& directory, MtlMaterial& material,
+                  ReaderWarnings& warnings) {
   while (!scan.at_end_of_line() && one_of(scan.peek().text, kTextureOnOffOptions)) {
     const Token option = scan.take("a texture option");
     const Token value = scan.take("'on' or 'off'");
@@ -275,19 +296,22 @@ void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& d
   if (keyword != "map_Kd") return;
   const fs::path path = (directory / fs::path(file.text)).lexically_normal();
   std::error_code error;
-  if (!fs::is_regular_file(path, error)) {
-    scan.fail_at(file, joined({"an image file that exists (looked for '", path.string(), "')"}));
+  if (fs::is_regular_file(path, error)) {
+    material.texture_path = path.string();
+    material.texture_named_at = scan.position_of(file);
+  } else {
+    warnings.warn(joined({"texture ", path.string()}), scan.position_of(file),
+                  joined({"an image file that exists (looked for '", path.string(), "')"}), quoted_token(file.text),
+                  "the material is not textured");
   }
-  material.texture_path = path.string();
-  material.texture_named_at = scan.position_of(file);
   if (!material.has_diffuse) {
     material.diffuse = {kDiffuseUnderTexture, kDiffuseUnderTexture, kDiffuseUnderTexture};
   }
 }
 
 // Reads one MTL library into `materials`.
-void read_mtl(const MtlLibrary& library, MtlMaterials& materials) {
-  LineScanner scan(library.text, library.file_name);
+void read_mtl(const MtlLibrary& library, MtlMaterials& materials, ReaderWarnings& warnings) {
+  LineScanner scan(library.text, library.file_name, warnings);
   MtlMaterial* current = nullptr;
   MtlMaterial repeated;  // a name defined before: checked, not kept
   constexpr float kNoLimit = std::numeric_limits<float>::max();
@@ -346,7 +370,7 @@ void read_mtl(const MtlLibrary& library, MtlMaterials& materials) {
       m.illum = scan.integer("an illumination model from 0 to 10", 0, 10);
       scan.expect_end_of_line("illum");
     } else if (one_of(k, kMtlTextureKeys)) {
-      read_texture(scan, k, library.directory, m);
+      read_texture(scan, k, library.directory, m, warnings);
     } else {
       scan.skip_rest_of_line();  // not used by quiver
     }
@@ -431,8 +455,9 @@ constexpr int kCornerGivesNormal = 2;
 class ObjReader {
  public:
   ObjReader(std::string_view text, std::string_view file, const MtlLookup& find_library, std::size_t triangle_budget,
-            double crease_angle_degrees)
-      : scan_(text, file),
+            double crease_angle_degrees, bool strict)
+      : warnings_(strict),
+        scan_(text, file, warnings_),
         find_library_(find_library),
         triangle_budget_(triangle_budget),
         crease_angle_degrees_(crease_angle_degrees) {}
@@ -479,11 +504,14 @@ class ObjReader {
         const Token name = scan_.take("a material name");
         scan_.expect_end_of_line("the material name");
         const auto found = materials_.find(std::string(name.text));
-        if (found == materials_.end()) {
-          scan_.fail_at(name, "a material defined in a library named by an earlier 'mtllib'");
+        const MtlMaterial* material = found != materials_.end() ? &found->second : nullptr;
+        if (material == nullptr) {
+          warnings_.warn(joined({"usemtl ", name.text}), scan_.position_of(name),
+                         "a material defined in a library named by an earlier 'mtllib'", quoted_token(name.text),
+                         "its faces get the default material");
         }
-        if (&found->second != material_) {
-          material_ = &found->second;
+        if (material != material_) {
+          material_ = material;
           scene_material_.reset();
         }
       } else if (k == "mtllib") {
@@ -498,6 +526,7 @@ class ObjReader {
       scan_.fail_at_end_of_file("at least one face ('f'; 'l' and 'p' draw nothing)", kNoObjectsFound);
     }
     add_smooth_normals();
+    scene_.warnings = warnings_.lines();
     return std::move(scene_);
   }
 
@@ -689,17 +718,23 @@ class ObjReader {
       } catch (const ParseError& error) {
         throw ParseError::in_named_file(scan_.position_of(name), "MTL library", error);
       }
-      if (!library) scan_.fail_at(name, "an MTL library that exists");
+      if (!library) {
+        warnings_.warn({}, scan_.position_of(name), "an MTL library that exists", quoted_token(name.text),
+                       "its materials are not defined (faces that use them get the default material)");
+        library_names_.emplace_back(name.text);
+        continue;
+      }
       if (library->text.size() > kMaxMtlBytes - mtl_bytes_) {
         scan_.fail_at(name, joined({"MTL libraries of at most ", std::to_string(kMaxMtlBytes), " bytes in all"}));
       }
       mtl_bytes_ += library->text.size();
-      read_mtl(*library, materials_);
+      read_mtl(*library, materials_, warnings_);
       library_names_.emplace_back(name.text);
       scene_.source_files.push_back(library->file_name);
     }
   }
 
+  ReaderWarnings warnings_;
   LineScanner scan_;
   const MtlLookup& find_library_;
   std::size_t triangle_budget_;
@@ -728,7 +763,7 @@ class ObjReader {
 };
 
 SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLookup& find_library,
-                    std::size_t triangle_budget, double crease_angle_degrees) {
+                    std::size_t triangle_budget, double crease_angle_degrees, bool strict) {
   if (!valid_crease_angle(crease_angle_degrees)) {
     throw std::invalid_argument("OBJ reader: the crease angle is not in [0, 180] degrees");
   }
@@ -736,7 +771,7 @@ SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLooku
     throw ParseError::whole_file(file,
                                  joined({"larger than the OBJ limit of ", std::to_string(kMaxObjBytes), " bytes"}));
   }
-  return ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees).run();
+  return ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
 }
 
 MtlLookup libraries_beside(const fs::path& obj_path) {
@@ -752,17 +787,18 @@ MtlLookup libraries_beside(const fs::path& obj_path) {
 }  // namespace
 
 SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library,
-                          double crease_angle_degrees) {
-  return parse_obj(text, file_name, find_library, kMaxObjTriangles, crease_angle_degrees);
+                          double crease_angle_degrees, bool strict) {
+  return parse_obj(text, file_name, find_library, kMaxObjTriangles, crease_angle_degrees, strict);
 }
 
-SceneDesc read_obj_scene(const fs::path& path, double crease_angle_degrees) {
+SceneDesc read_obj_scene(const fs::path& path, double crease_angle_degrees, bool strict) {
   const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
-  return parse_obj(text, path.string(), libraries_beside(path), kMaxObjTriangles, crease_angle_degrees);
+  return parse_obj(text, path.string(), libraries_beside(path), kMaxObjTriangles, crease_angle_degrees, strict);
 }
 
 void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transform,
-                     std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees) {
+                     std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees,
+                     bool strict) {
   if (material_override && *material_override >= scene.materials.size()) {
     throw std::invalid_argument("append_obj_mesh: material_override is not an index into scene.materials");
   }
@@ -778,7 +814,7 @@ void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transfor
   const std::string name = path.string();
   const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
   const std::size_t budget = kMaxObjTriangles - std::min(scene.triangles.size(), kMaxObjTriangles);
-  SceneDesc mesh = parse_obj(text, name, libraries_beside(path), budget, crease_angle_degrees);
+  SceneDesc mesh = parse_obj(text, name, libraries_beside(path), budget, crease_angle_degrees, strict);
 
   auto not_finite = [&] {
     throw ParseError::whole_file(name, "a vertex is not finite after the mesh transform of the including scene");
@@ -819,6 +855,7 @@ void append_obj_mesh(const fs::path& path, const std::array<float, 16>& transfor
       scene.materials.push_back(material);
     }
   }
+  scene.warnings.insert(scene.warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
   scene.triangles.reserve(scene.triangles.size() + mesh.triangles.size());
   for (SceneTriangle& t : mesh.triangles) {
     t.material = material_override ? *material_override : t.material + material_base;

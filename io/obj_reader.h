@@ -52,18 +52,22 @@ using MtlLookup = std::function<std::optional<MtlLibrary>(std::string_view name)
 
 // Reads an OBJ file and the MTL libraries it names (relative to its folder).
 // Every face gets its MTL material, or the default MaterialDesc when it has
-// none. Faces without `vn` get smooth normals: angle-weighted over the
+// none. Forgiving unless `strict`: a missing MTL library or map_Kd image,
+// a `usemtl` of an undefined material and a trailing "# comment" are
+// warnings in SceneDesc::warnings (io/reader_warnings.h; the default
+// material, no texture, the statement ending before the '#'); strict, each
+// is a ParseError. Faces without `vn` get smooth normals: angle-weighted over the
 // faces that share each `v` index and whose normals lie within
 // crease_angle_degrees of the face's own ([0, 180]; 0 leaves them faceted).
 // Faces with `vn` keep theirs. Throws ParseError, and std::invalid_argument
 // for a crease angle outside [0, 180].
 SceneDesc read_obj_scene(const std::filesystem::path& path,
-                         double crease_angle_degrees = kDefaultCreaseAngleDegrees);
+                         double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
 
 // Parses OBJ text; file_name labels error messages; `mtllib` names go
 // through find_library.
 SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library,
-                          double crease_angle_degrees = kDefaultCreaseAngleDegrees);
+                          double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
 
 // Reads the OBJ file at `path` (as read_obj_scene) and appends its triangles
 // to `scene`, transformed by `transform` (a 4x4 matrix, column-major:
@@ -73,12 +77,13 @@ SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, con
 // (an index into scene.materials) every triangle uses it and the MTL
 // materials are not added; otherwise the mesh's materials and textures are
 // appended. Smooth normals (crease_angle_degrees, as read_obj_scene) are
-// computed before the transform, on the mesh as written. Throws ParseError, also when scene.triangles would exceed
+// computed before the transform, on the mesh as written; its warnings are
+// appended to scene.warnings. Throws ParseError, also when scene.triangles would exceed
 // kMaxObjTriangles or a transformed vertex is not finite, and
 // std::invalid_argument for a singular or non-finite transform or an
 // override that is not a material index; `scene` is then unchanged.
 void append_obj_mesh(const std::filesystem::path& path, const std::array<float, 16>& transform,
                      std::optional<std::size_t> material_override, SceneDesc& scene,
-                     double crease_angle_degrees = kDefaultCreaseAngleDegrees);
+                     double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
 
 }  // namespace quiver

@@ -18,9 +18,9 @@ SceneDesc load_scene(const std::filesystem::path& path, const SceneLoadOptions& 
   if (extension == ".nff") {
     scene = read_nff(path);
   } else if (extension == ".toml") {
-    scene = read_toml_scene(path, options.crease_angle_degrees);
+    scene = read_toml_scene(path, options.crease_angle_degrees, options.strict);
   } else if (extension == ".obj") {
-    scene = read_obj_scene(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees));
+    scene = read_obj_scene(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees), options.strict);
   } else {
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
     throw ParseError::whole_file(path.string(),

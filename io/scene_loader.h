@@ -15,6 +15,9 @@ struct SceneLoadOptions {
   // 0 is faceted. Absent: a mesh's own key, else kDefaultCreaseAngleDegrees
   // (geometry/vertex_normals.h).
   std::optional<double> crease_angle_degrees;
+  // OBJ meshes (the scene, or TOML [[meshes]]) read strictly: what is
+  // otherwise a warning in SceneDesc::warnings is an error (obj_reader.h).
+  bool strict = false;
 };
 
 // Throws ParseError: from the reader or the texture images, or "file:

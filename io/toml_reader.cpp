@@ -118,8 +118,13 @@ class SourceText {
 class TomlSceneReader {
  public:
   TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir,
-                  std::optional<double> crease_angle_override)
-      : text_(text), source_(text), file_(file), base_dir_(base_dir), crease_angle_override_(crease_angle_override) {}
+                  std::optional<double> crease_angle_override, bool strict)
+      : text_(text),
+        source_(text),
+        file_(file),
+        base_dir_(base_dir),
+        crease_angle_override_(crease_angle_override),
+        strict_(strict) {}
 
   SceneDesc read() {
     const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
@@ -739,7 +744,7 @@ class TomlSceneReader {
       for (int r = 0; r < 4; ++r) columns[static_cast<std::size_t>(4 * c + r)] = static_cast<float>(m[c][r]);
     }
     try {
-      append_obj_mesh(path, columns, material, scene_, crease_angle);
+      append_obj_mesh(path, columns, material, scene_, crease_angle, strict_);
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
     } catch (const ParseError& error) {
@@ -752,6 +757,7 @@ class TomlSceneReader {
   std::string_view file_;
   fs::path base_dir_;
   std::optional<double> crease_angle_override_;
+  bool strict_;  // the included meshes' readers (obj_reader.h)
   SceneDesc scene_;
   std::unordered_map<std::string, std::size_t> texture_names_;
   std::unordered_map<std::string, std::size_t> material_names_;
@@ -761,7 +767,7 @@ class TomlSceneReader {
 }  // namespace
 
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir,
-                           std::optional<double> crease_angle_override) {
+                           std::optional<double> crease_angle_override, bool strict) {
   if (crease_angle_override && !valid_crease_angle(*crease_angle_override)) {
     throw std::invalid_argument("TOML reader: the crease angle is not in [0, 180] degrees");
   }
@@ -769,12 +775,12 @@ SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, co
     throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
                                                     " bytes (", kTomlBoundsHint, ")"}));
   }
-  return TomlSceneReader(text, file_name, base_dir, crease_angle_override).read();
+  return TomlSceneReader(text, file_name, base_dir, crease_angle_override, strict).read();
 }
 
-SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override) {
+SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override, bool strict) {
   const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
-  return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override);
+  return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override, strict);
 }
 
 }  // namespace quiver

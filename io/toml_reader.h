@@ -33,13 +33,14 @@ inline constexpr int kMaxRenderDepth = 64;
 // Reads a scene file; relative paths in it (meshes, image textures) are
 // relative to the file's folder. crease_angle_override, when given (in
 // [0, 180]), is every mesh's crease angle, over its `crease_angle` key.
-// Throws ParseError.
+// `strict` reads the included meshes strictly (obj_reader.h); their
+// warnings are the scene's. Throws ParseError.
 SceneDesc read_toml_scene(const std::filesystem::path& path,
-                          std::optional<double> crease_angle_override = std::nullopt);
+                          std::optional<double> crease_angle_override = std::nullopt, bool strict = false);
 
 // Parses TOML scene text; file_name labels error messages and relative
 // paths are resolved against base_dir.
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const std::filesystem::path& base_dir,
-                           std::optional<double> crease_angle_override = std::nullopt);
+                           std::optional<double> crease_angle_override = std::nullopt, bool strict = false);
 
 }  // namespace quiver

@@ -133,6 +133,9 @@ struct SceneDesc {
   // scene file, OBJ meshes and MTL libraries (texture images are in
   // textures[].path).
   std::vector<std::string> source_files;
+  // What a forgiving reader let pass, one line each ("file:line:column:
+  // warning: ..."; io/reader_warnings.h), for the program to show.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace quiver

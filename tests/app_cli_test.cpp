@@ -494,6 +494,35 @@ TEST_F(Cli, CreaseAngleReachesTheMeshesOfEveryCommand) {
   EXPECT_EQ(run({"trace", roof, "--crease-angle", "30.5", "--width", "8", "--repeat", "1"}).exit_code, 0);
 }
 
+// A missing material library is a warning with its position and the render
+// goes on, under every command; --strict makes it the error (exit 1, no output).
+TEST_F(Cli, ForgivenObjInputWarnsAndStrictRefusesIt) {
+  std::ofstream(work() / "mesh.obj") << "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  const std::string warning = "quiver: mesh.obj:1:8: warning: expected an MTL library that exists, found 'gone.mtl'";
+  const std::string usemtl = "quiver: mesh.obj:5:8: warning: expected a material defined";
+  const Outcome lenient = run({"render", "mesh.obj", "-o", "mesh.png", "--width", "8", "--height", "8", "-q"});
+  EXPECT_EQ(lenient.exit_code, 0) << lenient.err;
+  EXPECT_EQ(lenient.err.rfind(warning, 0), 0u) << lenient.err;
+  EXPECT_NE(lenient.err.find(usemtl), std::string::npos) << lenient.err;
+  EXPECT_TRUE(fs::exists(work() / "mesh.png"));
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"info", "mesh.obj"}, {"trace", "mesh.obj", "--width", "8", "--repeat", "1"}}) {
+    const Outcome r = run(command);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.rfind(warning, 0), 0u) << r.err;
+    std::vector<std::string> strict = command;
+    strict.push_back("--strict");
+    const Outcome refused = run(strict);
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_EQ(refused.err.rfind("quiver: mesh.obj:1:8: expected an MTL library that exists, found 'gone.mtl'", 0), 0u)
+        << refused.err;
+  }
+  const Outcome refused =
+      run({"render", "mesh.obj", "-o", "strict.png", "--width", "8", "--height", "8", "-q", "--strict"});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_FALSE(fs::exists(work() / "strict.png"));
+}
+
 // The camera flags move the view of any scene, the default view included;
 // a bad one exits 2 and writes nothing.
 TEST_F(Cli, CameraFlagsMoveTheView) {

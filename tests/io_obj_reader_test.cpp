@@ -39,15 +39,17 @@ MtlLookup libraries(std::map<std::string, std::string> texts) {
   };
 }
 
-SceneDesc parse(std::string_view obj, std::map<std::string, std::string> mtl = {}) {
-  return parse_obj_scene(obj, "test.obj", libraries(std::move(mtl)));
+SceneDesc parse(std::string_view obj, std::map<std::string, std::string> mtl = {}, bool strict = false) {
+  return parse_obj_scene(obj, "test.obj", libraries(std::move(mtl)), kDefaultCreaseAngleDegrees, strict);
 }
 
-// Parsing throws a ParseError at file:line:column whose what() contains fragment.
+// Parsing (strictly, when asked) throws a ParseError at file:line:column
+// whose what() contains fragment.
 ::testing::AssertionResult error_at(std::string_view obj, std::map<std::string, std::string> mtl, std::string_view file,
-                                    std::size_t line, std::size_t column, std::string_view fragment) {
+                                    std::size_t line, std::size_t column, std::string_view fragment,
+                                    bool strict = false) {
   try {
-    parse(obj, std::move(mtl));
+    parse(obj, std::move(mtl), strict);
   } catch (const ParseError& error) {
     const std::string what = error.what();
     const std::string prefix =
@@ -64,8 +66,8 @@ SceneDesc parse(std::string_view obj, std::map<std::string, std::string> mtl = {
 }
 
 ::testing::AssertionResult obj_error_at(std::string_view obj, std::size_t line, std::size_t column,
-                                        std::string_view fragment) {
-  return error_at(obj, {}, "test.obj", line, column, fragment);
+                                        std::string_view fragment, bool strict = false) {
+  return error_at(obj, {}, "test.obj", line, column, fragment, strict);
 }
 
 double signed_area_z(const TriangleDesc& t) {
@@ -294,7 +296,7 @@ TEST(ObjReader, FirstDefinitionOfAMaterialNameWinsAcrossLibraries) {
 
 TEST(ObjReader, UsemtlNeedsAnEarlierMtllib) {
   EXPECT_TRUE(error_at(std::string(kTriangle) + "usemtl a\nmtllib m.mtl\nf 1 2 3\n", {{"m.mtl", "newmtl a\n"}},
-                       "test.obj", 4, 8, "a material defined in a library named by an earlier 'mtllib'"));
+                       "test.obj", 4, 8, "a material defined in a library named by an earlier 'mtllib'", true));
   // A library named later serves the faces after it.
   const SceneDesc scene =
       parse(std::string(kTriangle) + "mtllib a.mtl\nusemtl a\nf 1 2 3\nmtllib b.mtl\nusemtl b\nf 1 2 3\n",
@@ -422,7 +424,8 @@ TEST(ObjReader, BadNumbersAreErrorsAtTheirToken) {
   EXPECT_TRUE(obj_error_at("vn 0 0\n", 1, 7, "a number (normal z), found end of line"));
   EXPECT_TRUE(obj_error_at("vt 0 0 0 0\n", 1, 10, "end of line after the texture coordinates"));
   EXPECT_TRUE(obj_error_at("v 1 2 3 4 5\n", 1, 12, "a number (vertex colour blue)"));
-  EXPECT_TRUE(obj_error_at("v 0 0 0 # comment\n", 1, 9, "a number (vertex w"));
+  // A trailing comment is forgiven (a warning), so only strictly an error.
+  EXPECT_TRUE(obj_error_at("v 0 0 0 # comment\n", 1, 9, "end of line (in OBJ and MTL a comment", true));
   // An exponent of 10 or more digits is an error whatever its value (these read as 0).
   EXPECT_TRUE(obj_error_at("v 0 0e2147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
   EXPECT_TRUE(obj_error_at("v 0 0.000e-0002147483649 0\n", 1, 5, "an exponent of at most 9 digits"));
@@ -491,8 +494,8 @@ TEST(ObjReader, StatementErrors) {
   EXPECT_TRUE(obj_error_at("vw 1 0 0.5\n", 1, 1, "an OBJ statement"));
   EXPECT_TRUE(obj_error_at("t crease 2/0/0 1 2\n", 1, 1, "an OBJ statement"));
   EXPECT_TRUE(obj_error_at("s\n", 1, 2, "a smoothing group"));
-  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "usemtl nothing\n", 4, 8, "a material defined in a library"));
-  EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists"));
+  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "usemtl nothing\n", 4, 8, "a material defined in a library", true));
+  EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists", true));
   EXPECT_TRUE(obj_error_at("mtllib\n", 1, 7, "an MTL library file name, found end of line"));
   // A NUL byte is an error, at its position.
   EXPECT_TRUE(obj_error_at(std::string("v 0 0 0\nv 1\0 0 0\n", 18), 2, 4, "text without NUL bytes"));
@@ -508,7 +511,8 @@ TEST(ObjReader, MtlErrorsAreReportedInTheMtlFile) {
   EXPECT_TRUE(error_at(obj, {{"m.mtl", "Kd 1 1 1\nnewmtl a\n"}}, "m.mtl", 1, 1, "'newmtl' before"));
   EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl  a\n"}}, "m.mtl", 1, 9, "a material name as one word"));
   EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a b\n"}}, "m.mtl", 1, 10, "a material name as one word"));
-  EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd nowhere.png\n"}}, "m.mtl", 2, 8, "an image file that exists"));
+  EXPECT_TRUE(
+      error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd nowhere.png\n"}}, "m.mtl", 2, 8, "an image file that exists", true));
   EXPECT_TRUE(error_at(obj, {{"m.mtl", "newmtl a\nmap_Kd -s 2 2 2 tex/checker.png\n"}}, "m.mtl", 2, 8,
                        "of the options only -clamp"));
   EXPECT_TRUE(
@@ -516,6 +520,56 @@ TEST(ObjReader, MtlErrorsAreReportedInTheMtlFile) {
   // Statements quiver does not use are skipped, whatever they hold.
   EXPECT_NO_THROW(parse(obj + std::string(kTriangle) + "f 1 2 3\n",
                         {{"m.mtl", "newmtl a\nsharpness x\nmap_Ks anything at all\n"}}));
+}
+
+// ---- forgiven input (issue 31): warnings, or errors with --strict ----
+
+TEST(ObjReader, ForgivenInputGivesOneWarningEachAndTheDefaults) {
+  const std::string obj = std::string(kTriangle) +
+                          "mtllib missing.mtl m.mtl\n"  // line 4
+                          "usemtl gone\n"               // 5: from the missing library
+                          "f 1 2 3 # first face\n"      // 6
+                          "usemtl gone\n"               // 7: the same name again
+                          "f 1 2 3\t# second\n"         // 8
+                          "usemtl pictured\n"           // 9
+                          "f 1 2 3\n";
+  const std::map<std::string, std::string> mtl{{"m.mtl", "newmtl pictured  # no image\nmap_Kd nowhere.png\n"}};
+  const SceneDesc scene = parse(obj, mtl);
+  ASSERT_EQ(scene.triangles.size(), 3u);
+  // The undefined material's faces: the default material; the missing image: no texture, the grey under it.
+  EXPECT_EQ(scene.materials.at(scene.triangles[0].material).kd, MaterialDesc{}.kd);
+  EXPECT_FALSE(scene.materials.at(scene.triangles[0].material).texture);
+  const MaterialDesc& pictured = scene.materials.at(scene.triangles[2].material);
+  EXPECT_FALSE(pictured.texture);
+  expect_vec3(pictured.color, 0.6f, 0.6f, 0.6f);
+  EXPECT_TRUE(scene.textures.empty());
+  // In the order found, repeats counted: MTL lines are read at their mtllib.
+  const std::vector<std::string> expected = {
+      "test.obj:4:8: warning: expected an MTL library that exists, found 'missing.mtl'; its materials are not "
+      "defined (faces that use them get the default material)",
+      "m.mtl:1:18: warning: expected end of line (in OBJ and MTL a comment is a line of its own), found '# no "
+      "image'; the statement ends before it",
+      "m.mtl:2:8: warning: expected an image file that exists (looked for '" +
+          (kTestData / "nowhere.png").lexically_normal().string() +
+          "'), found 'nowhere.png'; the material is not textured",
+      "test.obj:5:8: warning: expected a material defined in a library named by an earlier 'mtllib', found 'gone'; "
+      "its faces get the default material (1 more like it)",
+      "test.obj:6:9: warning: expected end of line (in OBJ and MTL a comment is a line of its own), found '# first "
+      "face'; the statement ends before it (1 more like it)"};
+  EXPECT_EQ(scene.warnings, expected);
+}
+
+TEST(ObjReader, StrictMakesEachForgivenInputItsError) {
+  EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists, found 'missing.mtl'", true));
+  EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "f 1 2 3 # face\n", 4, 9,
+                           "end of line (in OBJ and MTL a comment is a line of its own), found '# face'", true));
+  EXPECT_TRUE(error_at("mtllib m.mtl\n", {{"m.mtl", "newmtl a # x\n"}}, "m.mtl", 1, 10, "a comment is a line", true));
+  // Leniently the same files read, with their warnings.
+  EXPECT_EQ(parse(std::string(kTriangle) + "f 1 2 3 # face\n").warnings.size(), 1u);
+  // A '#' inside a token is an ordinary character, as before.
+  EXPECT_TRUE(obj_error_at("v 0 0 0#\n", 1, 7, "a number (vertex z)"));
+  // A file without forgiven input has no warnings.
+  EXPECT_TRUE(parse(std::string(kTriangle) + "f 1 2 3\n").warnings.empty());
 }
 
 // A mesh without faces draws nothing (issue 28): an error at the end of the

@@ -96,6 +96,32 @@ TEST(SceneLoader, TextureErrorsPointAtTheTextThatNamesTheImage) {
   }
 }
 
+// An included mesh's warnings are the scene's; strict loading refuses them
+// at their place, in the mesh (and in a scene of its own alike).
+TEST(SceneLoader, StrictReachesIncludedMeshesAndTheirWarningsReachTheScene) {
+  const testing::TemporaryDirectory temporary("quiver_loader_test");
+  const fs::path& dir = temporary.path();
+  std::ofstream(dir / "mesh.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 # one face\n";
+  std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"mesh.obj\"\n";
+  for (const fs::path& scene : {dir / "scene.toml", dir / "mesh.obj"}) {
+    SCOPED_TRACE(scene.string());
+    const SceneDesc lenient = load_scene(scene);
+    ASSERT_EQ(lenient.warnings.size(), 1u);
+    EXPECT_EQ(lenient.warnings[0].rfind((dir / "mesh.obj").string() + ":4:9: warning: expected end of line", 0), 0u)
+        << lenient.warnings[0];
+    SceneLoadOptions strict;
+    strict.strict = true;
+    try {
+      load_scene(scene, strict);
+      ADD_FAILURE() << "no ParseError";
+    } catch (const ParseError& error) {
+      EXPECT_EQ(fs::path(error.file()), dir / "mesh.obj");
+      EXPECT_EQ(error.line(), 4u);
+      EXPECT_EQ(error.column(), 9u);
+    }
+  }
+}
+
 // Every example scene in io/examples loads and holds a camera, a light and geometry.
 TEST(SceneLoader, EveryExampleSceneLoads) {
   std::vector<fs::path> examples;
