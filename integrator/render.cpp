@@ -152,24 +152,25 @@ class TileRenderer {
     const int lw = tile.width * scale + 1, lh = tile.height * scale + 1;
     w.lattice.assign(std::size_t(lw) * std::size_t(lh), -1);
     std::vector<Vec3<float>> values;
-    std::vector<std::int32_t> pending;  // lattice points of the current batch
+    // Lattice points of the current batch, each with its spacing (the size
+    // of the squares it is a corner of, in pixels) for texture filtering.
+    std::vector<std::pair<std::int32_t, double>> pending;
 
-    auto request = [&](int X, int Y) {
+    auto request = [&](int X, int Y, int size) {
       std::int32_t& slot = w.lattice[std::size_t(Y) * lw + X];
       if (slot != -1) return;
       slot = -2;  // requested
-      pending.push_back(Y * lw + X);
+      pending.push_back({Y * lw + X, double(size) / scale});
     };
     auto run_batch = [&]() {
       w.samples.clear();
-      for (std::int32_t p : pending) {
+      for (const auto& [p, spacing] : pending) {
         const int X = p % lw, Y = p / lw;
-        // Filtered over a pixel at every level: the subdivision is for edges.
-        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, 1.0));
+        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, spacing));
       }
       trace(w);
       for (std::size_t k = 0; k < pending.size(); ++k) {
-        w.lattice[pending[k]] = static_cast<std::int32_t>(values.size());
+        w.lattice[pending[k].first] = static_cast<std::int32_t>(values.size());
         values.push_back(w.colors[k]);
       }
       pending.clear();
@@ -187,7 +188,7 @@ class TileRenderer {
     };
 
     for_each_pixel_in_groups(0, 0, tile.width + 1, tile.height + 1,
-                             [&](int x, int y) { request(x * scale, y * scale); });
+                             [&](int x, int y) { request(x * scale, y * scale, scale); });
     run_batch();
     struct Square {
       int X, Y, size;
@@ -200,11 +201,11 @@ class TileRenderer {
       for (const Square& s : level) {
         if (!splits(s.X, s.Y, s.size)) continue;
         const int h = s.size / 2;
-        request(s.X + h, s.Y);
-        request(s.X, s.Y + h);
-        request(s.X + h, s.Y + h);
-        request(s.X + s.size, s.Y + h);
-        request(s.X + h, s.Y + s.size);
+        request(s.X + h, s.Y, h);
+        request(s.X, s.Y + h, h);
+        request(s.X + h, s.Y + h, h);
+        request(s.X + s.size, s.Y + h, h);
+        request(s.X + h, s.Y + s.size, h);
         for (const Square& child : {Square{s.X, s.Y, h}, Square{s.X + h, s.Y, h}, Square{s.X, s.Y + h, h},
                                     Square{s.X + h, s.Y + h, h}}) {
           next.push_back(child);

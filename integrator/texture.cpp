@@ -89,14 +89,16 @@ Vec3<float> bilinear(const TextureImage& image, WrapMode wrap, float u, float v)
   return result;
 }
 
-// Trilinear MIP mapping (Williams 1983): the footprint's longer side in
-// texels picks the level, log2 of it, between two levels linearly; a
-// footprint of at most one texel is the bilinear lookup of evaluate.
+// Trilinear MIP mapping (Williams 1983), between two levels linearly. The
+// level's blur matches a box over the footprint's longer side, w texels: a
+// level-l texel is a box of 2^l texels, bilinear adds a tent of half-width
+// 2^l, together a variance of 4^l / 4 against the box's w^2 / 12, so
+// l = log2(w / sqrt 3). Up to sqrt 3 texels, the bilinear lookup of evaluate.
 Vec3<float> mip_mapped(const Texture& texture, float u, float v, const TextureFootprint& f) {
   const double w = texture.image.width, h = texture.image.height;
   const double along_x = std::hypot(double(f.du_dx) * w, double(f.dv_dx) * h);
   const double along_y = std::hypot(double(f.du_dy) * w, double(f.dv_dy) * h);
-  const double texels = std::max(along_x, along_y);
+  const double texels = std::max(along_x, along_y) / std::sqrt(3.0);
   if (!(texels > 1.0)) return bilinear(texture.image, texture.wrap, u, v);
   const int coarsest = int(texture.coarser.size());
   const double level = std::min(std::log2(texels), double(coarsest));  // inf: the coarsest

@@ -36,7 +36,8 @@ inline constexpr double kPointFootprint = 1e-4;
 // The texture filtered over the footprint. Checkers: the box spans
 // |d/dx| + |d/dy| per axis (the footprint parallelogram's bounding box).
 // Images: trilinear MIP mapping, the level from the footprint's longer
-// side in texels; up to one texel, the bilinear lookup of evaluate.
+// side in texels (texture.cpp says how); up to sqrt 3 texels, the
+// bilinear lookup of evaluate.
 Vec3<float> evaluate_filtered(const Texture& texture, float u, float v, const Vec3<float>& world_point,
                               const TextureFootprint& footprint);
 

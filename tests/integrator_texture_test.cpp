@@ -160,19 +160,19 @@ TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
   const Texture texture = build_texture(desc);
   const Vec3<float> p{0.f, 0.f, 0.f};
   const float u = 0.375f, v = 0.625f;  // a texel centre
-  // Up to one texel: the bilinear lookup's bits.
-  TextureFootprint one_texel;
-  one_texel.du_dx = 0.25f;
-  EXPECT_TRUE(same(evaluate_filtered(texture, u, v, p, one_texel), evaluate(texture, u, v, p)));
-  // Two texels: level 1 (every texel 0.5).
-  TextureFootprint two_texels;
-  two_texels.dv_dy = 0.5f;
-  EXPECT_FLOAT_EQ(evaluate_filtered(texture, u, v, p, two_texels).x, 0.5f);
-  // Sqrt 2 texels: halfway between level 0 and level 1.
+  // Up to sqrt 3 texels: the bilinear lookup's bits.
+  TextureFootprint small;
+  small.du_dx = 0.25f * 1.7f;
+  EXPECT_TRUE(same(evaluate_filtered(texture, u, v, p, small), evaluate(texture, u, v, p)));
+  // 2 sqrt 3 texels: level 1 (every texel 0.5).
+  TextureFootprint level_one;
+  level_one.dv_dy = 0.25f * 2.f * std::sqrt(3.f);
+  EXPECT_NEAR(evaluate_filtered(texture, u, v, p, level_one).x, 0.5f, 1e-6f);
+  // sqrt 2 sqrt 3 texels: halfway between level 0 and level 1.
   TextureFootprint between;
-  between.du_dx = 0.25f * std::sqrt(2.f);
+  between.du_dx = 0.25f * std::sqrt(6.f);
   const float level0 = evaluate(texture, u, v, p).x;
-  EXPECT_NEAR(evaluate_filtered(texture, u, v, p, between).x, 0.5f * (level0 + 0.5f), 1e-6f);
+  EXPECT_NEAR(evaluate_filtered(texture, u, v, p, between).x, 0.5f * (level0 + 0.5f), 1e-5f);
   // Unbounded: the coarsest level, the mean.
   TextureFootprint unbounded;
   unbounded.du_dx = kInf;
