@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
                "settings and version, else it is refused");
   app.add_flag("--tile-times", args.tile_times,
                "The stats JSON also lists each tile's render time (tile_ms, in tile order, row by row; null for "
-               "tiles resumed from the checkpoint)");
+               "tiles resumed from the checkpoint) and the estimated cost the queue was ordered by "
+               "(tile_cost_estimate, rays)");
 
   try {
     app.parse(argc, argv);

@@ -256,6 +256,7 @@ void run_worker(FrameRenderer& renderer) {
 struct Gathered {
   MpiJobSummary summary;
   std::vector<double> tile_ms;  // first results; NaN for resumed tiles
+  std::vector<double> costs;    // the estimates the queue was ordered by
 };
 
 // Rank 0: the queue, its own render threads, the workers' results, the
@@ -360,10 +361,11 @@ class Coordinator {
   }
 
  private:
-  // Keeps 3 batches plus 2 tiles per thread out on worker r (schedule_mutex_ held).
+  // Keeps up to 3 batches plus 2 tiles per thread out on worker r, sending
+  // whole batches only (schedule_mutex_ held).
   void refill(int r) {
     const std::size_t target = 3 * schedule_.batch_size() + 2 * std::size_t(renderer_.threads());
-    while (schedule_.outstanding(r) < target && schedule_.waiting() > 0) {
+    while (schedule_.waiting() > 0 && schedule_.outstanding(r) + schedule_.batch_size() <= target) {
       send_work(schedule_.take(r, target - schedule_.outstanding(r)), r);
     }
   }
@@ -601,6 +603,7 @@ int run_mpi_render(const MpiRenderArgs& args) {
     abort_job(describe());
   }
   gathered.summary.estimate_ms = estimate_ms;
+  gathered.costs = costs;
 
   try {
     renderer->finish(*film);
@@ -622,6 +625,7 @@ int run_mpi_render(const MpiRenderArgs& args) {
         nlohmann::json times = nlohmann::json::array();
         for (const double ms : gathered.tile_ms) times.push_back(std::isnan(ms) ? nlohmann::json(nullptr) : nlohmann::json(ms));
         stats["tile_ms"] = std::move(times);
+        stats["tile_cost_estimate"] = gathered.costs;
         stats["tile_size"] = settings.tile_size;
       }
       stage_json_file(staged, render_args.stats, stats);

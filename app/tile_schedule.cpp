@@ -9,7 +9,7 @@ namespace quiver {
 
 TileSchedule::TileSchedule(std::size_t tiles, const std::vector<bool>& done, const std::vector<double>& costs,
                            int ranks)
-    : state_(tiles), outstanding_(std::size_t(std::max(ranks, 1)), 0), ranks_(std::max(ranks, 1)) {
+    : state_(tiles), costs_(costs), outstanding_(std::size_t(std::max(ranks, 1)), 0), ranks_(std::max(ranks, 1)) {
   if (!done.empty() && done.size() != tiles) throw std::invalid_argument("TileSchedule: one done flag per tile");
   if (!costs.empty() && costs.size() != tiles) throw std::invalid_argument("TileSchedule: one cost per tile");
   std::vector<std::uint32_t> order;
@@ -25,6 +25,9 @@ TileSchedule::TileSchedule(std::size_t tiles, const std::vector<bool>& done, con
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return costs[a] > costs[b]; });
   }
   waiting_.assign(order.begin(), order.end());
+  if (!costs_.empty()) {
+    for (const std::uint32_t t : waiting_) waiting_cost_ += std::max(costs_[t], 0.0);
+  }
 }
 
 std::size_t TileSchedule::batch_size() const {
@@ -34,8 +37,14 @@ std::size_t TileSchedule::batch_size() const {
 std::vector<std::uint32_t> TileSchedule::take(int rank, std::size_t max_tiles) {
   std::vector<std::uint32_t> batch;
   const std::size_t n = std::min({batch_size(), max_tiles, waiting_.size()});
+  const double budget = waiting_cost_ / (8.0 * double(ranks_));
+  double cost = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t t = waiting_.front();
+    const double tile_cost = costs_.empty() ? 0.0 : std::max(costs_[t], 0.0);
+    if (k > 0 && cost + tile_cost > budget) break;
+    cost += tile_cost;
+    waiting_cost_ -= tile_cost;
     waiting_.pop_front();
     state_[t].ranks.push_back(rank);
     given_.push_back(t);

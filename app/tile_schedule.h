@@ -1,7 +1,9 @@
 // quiver-mpi's tile queue, kept by rank 0 (app/mpi_render.h): which tiles
 // are waiting, out on which rank, or done. Tiles go out most expensive
-// first (by an estimated cost), in batches that shrink as the queue
-// empties, down to one tile; once nothing waits, a rank left idle gets
+// first (by an estimated cost), in batches of at most an eighth of a rank's
+// share of the estimated cost still waiting (so the costliest tiles go out
+// one by one, to different ranks) and at most 16 tiles, shrinking as the
+// queue empties, down to one tile; once nothing waits, a rank left idle gets
 // again a tile still out on another rank (a slow or stalled one, or one
 // with tiles queued), and the first result for a tile wins. No MPI here: the queue is testable alone.
 #pragma once
@@ -21,10 +23,11 @@ class TileSchedule {
   // first (ties in tile order); ranks: the processes, rank 0 included.
   TileSchedule(std::size_t tiles, const std::vector<bool>& done, const std::vector<double>& costs, int ranks);
 
-  // Up to `batch_size(...)` waiting tiles for rank, at most max_tiles; empty
-  // when none waits.
+  // The next batch for rank, at most max_tiles: the costliest waiting tiles,
+  // up to batch_size() of them whose estimated cost adds up to at most the
+  // waiting cost over 8 per rank (one tile at least); empty when none waits.
   std::vector<std::uint32_t> take(int rank, std::size_t max_tiles);
-  // The batch size now: waiting tiles over 8 per rank, 1 to 16.
+  // The most tiles a batch holds now: waiting tiles over 8 per rank, 1 to 16.
   std::size_t batch_size() const;
 
   // Once nothing waits: a tile out on another rank (the one given out last,
@@ -50,6 +53,8 @@ class TileSchedule {
     std::vector<int> ranks;  // out on these
   };
   std::vector<TileState> state_;
+  std::vector<double> costs_;          // empty: unknown
+  double waiting_cost_ = 0.0;
   std::deque<std::uint32_t> waiting_;  // most expensive first
   std::deque<std::uint32_t> given_;    // in the order they went out
   std::vector<std::size_t> outstanding_;

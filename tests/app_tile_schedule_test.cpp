@@ -50,6 +50,21 @@ TEST(TileSchedule, BatchesShrinkToOneTileAsTheQueueEmpties) {
   EXPECT_EQ(schedule.take(1, 100).size(), 1u);
 }
 
+TEST(TileSchedule, TheCostliestTilesGoOutOneByOneCheapOnesInBatches) {
+  // 4 tiles of cost 100, 396 of cost 1: 796 in all, 2 ranks: a batch holds at most 796 / 16.
+  std::vector<double> costs(400, 1.0);
+  for (std::size_t t : {5, 77, 200, 399}) costs[t] = 100.0;
+  TileSchedule schedule(400, {}, costs, 2);
+  for (std::uint32_t expected : {5u, 77u, 200u, 399u}) {
+    EXPECT_EQ(schedule.take(1 + int(expected % 2), 100), (std::vector<std::uint32_t>{expected}));
+  }
+  EXPECT_EQ(schedule.take(1, 100).size(), 16u);  // at most 16 tiles
+  while (schedule.waiting() > 40) schedule.take(0, 100);
+  const std::size_t late = schedule.take(1, 100).size();  // about 40 / 16 left per batch
+  EXPECT_GE(late, 1u);
+  EXPECT_LE(late, 3u);
+}
+
 TEST(TileSchedule, EveryTileIsDoneOnceAndRepeatsAreDropped) {
   TileSchedule schedule(3, {}, {}, 3);
   const std::vector<std::uint32_t> a = take_tiles(schedule, 1, 2), b = take_tiles(schedule, 2, 2);
