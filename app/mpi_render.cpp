@@ -541,6 +541,25 @@ int run_mpi_render(const MpiRenderArgs& args) {
   if ((code = agree_on(code, message)) != 0) return code;
   const std::size_t tile_count = renderer->tiles().size();
 
+  // Every rank must render the same frame from the same files: each
+  // fingerprints what it read and compares it with rank 0's.
+  std::uint64_t fingerprint = 0;
+  try {
+    fingerprint = render_fingerprint(settings, prepared->plan.build, render_args.options.crease_angle,
+                                     *prepared->desc.camera, prepared->inputs, QUIVER_VERSION);
+  } catch (...) {
+    std::tie(code, message) = describe_current_exception();
+  }
+  if ((code = agree_on(code, message)) != 0) return code;
+  std::uint64_t rank0_fingerprint = fingerprint;
+  MPI_Bcast(&rank0_fingerprint, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  if (rank0_fingerprint != fingerprint) {
+    code = kExitFailure;
+    message = "the scene files or settings this rank read differ from rank 0's (every rank must read the same "
+              "files)";
+  }
+  if ((code = agree_on(code, message)) != 0) return code;
+
   // Rank 0: the checkpoint, new or resumed.
   std::optional<CheckpointWriter> checkpoint;
   std::optional<Film> film;
@@ -548,9 +567,7 @@ int run_mpi_render(const MpiRenderArgs& args) {
   std::size_t resumed = 0;
   if (rank == 0) {
     try {
-      const CheckpointKey key{render_fingerprint(settings, prepared->plan.build, render_args.options.crease_angle,
-                                                 *prepared->desc.camera, prepared->inputs, QUIVER_VERSION),
-                              std::uint32_t(settings.width), std::uint32_t(settings.height),
+      const CheckpointKey key{fingerprint, std::uint32_t(settings.width), std::uint32_t(settings.height),
                               std::uint32_t(settings.tile_size), std::uint32_t(tile_count)};
       film.emplace(renderer->make_film());
       if (args.resume) {
