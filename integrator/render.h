@@ -2,7 +2,9 @@
 // as one wavefront batch (integrator/tracer.h), tiles spread over the cores
 // with oneTBB. Each tile writes only its own pixels and every random number
 // comes from the sample's film position, so the image is the same for any
-// thread count, tile order and SIMD width.
+// thread count, tile order and SIMD width, and for any split of the tiles
+// between renderers (FrameRenderer: render() is one renderer given every
+// tile; app/mpi_render.h gives each process some).
 #pragma once
 
 #include <algorithm>
@@ -10,6 +12,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "integrator/anti_aliasing.h"
@@ -77,5 +82,71 @@ using RenderProgress = std::function<void(std::size_t done, std::size_t total)>;
 // tile starts and the result says stopped (a signal handler may set it).
 RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress = {},
                     const std::atomic<bool>* stop = nullptr);
+
+// What tiles write: the image with its AOVs and, in corners mode, the
+// (W + 1) x (H + 1) corner colours that FrameRenderer::finish averages into
+// the pixels once every tile is in.
+struct Film {
+  Framebuffer image;
+  std::vector<Vec3<float>> corners;
+};
+
+// The next tile to render (an index into FrameRenderer::tiles()), or none
+// when there is no more. Called from the worker threads, concurrently; it
+// may block until a tile is there.
+using TileSource = std::function<std::optional<std::size_t>()>;
+// Called from the worker thread that rendered the tile, once the film holds
+// it, with its time in milliseconds; concurrently.
+using TileDone = std::function<void(std::size_t tile, double ms)>;
+
+// One frame's tiles (pixel_tiles of the settings' size and tile side), a
+// worker per thread (kept from call to call) and the film's layout. A tile
+// writes only its own part of a film (its pixels and AOVs; in corners mode
+// its corners, not its pixels), the same bits whichever renderer, thread or
+// film renders it, so tiles rendered into several films, packed and
+// unpacked into one, then finished, give render()'s image bit for bit.
+class FrameRenderer {
+ public:
+  // Throws std::invalid_argument for a tile size below 1.
+  FrameRenderer(const Scene& scene, const RenderSettings& settings);
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  const std::vector<PixelTile>& tiles() const;
+  // A film of the settings' size, with the AOVs asked for and the corner
+  // buffer in corners mode.
+  Film make_film() const;
+
+  // Renders the tiles next() gives into film until it gives none or *stop
+  // (read before each tile) is true; at most tiles().size() tiles per call.
+  // Returns how many tiles it rendered.
+  std::size_t render_tiles(Film& film, const TileSource& next, const TileDone& done = {},
+                           const std::atomic<bool>* stop = nullptr);
+
+  // A cheap estimate of each tile's cost, for scheduling the costliest
+  // first: the rays traced (of every kind) from one ray per stride x stride
+  // pixels through their centres, without anti-aliasing. Leaves stats() as
+  // it was.
+  std::vector<double> estimate_costs(std::span<const std::size_t> tiles, int stride) const;
+
+  // A tile's part of a film as bytes: its colours (corners mode: the corners
+  // it owns), then each AOV asked for, row by row; tile_bytes of them.
+  std::size_t tile_bytes(std::size_t tile) const;
+  void pack_tile(const Film& film, std::size_t tile, std::vector<std::byte>& out) const;  // appends
+  // Throws std::invalid_argument when bytes is not tile_bytes(tile) long.
+  void unpack_tile(Film& film, std::size_t tile, std::span<const std::byte> bytes) const;
+
+  // Completes a film whose every tile is in (corners mode: averages the corners).
+  void finish(Film& film) const;
+
+  TraceStats stats() const;  // every render_tiles call so far, summed over the threads
+  int threads() const;
+  SphereMethod sphere_method() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace quiver

@@ -4,6 +4,10 @@
 // no acne when the scene is scaled by 1e-4 or 1e6; lane statistics add up;
 // an OBJ mesh without normals shades smoothly across its face edges.
 #include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <mutex>
+#include <stdexcept>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -266,6 +270,81 @@ TEST(Render, ThreadCountAndTileSizeDoNotChangeTheImage) {
     const RenderResult two = render(scene, settings);
     EXPECT_TRUE(same_bits(one.image.rgb, two.image.rgb)) << aa;
   }
+}
+
+// Tiles split between renderers (as quiver-mpi splits them between
+// processes), each into its own film, then packed and unpacked into one
+// film and finished, give render()'s image and ray counts in every
+// anti-aliasing mode: corners shares corners between tiles, adaptive shares
+// them within a tile, refine reads a one-pixel apron around it.
+TEST(Render, TilesSplitBetweenRenderersGiveTheWholeImage) {
+  const Scene scene = build_scene(every_kind_scene(), {});
+  for (const char* aa : {"none", "grid:2", "jitter:2", "corners", "adaptive:0.05:2", "refine:0.02:8"}) {
+    RenderSettings settings = small_settings(45, 37, aa);  // partial tiles at the right and bottom
+    settings.isa = best_supported_isa();
+    settings.tile_size = 8;
+    const RenderResult whole = render(scene, settings);
+
+    constexpr std::size_t kParts = 3;
+    FrameRenderer gather(scene, settings);
+    Film film = gather.make_film();
+    std::size_t tiles_rendered = 0;
+    RayCounts rays;
+    for (std::size_t part = 0; part < kParts; ++part) {
+      RenderSettings part_settings = settings;
+      part_settings.threads = int(part) + 1;
+      part_settings.isa = part == 1 ? Isa::scalar : best_supported_isa();
+      FrameRenderer renderer(scene, part_settings);
+      Film own = renderer.make_film();
+      // This part's tiles, last first.
+      std::vector<std::size_t> mine;
+      for (std::size_t t = part; t < renderer.tiles().size(); t += kParts) mine.push_back(t);
+      std::atomic<std::size_t> next{0};
+      std::mutex mutex;
+      std::vector<std::size_t> done;
+      tiles_rendered += renderer.render_tiles(
+          own,
+          [&]() -> std::optional<std::size_t> {
+            const std::size_t k = next++;
+            if (k < mine.size()) return mine[mine.size() - 1 - k];
+            return std::nullopt;
+          },
+          [&](std::size_t tile, double ms) {
+            EXPECT_GE(ms, 0.0);
+            std::lock_guard lock(mutex);
+            done.push_back(tile);
+          });
+      std::sort(done.begin(), done.end());
+      EXPECT_EQ(done, mine) << aa;
+      for (std::size_t t : mine) {
+        std::vector<std::byte> bytes;
+        renderer.pack_tile(own, t, bytes);
+        ASSERT_EQ(bytes.size(), renderer.tile_bytes(t)) << aa;
+        gather.unpack_tile(film, t, bytes);
+      }
+      const RayCounts r = renderer.stats().rays;
+      rays.primary += r.primary;
+      rays.shadow += r.shadow;
+      rays.reflection += r.reflection;
+      rays.refraction += r.refraction;
+    }
+    EXPECT_EQ(tiles_rendered, gather.tiles().size()) << aa;
+    gather.finish(film);
+    expect_same_image(whole.image, film.image, aa);
+    EXPECT_EQ(rays.primary, whole.stats.rays.primary) << aa;
+    EXPECT_EQ(rays.shadow, whole.stats.rays.shadow) << aa;
+    EXPECT_EQ(rays.reflection, whole.stats.rays.reflection) << aa;
+    EXPECT_EQ(rays.refraction, whole.stats.rays.refraction) << aa;
+  }
+}
+
+TEST(Render, UnpackingATileOfTheWrongSizeThrows) {
+  const Scene scene = build_scene(default_scene(), {});
+  const FrameRenderer renderer(scene, small_settings(20, 20));
+  Film film = renderer.make_film();
+  const std::vector<std::byte> bytes(renderer.tile_bytes(0) - 1);
+  EXPECT_THROW(renderer.unpack_tile(film, 0, bytes), std::invalid_argument);
+  EXPECT_THROW(renderer.tile_bytes(renderer.tiles().size()), std::out_of_range);
 }
 
 // refine: 2 x 2 rays in every pixel; more only where a pixel's own samples

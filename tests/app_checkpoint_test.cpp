@@ -1,0 +1,149 @@
+// quiver-mpi's checkpoint (app/checkpoint.h): batches read back whole; a
+// torn or corrupted last batch is dropped and the ones before it kept; a
+// resumed file continues after its valid part; a checkpoint of another
+// render is refused; the fingerprint follows the settings, the camera and
+// the input files' bytes.
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/checkpoint.h"
+#include "support/temporary_directory.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+CheckpointTile tile(std::uint32_t index, std::size_t bytes) {
+  CheckpointTile t{index, std::vector<std::byte>(bytes)};
+  for (std::size_t i = 0; i < bytes; ++i) t.bytes[i] = std::byte((index * 31 + i) & 0xff);
+  return t;
+}
+
+const CheckpointKey kKey{0x1234, 64, 48, 16, 12};
+
+TEST(Checkpoint, BatchesReadBackAndATornLastBatchIsDropped) {
+  testing::TemporaryDirectory dir;
+  const fs::path path = dir.path() / "render.checkpoint";
+  {
+    CheckpointWriter writer = CheckpointWriter::create(path, kKey);
+    EXPECT_EQ(read_checkpoint(path, kKey).tiles.size(), 0u);
+    const std::vector<CheckpointTile> first{tile(3, 100), tile(7, 40)}, second{tile(0, 8)};
+    writer.append(first);
+    writer.append(second);
+  }
+  const CheckpointContents whole = read_checkpoint(path, kKey);
+  ASSERT_EQ(whole.tiles.size(), 3u);
+  EXPECT_EQ(whole.batches, 2u);
+  EXPECT_EQ(whole.tiles[0].tile, 3u);
+  EXPECT_EQ(whole.tiles[0].bytes, tile(3, 100).bytes);
+  EXPECT_EQ(whole.tiles[2].bytes, tile(0, 8).bytes);
+  EXPECT_EQ(whole.valid_bytes, fs::file_size(path));
+
+  // Cut inside the second batch: only the first is kept.
+  fs::resize_file(path, whole.valid_bytes - 5);
+  const CheckpointContents torn = read_checkpoint(path, kKey);
+  EXPECT_EQ(torn.tiles.size(), 2u);
+  EXPECT_EQ(torn.batches, 1u);
+
+  // Resumed: appended after the valid part, the torn bytes gone.
+  {
+    CheckpointWriter writer = CheckpointWriter::resume(path, torn);
+    const std::vector<CheckpointTile> third{tile(11, 20)};
+    writer.append(third);
+  }
+  const CheckpointContents resumed = read_checkpoint(path, kKey);
+  ASSERT_EQ(resumed.tiles.size(), 3u);
+  EXPECT_EQ(resumed.tiles[2].tile, 11u);
+  EXPECT_EQ(resumed.tiles[2].bytes, tile(11, 20).bytes);
+}
+
+TEST(Checkpoint, ACorruptedBatchEndsWhatIsRead) {
+  testing::TemporaryDirectory dir;
+  const fs::path path = dir.path() / "c";
+  std::uintmax_t after_first = 0;
+  {
+    CheckpointWriter writer = CheckpointWriter::create(path, kKey);
+    const std::vector<CheckpointTile> first{tile(1, 16)}, second{tile(2, 16)};
+    writer.append(first);
+    after_first = fs::file_size(path);
+    writer.append(second);
+  }
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(after_first + 20));
+    f.put('\x5a');
+  }
+  const CheckpointContents contents = read_checkpoint(path, kKey);
+  ASSERT_EQ(contents.tiles.size(), 1u);
+  EXPECT_EQ(contents.tiles[0].tile, 1u);
+}
+
+TEST(Checkpoint, AnotherRendersCheckpointOrAnotherFileIsRefused) {
+  testing::TemporaryDirectory dir;
+  const fs::path path = dir.path() / "c";
+  CheckpointWriter::create(path, kKey);
+  CheckpointKey other = kKey;
+  other.fingerprint ^= 1;
+  EXPECT_THROW(read_checkpoint(path, other), std::runtime_error);
+  other = kKey;
+  other.width = 65;
+  EXPECT_THROW(read_checkpoint(path, other), std::runtime_error);
+  EXPECT_THROW(read_checkpoint(dir.path() / "missing", kKey), std::runtime_error);
+  std::ofstream(dir.path() / "text") << "not a checkpoint at all, just text";
+  EXPECT_THROW(read_checkpoint(dir.path() / "text", kKey), std::runtime_error);
+}
+
+TEST(Checkpoint, CreatingReplacesAnOldCheckpointAndRemoveDeletesIt) {
+  testing::TemporaryDirectory dir;
+  const fs::path path = dir.path() / "c";
+  {
+    CheckpointWriter writer = CheckpointWriter::create(path, kKey);
+    const std::vector<CheckpointTile> first{tile(1, 16)};
+    writer.append(first);
+  }
+  CheckpointWriter writer = CheckpointWriter::create(path, kKey);
+  EXPECT_EQ(read_checkpoint(path, kKey).tiles.size(), 0u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);  // no temporary left
+  writer.remove();
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(Checkpoint, TheFingerprintFollowsSettingsCameraAndInputBytes) {
+  testing::TemporaryDirectory dir;
+  const fs::path scene = dir.path() / "scene.nff";
+  std::ofstream(scene) << "s 0 0 0 1\n";
+  RenderSettings settings;
+  const SceneBuildOptions build;
+  CameraDesc camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 45.f, 1.f, 64, 64};
+  const std::vector<RoleFile> inputs{{"the scene file", scene}};
+  const std::uint64_t base = render_fingerprint(settings, build, std::nullopt, camera, inputs, "1");
+  EXPECT_EQ(render_fingerprint(settings, build, std::nullopt, camera, inputs, "1"), base);
+  RenderSettings threads = settings;
+  threads.threads = 7;
+  threads.isa = Isa::avx2;
+  EXPECT_EQ(render_fingerprint(threads, build, std::nullopt, camera, inputs, "1"), base);
+  RenderSettings seed = settings;
+  seed.trace.seed = 1;
+  EXPECT_NE(render_fingerprint(seed, build, std::nullopt, camera, inputs, "1"), base);
+  RenderSettings aa = settings;
+  aa.aa = parse_anti_aliasing("adaptive:0.1:3");
+  EXPECT_NE(render_fingerprint(aa, build, std::nullopt, camera, inputs, "1"), base);
+  EXPECT_NE(render_fingerprint(settings, build, 30.0, camera, inputs, "1"), base);
+  EXPECT_NE(render_fingerprint(settings, build, std::nullopt, camera, inputs, "2"), base);
+  CameraDesc moved = camera;
+  moved.from.x = 0.5f;
+  EXPECT_NE(render_fingerprint(settings, build, std::nullopt, moved, inputs, "1"), base);
+  std::ofstream(scene) << "s 0 0 0 2\n";
+  EXPECT_NE(render_fingerprint(settings, build, std::nullopt, camera, inputs, "1"), base);
+  fs::remove(scene);
+  EXPECT_THROW(render_fingerprint(settings, build, std::nullopt, camera, inputs, "1"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace quiver
