@@ -39,6 +39,7 @@
 #include "app/progress_bar.h"
 #include "app/render_outputs.h"
 #include "app/render_options.h"
+#include "app/scene_build.h"
 #include "app/scene_info.h"
 #include "io/scene_loader.h"
 #include "app/stats_json.h"
@@ -134,17 +135,13 @@ quiver::SceneDesc load(const std::string& scene, const std::optional<double>& cr
   return desc;
 }
 
-// build_scene, timed, with its errors (bad material or texture indices) naming the scene.
+// build_named_scene, timed.
 quiver::Scene build(const quiver::SceneDesc& desc, const quiver::SceneBuildOptions& options, const std::string& scene,
                     double& build_ms) {
   const Clock::time_point start = Clock::now();
-  try {
-    quiver::Scene built = quiver::build_scene(desc, options);
-    build_ms = ms_since(start);
-    return built;
-  } catch (const std::invalid_argument& error) {
-    throw std::runtime_error((scene.empty() ? std::string("the built-in scene") : scene) + ": " + error.what());
-  }
+  quiver::Scene built = quiver::build_named_scene(desc, options, scene);
+  build_ms = ms_since(start);
+  return built;
 }
 
 void print_summary(const quiver::RenderResult& result, const quiver::RenderSettings& settings, double load_ms,
@@ -194,8 +191,7 @@ int run_render(const RenderArgs& args) {
     // UsageError from here on exits 2 through report_exception.
     quiver::check_outputs_spare_inputs(outputs, quiver::files_read(desc, !args.scene.empty()));
     const quiver::RenderPlan plan = quiver::plan_render(args.options, desc, isa);
-    if (!desc.camera) quiver::add_default_view(desc, plan.settings.width, plan.settings.height);
-    quiver::apply_camera_flags(args.options.camera, *desc.camera);
+    quiver::set_view(desc, args.options.camera, plan.settings.width, plan.settings.height);
 
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, plan.build, args.scene, build_ms);
@@ -275,9 +271,7 @@ int run_trace(const TraceArgs& args) {
   try {
     double load_ms = 0.0;
     quiver::SceneDesc desc = load(args.scene, args.options.crease_angle, load_ms);
-    const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
-    if (!desc.camera) quiver::add_default_view(desc, width, height);
-    quiver::apply_camera_flags(args.options.camera, *desc.camera);
+    const auto [width, height] = quiver::set_trace_view(args.options, desc);
     double build_ms = 0.0;
     const quiver::Scene scene = build(desc, {}, args.scene, build_ms);
     const quiver::PrimaryTraceResult result =
@@ -446,9 +440,7 @@ void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.aa_option->count()) options.aa = raw.aa;
   if (raw.simd_option->count()) options.simd = raw.simd;
   if (raw.aov_option->count()) options.aov = raw.aov;
-  if (raw.preset_option->count() && raw.preset != "spd") {
-    throw UsageError("--preset: expected spd, found '" + raw.preset + "'");
-  }
+  if (raw.preset_option->count()) quiver::check_preset(raw.preset);
   options.preset_spd = raw.preset_option->count() > 0;
   if (raw.seed_option->count()) options.seed = quiver::parse_seed(raw.seed);
 }
