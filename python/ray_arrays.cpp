@@ -23,16 +23,15 @@ Vec3<float> row(const void* array, ArrayFloat type, std::size_t i) {
 
 bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// A ray the queries can use: every coordinate finite (its exponent bits not
-// all ones) and a direction other than zero (some bit besides the sign
-// set). Integer tests, with no branch, so the pass over a batch vectorizes.
-inline bool usable(float ox, float oy, float oz, float dx, float dy, float dz) {
+// 1 for a ray the queries cannot use, else 0: a coordinate not finite (its
+// exponent bits all ones) or a zero direction (no bit besides the signs
+// set). Integer tests with no branch, so the pass over a batch vectorizes.
+inline std::uint32_t unusable(float ox, float oy, float oz, float dx, float dy, float dz) {
   constexpr std::uint32_t exponent = 0x7f800000u, magnitude = 0x7fffffffu;
   const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
-  const bool finite = ((bits(ox) & exponent) != exponent) & ((bits(oy) & exponent) != exponent) &
-                      ((bits(oz) & exponent) != exponent) & ((bits(dx) & exponent) != exponent) &
-                      ((bits(dy) & exponent) != exponent) & ((bits(dz) & exponent) != exponent);
-  return finite & (((bits(dx) | bits(dy) | bits(dz)) & magnitude) != 0);
+  const auto not_finite = [&](float x) { return std::uint32_t((bits(x) & exponent) == exponent); };
+  return not_finite(ox) | not_finite(oy) | not_finite(oz) | not_finite(dx) | not_finite(dy) | not_finite(dz) |
+         std::uint32_t(((bits(dx) | bits(dy) | bits(dz)) & magnitude) == 0);
 }
 
 // Writes the columns by index, then checks the batch in one pass over them
@@ -58,12 +57,12 @@ void read_batch(const RayArrays& arrays, std::size_t first, std::size_t last, co
     dy[i] = static_cast<float>(d[3 * i + 1]);
     dz[i] = static_cast<float>(d[3 * i + 2]);
   }
-  bool all_usable = true;
-  for (std::size_t i = 0; i < n; ++i) all_usable &= usable(ox[i], oy[i], oz[i], dx[i], dy[i], dz[i]);
-  if (!all_usable) {
+  std::uint32_t any_unusable = 0;
+  for (std::size_t i = 0; i < n; ++i) any_unusable |= unusable(ox[i], oy[i], oz[i], dx[i], dy[i], dz[i]);
+  if (any_unusable != 0) {
     std::size_t bad = n;
     for (std::size_t i = 0; i < n; ++i) {
-      if (usable(ox[i], oy[i], oz[i], dx[i], dy[i], dz[i])) continue;
+      if (unusable(ox[i], oy[i], oz[i], dx[i], dy[i], dz[i]) == 0) continue;
       bad = std::min(bad, i);
       rays.set(i, {{0.f, 0.f, 0.f}, {1.f, 0.f, 0.f}, 0.f, 0.f});
     }
