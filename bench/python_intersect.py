@@ -9,7 +9,9 @@ import time: the figures of docs/PYTHON.md, measured in one run.
   whole call (checking the arrays, reading them into ray batches, the
   queries, writing the six output arrays, allocating them), median over the
   same number of passes. The two alternate --rounds times in this process
-  (trace as a subprocess), and the hits and t sums must agree.
+  (trace as a subprocess), and the hits and t sums must agree; the ratio
+  reported is the median of the rounds' ratios (each pair ran back to back,
+  so a busy machine slows both alike), with the lowest and highest.
   Import: `import quiver` in a fresh interpreter, timed inside it
   (time.perf_counter around the import), median of --imports runs; also
   `import numpy` alone and both together, numpy being what any use of the
@@ -92,8 +94,9 @@ def main():
     tr, pr = statistics.median(trace_rates), statistics.median(python_rates)
     print("| `quiver trace` Mrays/s (median of %d rounds) | %.1f |" % (args.rounds, tr))
     print("| `scene.intersect` Mrays/s (median of %d rounds) | %.1f |" % (args.rounds, pr))
-    print("| intersect / trace | %.2f |" % (pr / tr))
-    print("| per round, intersect / trace | %s |" % ", ".join("%.2f" % (p / t) for p, t in zip(python_rates, trace_rates)))
+    ratios = sorted(p / t for p, t in zip(python_rates, trace_rates))
+    print("| intersect / trace, median of the rounds' ratios | %.2f (%.2f to %.2f) |" % (
+        statistics.median(ratios), ratios[0], ratios[-1]))
     print("| `import quiver` (median of %d) | %.1f ms |" % (args.imports, module * 1e3))
     print("| `import numpy` alone | %.1f ms |" % (numpy_alone * 1e3))
     print("| `import numpy, quiver` | %.1f ms |" % (both * 1e3))

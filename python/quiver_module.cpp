@@ -22,6 +22,7 @@
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
 #include "python/camera_rays.h"
+#include "python/output_buffers.h"
 #include "python/python_scene.h"
 #include "python/ray_queries.h"
 #include "python/scene_arrays.h"
@@ -111,11 +112,23 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);
+  // One kept buffer (python/output_buffers.h) holds the six columns; each
+  // array holds the capsule that gives it back when the last one is freed.
   const auto n = py::ssize_t(rays.count);
-  py::array_t<float> t(n), u(n), v(n), normal({n, py::ssize_t(3)});
-  py::array_t<std::int32_t> primitive(n), kind(n);
-  const HitColumns out{t.mutable_data(), primitive.mutable_data(), kind.mutable_data(),
-                       u.mutable_data(), v.mutable_data(),         normal.mutable_data()};
+  const std::size_t count = rays.count;
+  static_assert(sizeof(float) == sizeof(std::int32_t));
+  auto* buffer = new OutputBuffer(acquire_output_buffer(8 * count * sizeof(float)));
+  const py::capsule owner(buffer, [](void* p) {
+    auto* kept = static_cast<OutputBuffer*>(p);
+    release_output_buffer(*kept);
+    delete kept;
+  });
+  auto* floats = static_cast<float*>(buffer->data);
+  auto* ints = reinterpret_cast<std::int32_t*>(floats + 6 * count);
+  py::array_t<float> t({n}, floats, owner), u({n}, floats + count, owner), v({n}, floats + 2 * count, owner);
+  py::array_t<float> normal({n, py::ssize_t(3)}, floats + 3 * count, owner);
+  py::array_t<std::int32_t> primitive({n}, ints, owner), kind({n}, ints + count, owner);
+  const HitColumns out{floats, ints, ints + count, floats + count, floats + 2 * count, floats + 3 * count};
   {
     py::gil_scoped_release release;
     intersect_rays(scene, rays, interval, query, out);
@@ -131,7 +144,7 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
 }
 
 py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions,
-                           double tmin, double tmax, int threads, const std::optional<std::string>& simd) {
+                                  double tmin, double tmax, int threads, const std::optional<std::string>& simd) {
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);

@@ -148,3 +148,20 @@ def test_python_threads_may_query_one_scene_at_once():
         assert len(per_thread) == 20
         for t in per_thread:
             np.testing.assert_array_equal(t, reference)
+
+
+def test_results_kept_alive_are_not_reused_by_later_calls():
+    # The six arrays share one buffer that is reused only once all are freed
+    # (python/output_buffers.h): keeping one of them keeps its values.
+    scene = quiver.load(TINY)
+    rays = quiver.camera_rays(scene, width=64, height=48)
+    o, d = rays["origins"], rays["directions"]
+    first = scene.intersect(o, d)
+    kept_t, kept_normal = first["t"], first["normal"]
+    expected_t, expected_normal = kept_t.copy(), kept_normal.copy()
+    del first
+    for _ in range(5):
+        scene.intersect(o[::-1].copy(), d[::-1].copy())  # other values, same size
+    np.testing.assert_array_equal(kept_t, expected_t)
+    np.testing.assert_array_equal(kept_normal, expected_normal)
+    assert not kept_t.flags["OWNDATA"] and kept_t.base is not None
