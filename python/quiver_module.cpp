@@ -198,13 +198,17 @@ SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object
   return std::make_shared<PythonScene>(make_python_scene("<arrays>", std::move(desc)));
 }
 
-// A camera flag's "x,y,z" text from a string as given or a sequence of three numbers.
-std::optional<std::string> vector_flag(const py::object& value) {
+// A camera flag's "x,y,z" text from a string as given or a sequence of
+// numbers (each written as Python's repr, which reads back to the same double).
+std::optional<std::string> vector_flag(const py::object& value, const char* name) {
   if (value.is_none()) return std::nullopt;
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  const py::sequence items = value.cast<py::sequence>();
+  if (!py::isinstance<py::sequence>(value)) {
+    throw std::invalid_argument(std::string(name) + ": expected \"x,y,z\" or three numbers, found " +
+                                std::string(py::repr(value)));
+  }
   std::string text;
-  for (const py::handle item : items) {
+  for (const py::handle item : value.cast<py::sequence>()) {
     if (!text.empty()) text += ",";
     text += std::string(py::repr(py::float_(py::reinterpret_borrow<py::object>(item))));
   }
@@ -213,7 +217,7 @@ std::optional<std::string> vector_flag(const py::object& value) {
 
 CameraFlags camera_flags(const py::object& look_from, const py::object& look_at, const py::object& up,
                          const std::optional<double>& fov) {
-  CameraFlags flags{vector_flag(look_from), vector_flag(look_at), vector_flag(up), fov};
+  CameraFlags flags{vector_flag(look_from, "look_from"), vector_flag(look_at, "look_at"), vector_flag(up, "up"), fov};
   check_camera_flags(flags);
   return flags;
 }

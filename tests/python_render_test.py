@@ -90,6 +90,12 @@ def test_render_from_arrays_frames_them_with_the_default_view():
     assert seen == {-1, 0, 1}  # both spheres and the background in view
     lit = image[aovs["id"] >= 0].max(axis=1)
     assert (lit > 0).all()  # the default light reaches every visible point's ambient at least
+    # Camera flags as sequences of numbers read as the CLI's "x,y,z" text.
+    as_text = quiver.render(scene, width=16, height=12, look_from="1,2,8", up="0,1,0")
+    as_numbers = quiver.render(scene, width=16, height=12, look_from=(1, 2, 8), up=[0.0, 1.0, 0.0])
+    np.testing.assert_array_equal(as_text, as_numbers)
+    with pytest.raises(ValueError, match="look_from: expected"):
+        quiver.render(scene, look_from=5)
 
 
 def test_render_options_are_checked_as_the_cli_flags():
