@@ -32,6 +32,7 @@
 #include "app/progress_bar.h"
 #include "app/render_job.h"
 #include "app/render_options.h"
+#include "app/scene_build.h"
 #include "app/scene_info.h"
 #include "app/stats_json.h"
 #include "app/trace_command.h"
@@ -169,9 +170,7 @@ int run_trace(const TraceArgs& args) {
     quiver::SceneDesc desc =
         quiver::load_scene_timed(args.scene, {args.options.crease_angle, args.options.strict}, load_ms);
     quiver::print_scene_warnings(desc);
-    const auto [width, height] = quiver::trace_image_size(args.options, desc.camera);
-    if (!desc.camera) quiver::add_default_view(desc, width, height);
-    quiver::apply_camera_flags(args.options.camera, *desc.camera);
+    const auto [width, height] = quiver::set_trace_view(args.options, desc);
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, args.scene, build_ms);
     const quiver::PrimaryTraceResult result =

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/scene_build.h"
 #include "app/stats_json.h"
 #include "io/image_output.h"
 #include "io/scene_loader.h"
@@ -75,13 +76,9 @@ void print_scene_warnings(const SceneDesc& desc) {
 Scene build_scene_timed(const SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
                         double& build_ms) {
   const Clock::time_point start = Clock::now();
-  try {
-    Scene built = build_scene(desc, options);
-    build_ms = ms_since(start);
-    return built;
-  } catch (const std::invalid_argument& error) {
-    throw std::runtime_error((scene.empty() ? std::string("the built-in scene") : scene) + ": " + error.what());
-  }
+  Scene built = build_named_scene(desc, options, scene);
+  build_ms = ms_since(start);
+  return built;
 }
 
 PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked) {
@@ -90,8 +87,7 @@ PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& c
   p.inputs = files_read(p.desc, !args.scene.empty());
   check_outputs_spare_inputs(checked.outputs, p.inputs);
   p.plan = plan_render(args.options, p.desc, checked.isa);
-  if (!p.desc.camera) add_default_view(p.desc, p.plan.settings.width, p.plan.settings.height);
-  apply_camera_flags(args.options.camera, *p.desc.camera);
+  set_view(p.desc, args.options.camera, p.plan.settings.width, p.plan.settings.height);
   p.scene = build_scene_timed(p.desc, p.plan.build, args.scene, p.build_ms);
   return p;
 }

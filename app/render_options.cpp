@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "geometry/vertex_normals.h"
+#include "scene/auto_view.h"
 #include "scene/camera_frame.h"
 
 namespace quiver {
@@ -72,6 +73,10 @@ std::uint64_t parse_seed(std::string_view text) {
     throw UsageError("--seed: expected an integer in [0, 18446744073709551615], found " + quoted(text));
   }
   return seed;
+}
+
+void check_preset(std::string_view name) {
+  if (name != "spd") throw UsageError("--preset: expected spd, found '" + std::string(name) + "'");
 }
 
 AovSelection parse_aov_list(std::string_view list) {
@@ -180,6 +185,11 @@ void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera) {
   } catch (const std::invalid_argument& error) {
     throw UsageError(std::string("--look-from, --look-at, --up: ") + error.what());
   }
+}
+
+void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height) {
+  if (!desc.camera) add_default_view(desc, width, height);
+  apply_camera_flags(flags, *desc.camera);
 }
 
 std::pair<int, int> image_size(const RenderOptions& options, const std::optional<CameraDesc>& camera) {

@@ -75,6 +75,9 @@ bool parse_texture_filter(std::string_view name);
 // A decimal unsigned 64-bit integer (no sign, no spaces); throws UsageError.
 std::uint64_t parse_seed(std::string_view text);
 
+// --preset NAME: spd is the one preset; anything else throws UsageError.
+void check_preset(std::string_view name);
+
 // "depth,normal,id" in any order, each at most once, no empty items.
 AovSelection parse_aov_list(std::string_view list);
 
@@ -98,6 +101,11 @@ void check_camera_flags(const CameraFlags& flags);
 // The camera flags over the camera; throws UsageError when the result has
 // no view direction (from = at, or up along it).
 void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera);
+
+// The view a command renders or traces desc with: the default view of width
+// x height (scene/auto_view.h) when desc has no camera, then the camera
+// flags over its camera (apply_camera_flags).
+void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height);
 
 // The image size: both flags as given; one flag and the other side from the
 // camera's aspect (rounded, at least 1); neither: the camera's resolution,

@@ -5,10 +5,9 @@
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "integrator/scene_intersector.h"
+#include "integrator/ray_batches.h"
 #include "integrator/thread_arena.h"
 
 namespace quiver {
@@ -46,6 +45,12 @@ std::pair<int, int> trace_image_size(const TraceOptions& options, const std::opt
   return {width, height};
 }
 
+std::pair<int, int> set_trace_view(const TraceOptions& options, SceneDesc& desc) {
+  const auto [width, height] = trace_image_size(options, desc.camera);
+  set_view(desc, options.camera, width, height);
+  return {width, height};
+}
+
 void tile_primary_rays(const Camera& camera, const PixelTile& tile, RaySoA& rays) {
   rays.clear();
   for_each_pixel_in_groups(tile.x0, tile.y0, tile.x0 + tile.width, tile.y0 + tile.height,
@@ -79,31 +84,21 @@ PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa 
   });
 
   const SceneIntersector intersector(kernel_unit_for(isa));
-  tbb::enumerable_thread_specific<HitSoA> thread_hits;
   for (int r = 0; r < repeat; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    arena.execute([&] {
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
-          [&](const tbb::blocked_range<std::size_t>& range) {
-            HitSoA& hits = thread_hits.local();
-            for (std::size_t t = range.begin(); t != range.end(); ++t) {
-              const RaySoA& rays = tile_rays[t];
-              hits.reset(rays);
-              intersector.closest(scene, rays, hits);
-              std::uint64_t count = 0;
-              double sum = 0.0;
-              for (std::size_t i = 0; i < rays.count; ++i) {
-                if (hits.id[i] == kNoHit) continue;
-                ++count;
-                sum += double(hits.t[i]);
-              }
-              tile_hits[t] = count;
-              tile_t_sum[t] = sum;
-            }
-          },
-          tbb::simple_partitioner());
-    });
+    query_batches<HitSoA>(
+        arena, intersector, scene, tiles.size(), [&](std::size_t t) -> const RaySoA& { return tile_rays[t]; },
+        [&](std::size_t t, const RaySoA& rays, const HitSoA& hits) {
+          std::uint64_t count = 0;
+          double sum = 0.0;
+          for (std::size_t i = 0; i < rays.count; ++i) {
+            if (hits.id[i] == kNoHit) continue;
+            ++count;
+            sum += double(hits.t[i]);
+          }
+          tile_hits[t] = count;
+          tile_t_sum[t] = sum;
+        });
     result.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   for (std::size_t t = 0; t < tiles.size(); ++t) {

@@ -49,6 +49,10 @@ void check_trace_options(const TraceOptions& options);
 // kMaxTracePixels; throws UsageError.
 std::pair<int, int> trace_image_size(const TraceOptions& options, const std::optional<CameraDesc>& camera);
 
+// desc's view for `quiver trace`: the image size (trace_image_size), then
+// set_view (app/render_options.h) of that size; returns the size.
+std::pair<int, int> set_trace_view(const TraceOptions& options, SceneDesc& desc);
+
 // The pixel-centre rays of one tile into rays (cleared, then padded), in
 // groups of 4x2 pixels (row-major inside a group, groups row-major), so each
 // 8 consecutive rays of a whole group form one compact 8-wide packet.

@@ -1,7 +1,7 @@
 # Fails when a source in a layer folder includes a header from a higher
-# layer. The order, lowest first, is CMakeLists.txt's QUIVER_LAYERS (simd,
-# geometry, scene, integrator, io, app): a folder includes only its own and
-# lower folders. Arguments: SOURCE_DIR, LAYERS (a list).
+# layer. The order, lowest first, is CMakeLists.txt's QUIVER_FOLDER_LAYERS
+# (simd, geometry, scene, integrator, io, app, python): a folder includes
+# only its own and lower folders. Arguments: SOURCE_DIR, LAYERS (a list).
 set(violations "")
 set(checked 0)
 list(LENGTH LAYERS layer_count)

@@ -1,0 +1,345 @@
+// The `quiver` Python module (pybind11): NumPy arrays in and out, checked
+// here, then handed to the C++ of this folder with the GIL released. Its
+// API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
+// ValueError) for bad scene files, with the CLI's file:line:column text;
+// quiver.UsageError (a ValueError) for bad options, naming the CLI flag;
+// ValueError for bad arrays or values; RuntimeError for other failures.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/render_options.h"
+#include "app/trace_command.h"
+#include "io/parse_error.h"
+#include "io/scene_loader.h"
+#include "python/camera_rays.h"
+#include "python/output_buffers.h"
+#include "python/python_scene.h"
+#include "python/ray_queries.h"
+#include "python/scene_arrays.h"
+#include "python/scene_render.h"
+
+namespace py = pybind11;
+
+namespace quiver {
+namespace {
+
+using SceneHandle = std::shared_ptr<PythonScene>;
+
+// The array's dimensions, or a ValueError naming it.
+py::array as_array(const py::handle& object, const char* name) {
+  if (!py::isinstance<py::array>(object)) {
+    throw std::invalid_argument(std::string(name) + ": expected a numpy.ndarray, found " +
+                                std::string(py::str(py::type::of(object).attr("__name__"))));
+  }
+  return py::reinterpret_borrow<py::array>(object);
+}
+
+std::string shape_text(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t d = 0; d < array.ndim(); ++d) {
+    text += (d ? ", " : "") + std::to_string(array.shape(d));
+  }
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+// A C-contiguous (rows, columns) array of float32 or float64 (rows >= 1
+// unless allow_empty), else a ValueError saying what was wrong.
+std::pair<py::array, ArrayFloat> float_rows(const py::handle& object, const char* name, py::ssize_t columns,
+                                            bool allow_empty) {
+  py::array array = as_array(object, name);
+  ArrayFloat type;
+  if (py::isinstance<py::array_t<float>>(array)) {
+    type = ArrayFloat::float32;
+  } else if (py::isinstance<py::array_t<double>>(array)) {
+    type = ArrayFloat::float64;
+  } else {
+    throw std::invalid_argument(std::string(name) + ": expected dtype float32 or float64 (native byte order), found " +
+                                std::string(py::str(array.dtype())));
+  }
+  if (array.ndim() != 2 || array.shape(1) != columns) {
+    throw std::invalid_argument(std::string(name) + ": expected shape (N, " + std::to_string(columns) + "), found " +
+                                shape_text(array));
+  }
+  if (!allow_empty && array.shape(0) == 0) {
+    throw std::invalid_argument(std::string(name) + ": expected at least one row, found shape " + shape_text(array));
+  }
+  if (!(array.flags() & py::array::c_style)) {
+    throw std::invalid_argument(std::string(name) +
+                                ": expected a C-contiguous array (numpy.ascontiguousarray makes one), found strides " +
+                                std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
+                                    array.strides(), array.strides() + array.ndim()))))));
+  }
+  return {std::move(array), type};
+}
+
+RayArrays ray_arrays(const py::handle& origins_object, const py::handle& directions_object) {
+  const auto [origins, origin_type] = float_rows(origins_object, "origins", 3, false);
+  const auto [directions, direction_type] = float_rows(directions_object, "directions", 3, false);
+  if (origins.shape(0) != directions.shape(0)) {
+    throw std::invalid_argument("origins and directions: expected the same number of rays, found shapes " +
+                                shape_text(origins) + " and " + shape_text(directions));
+  }
+  if (origin_type != direction_type) {
+    throw std::invalid_argument("origins and directions: expected one dtype for both, found " +
+                                std::string(py::str(origins.dtype())) + " and " +
+                                std::string(py::str(directions.dtype())));
+  }
+  // The arrays stay alive: the caller's arguments hold them.
+  return {origins.data(), directions.data(), std::size_t(origins.shape(0)), origin_type};
+}
+
+// intersect's and occluded's threads and simd arguments, checked as the CLI's --threads and --simd.
+QueryThreads query_threads(int threads, const std::optional<std::string>& simd) {
+  RenderOptions options;
+  options.threads = threads;
+  options.simd = simd;
+  check_render_options(options);
+  return {threads, choose_isa(simd, std::getenv("QUIVER_SIMD"))};
+}
+
+py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions, double tmin,
+                   double tmax, int threads, const std::optional<std::string>& simd) {
+  const RayArrays rays = ray_arrays(origins, directions);
+  const RayInterval interval = checked_interval(tmin, tmax);
+  const QueryThreads query = query_threads(threads, simd);
+  // One kept buffer (python/output_buffers.h) holds the six columns; each
+  // array holds the capsule that gives it back when the last one is freed.
+  const auto n = py::ssize_t(rays.count);
+  const std::size_t count = rays.count;
+  static_assert(sizeof(float) == sizeof(std::int32_t));
+  auto* buffer = new OutputBuffer(acquire_output_buffer(8 * count * sizeof(float)));
+  const py::capsule owner(buffer, [](void* p) {
+    auto* kept = static_cast<OutputBuffer*>(p);
+    release_output_buffer(*kept);
+    delete kept;
+  });
+  auto* floats = static_cast<float*>(buffer->data);
+  auto* ints = reinterpret_cast<std::int32_t*>(floats + 6 * count);
+  py::array_t<float> t({n}, floats, owner), u({n}, floats + count, owner), v({n}, floats + 2 * count, owner);
+  py::array_t<float> normal({n, py::ssize_t(3)}, floats + 3 * count, owner);
+  py::array_t<std::int32_t> primitive({n}, ints, owner), kind({n}, ints + count, owner);
+  const HitColumns out{floats, ints, ints + count, floats + count, floats + 2 * count, floats + 3 * count};
+  {
+    py::gil_scoped_release release;
+    intersect_rays(scene, rays, interval, query, out);
+  }
+  py::dict result;
+  result["t"] = t;
+  result["primitive"] = primitive;
+  result["kind"] = kind;
+  result["u"] = u;
+  result["v"] = v;
+  result["normal"] = normal;
+  return result;
+}
+
+py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions,
+                                  double tmin, double tmax, int threads, const std::optional<std::string>& simd) {
+  const RayArrays rays = ray_arrays(origins, directions);
+  const RayInterval interval = checked_interval(tmin, tmax);
+  const QueryThreads query = query_threads(threads, simd);
+  py::array_t<bool> blocked(py::ssize_t(rays.count));
+  static_assert(sizeof(bool) == sizeof(std::uint8_t));
+  auto* out = reinterpret_cast<std::uint8_t*>(blocked.mutable_data());
+  {
+    py::gil_scoped_release release;
+    occluded_rays(scene.built, rays, interval, query, out);
+  }
+  return blocked;
+}
+
+SceneHandle load_file(const std::string& path, const std::optional<double>& crease_angle) {
+  check_crease_angle(crease_angle);
+  py::gil_scoped_release release;
+  return std::make_shared<PythonScene>(make_python_scene(path, load_scene(path, {crease_angle})));
+}
+
+SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object& vertices, const py::object& triangles) {
+  std::optional<FloatRows> sphere_rows, vertex_rows;
+  std::optional<IndexRows> triangle_rows;
+  py::array keep_spheres, keep_vertices, keep_triangles;
+  if (!spheres.is_none()) {
+    auto [array, type] = float_rows(spheres, "spheres", 4, true);
+    sphere_rows = FloatRows{array.data(), std::size_t(array.shape(0)), 4, type};
+    keep_spheres = std::move(array);
+  }
+  if (!vertices.is_none()) {
+    auto [array, type] = float_rows(vertices, "vertices", 3, true);
+    vertex_rows = FloatRows{array.data(), std::size_t(array.shape(0)), 3, type};
+    keep_vertices = std::move(array);
+  }
+  if (!triangles.is_none()) {
+    keep_triangles = as_array(triangles, "triangles");
+    const bool int64 = py::isinstance<py::array_t<std::int64_t>>(keep_triangles);
+    if (!int64 && !py::isinstance<py::array_t<std::int32_t>>(keep_triangles)) {
+      throw std::invalid_argument("triangles: expected dtype int32 or int64 (native byte order), found " +
+                                  std::string(py::str(keep_triangles.dtype())));
+    }
+    if (keep_triangles.ndim() != 2 || keep_triangles.shape(1) != 3) {
+      throw std::invalid_argument("triangles: expected shape (F, 3), found " + shape_text(keep_triangles));
+    }
+    if (!(keep_triangles.flags() & py::array::c_style)) {
+      throw std::invalid_argument("triangles: expected a C-contiguous array (numpy.ascontiguousarray makes one)");
+    }
+    triangle_rows = IndexRows{keep_triangles.data(), std::size_t(keep_triangles.shape(0)), int64};
+  }
+  SceneDesc desc = scene_from_arrays(sphere_rows, vertex_rows, triangle_rows);
+  py::gil_scoped_release release;
+  return std::make_shared<PythonScene>(make_python_scene("<arrays>", std::move(desc)));
+}
+
+// A camera flag's "x,y,z" text from a string as given or a sequence of
+// numbers (each written as Python's repr, which reads back to the same double).
+std::optional<std::string> vector_flag(const py::object& value, const char* name) {
+  if (value.is_none()) return std::nullopt;
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (!py::isinstance<py::sequence>(value)) {
+    throw std::invalid_argument(std::string(name) + ": expected \"x,y,z\" or three numbers, found " +
+                                std::string(py::repr(value)));
+  }
+  std::string text;
+  for (const py::handle item : value.cast<py::sequence>()) {
+    if (!text.empty()) text += ",";
+    text += std::string(py::repr(py::float_(py::reinterpret_borrow<py::object>(item))));
+  }
+  return text;
+}
+
+CameraFlags camera_flags(const py::object& look_from, const py::object& look_at, const py::object& up,
+                         const std::optional<double>& fov) {
+  CameraFlags flags{vector_flag(look_from, "look_from"), vector_flag(look_at, "look_at"), vector_flag(up, "up"), fov};
+  check_camera_flags(flags);
+  return flags;
+}
+
+// Gives the array ownership of the vector's storage (no copy).
+template <class T>
+py::array_t<T> owning_array(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owned->data(), owner);
+}
+
+py::object render_arrays(const PythonScene& scene, std::optional<int> width, std::optional<int> height,
+                  std::optional<std::string> aa, std::optional<int> max_depth, std::optional<double> min_weight,
+                  int threads, std::optional<std::string> simd, const py::int_& seed, std::optional<std::string> aov,
+                  std::optional<std::string> preset, bool two_sided, bool robust_methods, const py::object& look_from,
+                  const py::object& look_at, const py::object& up, std::optional<double> fov,
+                  std::optional<std::string> texture_filter) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.aa = std::move(aa);
+  options.max_depth = max_depth;
+  options.min_weight = min_weight;
+  options.threads = threads;
+  options.simd = std::move(simd);
+  options.seed = parse_seed(seed.attr("__str__")().cast<std::string>());
+  options.aov = std::move(aov);
+  if (preset) check_preset(*preset);
+  options.preset_spd = preset.has_value();
+  options.two_sided = two_sided;
+  options.robust_methods = robust_methods;
+  options.texture_filter = std::move(texture_filter);
+  options.camera = camera_flags(look_from, look_at, up, fov);
+  Framebuffer image;
+  {
+    py::gil_scoped_release release;
+    image = render_python_scene(scene, options);
+  }
+  const auto h = py::ssize_t(image.height), w = py::ssize_t(image.width);
+  py::array_t<float> rgb = owning_array(std::move(image.rgb), {h, w, 3});
+  if (!options.aov) return rgb;
+  py::dict aovs;
+  if (!image.depth.empty()) aovs["depth"] = owning_array(std::move(image.depth), {h, w});
+  if (!image.normal.empty()) aovs["normal"] = owning_array(std::move(image.normal), {h, w, 3});
+  if (!image.kind.empty()) aovs["kind"] = owning_array(std::move(image.kind), {h, w});
+  if (!image.id.empty()) aovs["id"] = owning_array(std::move(image.id), {h, w});
+  return py::make_tuple(rgb, aovs);
+}
+
+py::dict camera_ray_arrays(const PythonScene& scene, std::optional<int> width, std::optional<int> height,
+                     const py::object& look_from, const py::object& look_at, const py::object& up,
+                     std::optional<double> fov) {
+  TraceOptions options;
+  options.width = width;
+  options.height = height;
+  options.camera = camera_flags(look_from, look_at, up, fov);
+  const CameraRayPlan plan = plan_camera_rays(scene.desc, options);
+  const auto n = py::ssize_t(plan.ray_count());
+  py::array_t<float> origins({n, py::ssize_t(3)}), directions({n, py::ssize_t(3)});
+  py::array_t<std::int32_t> pixels({n, py::ssize_t(2)});
+  py::array_t<std::int64_t> tile_starts(py::ssize_t(plan.tiles.size() + 1));
+  fill_camera_rays(plan, origins.mutable_data(), directions.mutable_data(), pixels.mutable_data(),
+                   tile_starts.mutable_data());
+  py::dict result;
+  result["origins"] = origins;
+  result["directions"] = directions;
+  result["pixels"] = pixels;
+  result["tile_starts"] = tile_starts;
+  result["width"] = plan.width;
+  result["height"] = plan.height;
+  return result;
+}
+
+}  // namespace
+}  // namespace quiver
+
+PYBIND11_MODULE(quiver, m) {
+  using namespace quiver;
+  using py::arg;
+  m.doc() = "quiver: SIMD packet ray tracing from NumPy (docs/PYTHON.md)";
+  m.attr("__version__") = QUIVER_VERSION;
+  py::register_exception<ParseError>(m, "ParseError", PyExc_ValueError);
+  py::register_exception<UsageError>(m, "UsageError", PyExc_ValueError);
+  m.attr("KINDS") = py::make_tuple("sphere", "plane", "triangle", "polygon", "cone");
+
+  py::class_<PythonScene, SceneHandle>(m, "Scene", "A scene built for queries and renders (quiver.load, quiver.from_arrays)")
+      .def_property_readonly("name", [](const PythonScene& s) { return s.name; })
+      .def_property_readonly("primitive_count", [](const PythonScene& s) { return s.built.primitive_count(); },
+                             "Primitives as built (degenerate ones dropped)")
+      .def_property_readonly("bounds",
+                             [](const PythonScene& s) {
+                               const Vec3<float>& lo = s.built.bounds_min;
+                               const Vec3<float>& hi = s.built.bounds_max;
+                               return py::make_tuple(py::make_tuple(lo.x, lo.y, lo.z), py::make_tuple(hi.x, hi.y, hi.z));
+                             },
+                             "((xmin, ymin, zmin), (xmax, ymax, zmax)) of the bounded primitives")
+      .def("__repr__",
+           [](const PythonScene& s) {
+             return "<quiver.Scene " + s.name + ": " + std::to_string(s.built.primitive_count()) + " primitives>";
+           })
+      .def("intersect", &intersect_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
+           arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
+           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, u, v, normal")
+      .def("occluded", &occluded_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
+           arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
+           "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");
+
+  m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(),
+        "Reads a scene file (.nff, .toml, .obj) and builds it");
+  m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
+        arg("triangles") = py::none(),
+        "A scene of spheres (N, 4: centre, radius) and triangles (vertices (V, 3), indices (F, 3))");
+  m.def("render", &render_arrays, arg("scene"), py::kw_only(), arg("width") = py::none(), arg("height") = py::none(),
+        arg("aa") = py::none(), arg("max_depth") = py::none(), arg("min_weight") = py::none(), arg("threads") = 0,
+        arg("simd") = py::none(), arg("seed") = 0, arg("aov") = py::none(), arg("preset") = py::none(),
+        arg("two_sided") = false, arg("robust_methods") = false, arg("look_from") = py::none(),
+        arg("look_at") = py::none(), arg("up") = py::none(), arg("fov") = py::none(),
+        arg("texture_filter") = py::none(),
+        "Renders as `quiver render`: an (H, W, 3) float32 linear image; with aov, (image, dict of AOV arrays)");
+  m.def("camera_rays", &camera_ray_arrays, arg("scene"), py::kw_only(), arg("width") = py::none(),
+        arg("height") = py::none(), arg("look_from") = py::none(), arg("look_at") = py::none(),
+        arg("up") = py::none(), arg("fov") = py::none(),
+        "The primary rays of `quiver trace` in its order: origins, directions, pixels, tile_starts");
+}

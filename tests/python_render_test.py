@@ -1,0 +1,115 @@
+"""quiver.render (python/scene_render.h): the image and AOVs `quiver render`
+writes to an EXR, bit for bit, for the same options. OpenImageIO's idiff
+reads both: the CLI's EXR, and the returned arrays written here as PFM
+(the portable float map: a text header, then little-endian float32 rows
+bottom to top), with a zero threshold: one differing ULP fails."""
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+import pytest
+
+import quiver
+from support.python_support import TINY, run_cli, shared_file, tool
+
+# A scene with checker and image textures (filtered unless texture_filter="none").
+TEXTURED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "io", "examples", "textures.toml")
+
+
+def write_pfm(path, image):
+    """An (H, W, 3) or (H, W) float32 array as PFM."""
+    image = np.asarray(image, dtype=np.float32)
+    colour = image.ndim == 3
+    height, width = image.shape[:2]
+    with open(path, "wb") as f:
+        f.write(b"PF\n" if colour else b"Pf\n")
+        f.write(b"%d %d\n-1.0\n" % (width, height))
+        f.write(np.ascontiguousarray(image[::-1]).astype("<f4").tobytes())
+
+
+def same_pixels(expected_exr, actual, folder, name, channels=None):
+    """idiff of the CLI's EXR (optionally some channels of it) and the array."""
+    idiff = tool("idiff")
+    if channels:
+        part = os.path.join(folder, name + ".exr")
+        subprocess.run([tool("oiiotool"), expected_exr, "--ch", channels, "-o", part], check=True,
+                       capture_output=True)
+        expected_exr = part
+    pfm = os.path.join(folder, name + ".pfm")
+    write_pfm(pfm, actual)
+    done = subprocess.run([idiff, "-fail", "0", "-warn", "0", expected_exr, pfm], capture_output=True, text=True)
+    assert done.returncode == 0 and "PASS" in done.stdout, name + ":\n" + done.stdout + done.stderr
+
+
+def cli_flags(options):
+    flags = []
+    for key, value in options.items():
+        flags += ["--" + key.replace("_", "-"), str(value)]
+    return flags
+
+
+CASES = [
+    (TINY, {"width": 40, "height": 30, "aa": "grid:2", "max_depth": 3}),
+    (TINY, {"width": 33, "height": 17, "aa": "jitter:2", "seed": 12345, "simd": "sse4", "threads": 1}),
+    (TINY, {"preset": "spd", "width": 24, "height": 24}),
+    (TINY, {"width": 32, "height": 24, "look_from": "3,2,5", "fov": 50, "aa": "refine:0.05:4"}),
+    (TEXTURED, {"width": 40, "height": 30, "aa": "grid:2"}),
+    (TEXTURED, {"width": 40, "height": 30, "texture_filter": "none"}),
+]
+
+
+@pytest.mark.parametrize("scene_file,options", CASES)
+def test_render_equals_the_cli_exr(scene_file, options):
+    with tempfile.TemporaryDirectory() as folder:
+        exr = os.path.join(folder, "cli.exr")
+        code, _, err = run_cli("render", scene_file, "-o", exr, "-q", "--aov", "depth,normal,id", *cli_flags(options))
+        assert code == 0, err
+        image, aovs = quiver.render(quiver.load(scene_file), aov="depth,normal,id", **options)
+        assert image.dtype == np.float32 and image.flags["C_CONTIGUOUS"]
+        assert image.shape[2] == 3 and sorted(aovs) == ["depth", "id", "kind", "normal"]
+        assert image.any()  # not an empty image compared with another
+        same_pixels(exr, image, folder, "rgb", "R,G,B")
+        same_pixels(exr, aovs["depth"], folder, "depth", "Z")
+        same_pixels(exr, aovs["normal"], folder, "normal", "N.X,N.Y,N.Z")
+        # kind and id: integers the EXR stores as floats (exact below 2^24).
+        same_pixels(exr, aovs["kind"].astype(np.float32), folder, "kind", "kind")
+        same_pixels(exr, aovs["id"].astype(np.float32), folder, "id", "id")
+
+
+def test_render_of_a_mesh_without_camera_equals_the_cli_exr():
+    bunny = shared_file("meshes", "stanford-bunny.obj")
+    with tempfile.TemporaryDirectory() as folder:
+        exr = os.path.join(folder, "cli.exr")
+        code, _, err = run_cli("render", bunny, "-o", exr, "-q", "--width", 48, "--height", 36)
+        assert code == 0, err
+        image = quiver.render(quiver.load(bunny), width=48, height=36)
+        same_pixels(exr, image, folder, "bunny")
+
+
+def test_render_from_arrays_frames_them_with_the_default_view():
+    scene = quiver.from_arrays(spheres=np.array([[0.0, 0.0, 0.0, 1.0], [2.5, 0.0, 0.0, 0.5]]))
+    image, aovs = quiver.render(scene, width=64, height=48, aov="id")
+    assert image.shape == (48, 64, 3)
+    seen = set(np.unique(aovs["id"]))
+    assert seen == {-1, 0, 1}  # both spheres and the background in view
+    lit = image[aovs["id"] >= 0].max(axis=1)
+    assert (lit > 0).all()  # the default light reaches every visible point's ambient at least
+    # Camera flags as sequences of numbers read as the CLI's "x,y,z" text.
+    as_text = quiver.render(scene, width=16, height=12, look_from="1,2,8", up="0,1,0")
+    as_numbers = quiver.render(scene, width=16, height=12, look_from=(1, 2, 8), up=[0.0, 1.0, 0.0])
+    np.testing.assert_array_equal(as_text, as_numbers)
+    with pytest.raises(ValueError, match="look_from: expected"):
+        quiver.render(scene, look_from=5)
+
+
+def test_render_options_are_checked_as_the_cli_flags():
+    scene = quiver.load(TINY)
+    bad = [{"aa": "grid:0"}, {"max_depth": 65}, {"min_weight": -1.0}, {"aov": "depth,depth"},
+           {"preset": "spd", "aa": "none"}, {"preset": "fast"}, {"fov": 180.0}, {"look_from": "0,1"},
+           {"seed": -1}, {"width": 70000}, {"texture_filter": "blur"}]
+    for options in bad:
+        with pytest.raises(quiver.UsageError) as error:
+            quiver.render(scene, **options)
+        _, _, err = run_cli("render", TINY, "-o", "unused.png", *cli_flags(options))
+        assert err.strip() == "quiver: " + str(error.value), options
