@@ -120,6 +120,7 @@ std::uint64_t render_fingerprint(const RenderSettings& settings, const SceneBuil
   h.add_value(settings.trace.min_weight);
   h.add_value(settings.trace.seed);
   h.add_value(settings.trace.spawn_every_ray);
+  h.add_value(settings.trace.filter_textures);
   h.add_value(settings.aov_depth);
   h.add_value(settings.aov_normal);
   h.add_value(settings.aov_id);

@@ -63,8 +63,8 @@ struct Worker {
 class TileRenderer {
  public:
   TileRenderer(const Camera& camera, const RenderSettings& settings, Framebuffer& image,
-               std::vector<Vec3<float>>* corners)
-      : camera_(camera), settings_(settings), image_(image), corners_(corners) {}
+               std::vector<Vec3<float>>* corners, bool differentials)
+      : camera_(camera), settings_(settings), image_(image), corners_(corners), differentials_(differentials) {}
 
   void render(const PixelTile& tile, Worker& w) const {
     switch (settings_.aa.mode) {
@@ -79,12 +79,12 @@ class TileRenderer {
   }
 
  private:
-  // The camera sample at film point (x, y); with texture filtering, its
-  // differentials over `spacing` pixels (the distance to the neighbouring
-  // samples: a pixel over the rays per side).
+  // The camera sample at film point (x, y); when rays carry differentials,
+  // its differentials over `spacing` pixels (the distance to the
+  // neighbouring samples: a pixel over the rays per side).
   CameraSample sample_at(double x, double y, double spacing) const {
     CameraSample sample{camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
-    if (settings_.trace.filter_textures) {
+    if (differentials_) {
       const Camera::DirectionDifferentials d = camera_.direction_differentials(x, y, spacing);
       sample.direction_dx = d.dx;
       sample.direction_dy = d.dy;
@@ -409,6 +409,7 @@ class TileRenderer {
   const RenderSettings& settings_;
   Framebuffer& image_;
   std::vector<Vec3<float>>* corners_;  // corners mode: (W + 1) x (H + 1) colours
+  bool differentials_;                 // rays_carry_differentials (tracer.h)
 };
 
 // The SPD rule, part two: each pixel the mean of its four corners.
@@ -524,7 +525,8 @@ Film FrameRenderer::make_film() const {
 std::size_t FrameRenderer::render_tiles(Film& film, const TileSource& next, const TileDone& done,
                                         const std::atomic<bool>* stop) {
   State& s = *state_;
-  const TileRenderer tile_renderer(s.camera, s.settings, film.image, &film.corners);
+  const TileRenderer tile_renderer(s.camera, s.settings, film.image, &film.corners,
+                                   rays_carry_differentials(s.scene, s.settings.trace));
   std::atomic<std::size_t> rendered{0};
   s.arena.execute([&] {
     // Each iteration renders at most one tile, whichever next() gives.

@@ -132,7 +132,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
         const auto a = tri.uv(i, 0), b = tri.uv(i, 1), c = tri.uv(i, 2);
         s.u = w0 * a[0] + hit.u * b[0] + hit.v * c[0];
         s.v = w0 * a[1] + hit.u * b[1] + hit.v * c[1];
-        for (int k = 0; k < 2; ++k) {
+        for (int k = 0; k < 2 && footprint != nullptr; ++k) {
           du[k] = float(db1[k] * (double(b[0]) - a[0]) + db2[k] * (double(c[0]) - a[0]));
           dv[k] = float(db1[k] * (double(b[1]) - a[1]) + db2[k] * (double(c[1]) - a[1]));
         }
@@ -145,7 +145,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
           s.interpolated = normalize(n);
           // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
           const float length = std::sqrt(dot(n, n));
-          for (int a = 0; a < 2; ++a) {
+          for (int a = 0; a < 2 && footprint != nullptr; ++a) {
             const Vec3<float> change = (n1 - n0) * float(db1[a]) + (n2 - n0) * float(db2[a]);
             *dn[a] = (change - s.interpolated * dot(s.interpolated, change)) / length;
           }

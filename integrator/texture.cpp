@@ -1,21 +1,16 @@
 // Texture evaluation: checker parities and bilinear image lookups computed
-// in double over the float texels.
+// in double over the float texels; point sampling is the filter at a zero
+// footprint.
 #include "integrator/texture.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 
 namespace quiver {
 
 namespace {
-
-// Exact parity of floor(coordinate * scale): the product of two floats is
-// exact in double, and fmod is exact.
-bool odd_cell(float coordinate, float scale) {
-  const double cell = std::floor(double(coordinate) * double(scale));
-  return std::fmod(cell, 2.0) != 0.0;
-}
 
 float finite_or_zero(float x) { return std::isfinite(x) ? x : 0.f; }
 
@@ -27,7 +22,8 @@ double integrated_square_wave(double x) {
 }
 
 // The square wave (-1)^floor(c) averaged over [c - w/2, c + w/2], all in
-// cells; exactly +-1 below kPointFootprint, 0 for an unbounded width.
+// cells; exactly +-1 below kPointFootprint (the parity of floor(c), exact
+// in double: c is a product of two floats), 0 for an unbounded width.
 double box_filtered_square_wave(double c, double w) {
   if (!(w > kPointFootprint)) return std::fmod(std::floor(c), 2.0) != 0.0 ? -1.0 : 1.0;
   if (!(w < 1e9)) return 0.0;
@@ -98,7 +94,7 @@ Vec3<float> mip_mapped(const Texture& texture, float u, float v, const TextureFo
   const double w = texture.image.width, h = texture.image.height;
   const double along_x = std::hypot(double(f.du_dx) * w, double(f.dv_dx) * h);
   const double along_y = std::hypot(double(f.du_dy) * w, double(f.dv_dy) * h);
-  const double texels = std::max(along_x, along_y) / std::sqrt(3.0);
+  const double texels = std::max(along_x, along_y) / std::numbers::sqrt3;
   if (!(texels > 1.0)) return bilinear(texture.image, texture.wrap, u, v);
   const int coarsest = int(texture.coarser.size());
   const double level = std::min(std::log2(texels), double(coarsest));  // inf: the coarsest
@@ -139,20 +135,8 @@ Vec3<float> evaluate_filtered(const Texture& texture, float u, float v, const Ve
 }
 
 Vec3<float> evaluate(const Texture& texture, float u, float v, const Vec3<float>& world_point) {
-  switch (texture.kind) {
-    case TextureDesc::Kind::checker2d: {
-      const bool odd = odd_cell(finite_or_zero(u), texture.scale) != odd_cell(finite_or_zero(v), texture.scale);
-      return odd ? texture.color_b : texture.color_a;
-    }
-    case TextureDesc::Kind::checker3d: {
-      bool odd = false;
-      for (int axis = 0; axis < 3; ++axis) odd = odd != odd_cell(finite_or_zero(world_point[axis]), texture.scale);
-      return odd ? texture.color_b : texture.color_a;
-    }
-    case TextureDesc::Kind::image:
-    default:
-      return bilinear(texture.image, texture.wrap, u, v);
-  }
+  // A zero footprint: checker parities and the bilinear lookup exactly.
+  return evaluate_filtered(texture, u, v, world_point, TextureFootprint{});
 }
 
 }  // namespace quiver

@@ -22,12 +22,16 @@ std::size_t light_slot_count(const Scene& scene) {
 
 }  // namespace
 
+bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings) {
+  return settings.filter_textures && !scene.textures.empty();
+}
+
 Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
     : scene_(scene),
       intersector_(intersector),
       settings_(settings),
       width_(std::size_t(intersector.lanes())),
-      differentials_(settings.filter_textures && !scene.textures.empty()),
+      differentials_(rays_carry_differentials(scene, settings)),
       materials_(scene.materials),
       shade_wave_(with_kernel_unit(intersector.unit(),
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),

@@ -47,11 +47,15 @@ struct TraceSettings {
   bool filter_textures = true;
 };
 
+// Rays carry differentials (and textures are filtered) when the settings
+// ask for filtering and the scene has a texture to filter.
+bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings);
+
 struct CameraSample {
   Ray<float> ray;
   std::uint64_t key;  // identifies the sample for random numbers (see sample_key)
   // The change of the ray's unit direction over one sample spacing along
-  // film x and y (read only when the tracer filters textures).
+  // film x and y (read only when rays_carry_differentials).
   Vec3<float> direction_dx{0.f, 0.f, 0.f}, direction_dy{0.f, 0.f, 0.f};
 };
 

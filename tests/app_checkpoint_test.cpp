@@ -134,6 +134,9 @@ TEST(Checkpoint, TheFingerprintFollowsSettingsCameraAndInputBytes) {
   RenderSettings aa = settings;
   aa.aa = parse_anti_aliasing("adaptive:0.1:3");
   EXPECT_NE(render_fingerprint(aa, build, std::nullopt, camera, inputs, "1"), base);
+  RenderSettings point_sampled = settings;
+  point_sampled.trace.filter_textures = false;
+  EXPECT_NE(render_fingerprint(point_sampled, build, std::nullopt, camera, inputs, "1"), base);
   EXPECT_NE(render_fingerprint(settings, build, 30.0, camera, inputs, "1"), base);
   EXPECT_NE(render_fingerprint(settings, build, std::nullopt, camera, inputs, "2"), base);
   CameraDesc moved = camera;
