@@ -82,12 +82,18 @@ class TileRenderer {
   // The camera sample at film point (x, y); when rays carry differentials,
   // its differentials over `spacing` pixels (the distance to the
   // neighbouring samples: a pixel over the rays per side).
-  CameraSample sample_at(double x, double y, double spacing) const {
+  CameraSample sample_at(double x, double y, double spacing) const { return sample_in_cell(x, y, x, y, spacing); }
+
+  // A sample at film (x, y) in a cell of side spacing centred at (cx, cy):
+  // its texture footprints are centred on the cell, so that they tile it.
+  CameraSample sample_in_cell(double x, double y, double cx, double cy, double spacing) const {
     CameraSample sample{camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
     if (differentials_) {
       const Camera::DirectionDifferentials d = camera_.direction_differentials(x, y, spacing);
       sample.direction_dx = d.dx;
       sample.direction_dy = d.dy;
+      sample.footprint_centre_x = static_cast<float>((cx - x) / spacing);
+      sample.footprint_centre_y = static_cast<float>((cy - y) / spacing);
     }
     return sample;
   }
@@ -113,12 +119,13 @@ class TileRenderer {
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
       for (int j = 0; j < n * n; ++j) {
-        double ox = (j % n + 0.5) / n, oy = (j / n + 0.5) / n;
+        const double cx = (j % n + 0.5) / n, cy = (j / n + 0.5) / n;
+        double ox = cx, oy = cy;
         if (jitter) {
           ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
           oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
         }
-        w.samples.push_back(sample_at(x + ox, y + oy, 1.0 / n));
+        w.samples.push_back(sample_in_cell(x + ox, y + oy, x + cx, y + cy, 1.0 / n));
       }
     });
     trace(w);
@@ -296,7 +303,7 @@ class TileRenderer {
       const RefinedPixel& px = w.refined[local(x, y)];
       for (int k = 0; k < 4; ++k) {
         const StratumSample& st = w.strata[px.first + k];
-        w.samples.push_back(sample_at(x + st.x, y + st.y, 0.5));
+        w.samples.push_back(sample_in_cell(x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5));
         w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
       }
     });
@@ -356,7 +363,8 @@ class TileRenderer {
               }
               const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
               w.next_strata.push_back(fresh);
-              w.samples.push_back(sample_at(x + fresh.x, y + fresh.y, 1.0 / child));
+              w.samples.push_back(sample_in_cell(x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child,
+                                                 1.0 / child));
               w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
             }
           }

@@ -200,8 +200,15 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   } else if (footprint == nullptr) {
     s.color = mul(evaluate(scene.textures[*s.material->texture], s.u, s.v, position), s.material->color);
   } else {
+    // The footprint's centre, to first order on the surface (a centred
+    // footprint keeps the point's bits, whatever the differentials).
+    const float cx = footprint->centre_x, cy = footprint->centre_y;
+    const bool shifted = cx != 0.f || cy != 0.f;
+    const float u = shifted ? std::fma(cy, du[1], std::fma(cx, du[0], s.u)) : s.u;
+    const float v = shifted ? std::fma(cy, dv[1], std::fma(cx, dv[0], s.v)) : s.v;
+    const Vec3<float> centre = shifted ? position + dp[0] * cx + dp[1] * cy : position;
     const TextureFootprint f{du[0], dv[0], du[1], dv[1], dp[0], dp[1]};
-    s.color = mul(evaluate_filtered(scene.textures[*s.material->texture], s.u, s.v, position, f), s.material->color);
+    s.color = mul(evaluate_filtered(scene.textures[*s.material->texture], u, v, centre, f), s.material->color);
   }
   return s;
 }

@@ -53,6 +53,8 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
       differentials_of_rays_.origin_dy.push({0.f, 0.f, 0.f});
       differentials_of_rays_.direction_dx.push(samples[i].direction_dx);
       differentials_of_rays_.direction_dy.push(samples[i].direction_dy);
+      differentials_of_rays_.centre_x.push_back(samples[i].footprint_centre_x);
+      differentials_of_rays_.centre_y.push_back(samples[i].footprint_centre_y);
     }
   }
   rays_.pad();
@@ -164,7 +166,8 @@ void Tracer::resolve_surface_with_footprint(std::size_t i) {
   const DifferentialColumns& r = differentials_of_rays_;
   const PointDifferentials footprint{
       transfer_differential(r.origin_dx.get(i), r.direction_dx.get(i), ray.direction, hit.t, hit.ng),
-      transfer_differential(r.origin_dy.get(i), r.direction_dy.get(i), ray.direction, hit.t, hit.ng)};
+      transfer_differential(r.origin_dy.get(i), r.direction_dy.get(i), ray.direction, hit.t, hit.ng),
+      r.centre_x[i], r.centre_y[i]};
   const SurfaceDetail d = surface_detail(scene_, ray, hit, &footprint);
   store_surface(i, d);
   surfaces_.point_dx.set(i, footprint.dx);

@@ -57,6 +57,10 @@ struct CameraSample {
   // The change of the ray's unit direction over one sample spacing along
   // film x and y (read only when rays_carry_differentials).
   Vec3<float> direction_dx{0.f, 0.f, 0.f}, direction_dy{0.f, 0.f, 0.f};
+  // Where texture footprints are centred, in sample spacings from the ray
+  // along film x and y: a jittered sample's stratum centre, so the filter
+  // box covers its stratum; 0 for samples at their cell's centre.
+  float footprint_centre_x = 0.f, footprint_centre_y = 0.f;
 };
 
 // First-hit data for AOVs: distance along the unit ray, shading normal

@@ -28,10 +28,12 @@ void Vec3Columns::set(std::size_t i, const Vec3<float>& v) {
 
 void DifferentialColumns::clear() {
   for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->clear();
+  for (AlignedFloats* c : {&centre_x, &centre_y}) c->clear();
 }
 
 void DifferentialColumns::pad(std::size_t count) {
   for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->pad(count);
+  for (AlignedFloats* c : {&centre_x, &centre_y}) pad_column(*c, count);
 }
 
 void PathColumns::clear() {
@@ -121,6 +123,7 @@ std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, Differ
                            &differentials->direction_dy}) {
       for (AlignedFloats* c : {&v->x, &v->y, &v->z}) c->resize(size);
     }
+    for (AlignedFloats* c : {&differentials->centre_x, &differentials->centre_y}) c->resize(size);
   }
   return first;
 }

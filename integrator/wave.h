@@ -29,9 +29,11 @@ struct Vec3Columns {
 };
 
 // Per ray, its differentials (integrator/ray_differentials.h): the change
-// of origin and unit direction over one sample spacing along film x and y.
+// of origin and unit direction over one sample spacing along film x and y,
+// and its camera sample's footprint centre (CameraSample).
 struct DifferentialColumns {
   Vec3Columns origin_dx, origin_dy, direction_dx, direction_dy;
+  AlignedFloats centre_x, centre_y;
 
   void clear();
   void pad(std::size_t count);

@@ -317,6 +317,8 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
                direction_dx->z, k);
       set_vec3(d.direction_dy.x, d.direction_dy.y, d.direction_dy.z, i, direction_dy->x, direction_dy->y,
                direction_dy->z, k);
+      d.centre_x[i] = in.differentials->centre_x[parent];
+      d.centre_y[i] = in.differentials->centre_y[parent];
     }
     ++i;
   };
