@@ -110,7 +110,9 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                     "side while its mean's standard error exceeds THRESHOLD or, after the first "
                                     "pass, a neighbour's mean differs by more than 4 THRESHOLD; up to NxN, N 2, 4, 8 "
                                     "or 16). "
-                                    "Default: the scene file's setting, else none")
+                                    "Default: the scene file's setting, else " +
+                                        std::string(quiver::kDefaultAntiAliasing) +
+                                        " (the best quality for its cost in bench/ACCURACY.md's study)")
                       ->type_name("MODE");
   raw.max_depth_option = render.add_option("--max-depth", raw.max_depth,
                                            "Bounces after the primary ray, 0..64 (0: ray casting, no reflection or "

@@ -226,6 +226,8 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
     } catch (const std::invalid_argument& error) {
       throw std::runtime_error(std::string("the scene's render settings: ") + error.what());
     }
+  } else {
+    s.aa = parse_anti_aliasing(kDefaultAntiAliasing);
   }
 
   if (options.preset_spd) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "app/render_options.h"
+#include "integrator/anti_aliasing.h"
 
 namespace quiver {
 namespace {
@@ -49,7 +50,10 @@ TEST(RenderOptions, DefaultsWithoutFlagsOrSceneSettings) {
   const RenderSettings& s = plan.settings;
   EXPECT_EQ(s.width, 640);
   EXPECT_EQ(s.height, 480);
-  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::none);
+  const AntiAliasing default_aa = parse_anti_aliasing(kDefaultAntiAliasing);
+  EXPECT_NE(default_aa.mode, AntiAliasing::Mode::none);
+  EXPECT_EQ(s.aa.mode, default_aa.mode);
+  EXPECT_EQ(s.aa.n, default_aa.n);
   EXPECT_EQ(s.trace.max_depth, kDefaultMaxDepth);
   EXPECT_EQ(s.trace.min_weight, kDefaultMinWeight);
   EXPECT_EQ(s.trace.seed, 0u);
@@ -62,12 +66,12 @@ TEST(RenderOptions, DefaultsWithoutFlagsOrSceneSettings) {
 
 TEST(RenderOptions, SceneRenderDescAppliesWhenNoFlagIsGiven) {
   SceneDesc scene = scene_with_camera(64, 48);
-  scene.render.aa = "grid:3";
+  scene.render.aa = "jitter:5";
   scene.render.max_depth = 2;
   scene.render.min_weight = 0.25f;
   const RenderSettings s = plan_render({}, scene, Isa::scalar).settings;
-  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::grid);
-  EXPECT_EQ(s.aa.n, 3);
+  EXPECT_EQ(s.aa.mode, AntiAliasing::Mode::jitter);
+  EXPECT_EQ(s.aa.n, 5);
   EXPECT_EQ(s.trace.max_depth, 2);
   EXPECT_EQ(s.trace.min_weight, 0.25f);
 }

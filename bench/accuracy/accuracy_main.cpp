@@ -8,7 +8,8 @@
 //   self_intersection.csv acne fraction per scene scale and offset rule;
 //   anti_aliasing.csv   RMSE against a high-sample reference and render time;
 //   summary.json        the run's settings (units, rays per case, thresholds).
-// Usage: quiver_accuracy [--out DIR] [--quick] [--only SECTION]
+// Usage: quiver_accuracy [--out DIR] [--quick] [--only SECTION] [--aa-modes MODE,MODE,...]
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -27,8 +28,17 @@ int main(int argc, char** argv) {
       options.quick = true;
     } else if (arg == "--only" && i + 1 < argc) {
       options.only = argv[++i];
+    } else if (arg == "--aa-modes" && i + 1 < argc) {
+      const std::string list = argv[++i];
+      for (std::size_t start = 0; start <= list.size();) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        if (comma > start) options.aa_modes.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+      }
     } else {
-      std::fprintf(stderr, "usage: quiver_accuracy [--out DIR] [--quick] [--only kernels|speed|watertight|acne|aa]\n");
+      std::fprintf(stderr,
+                   "usage: quiver_accuracy [--out DIR] [--quick] [--only kernels|speed|watertight|acne|aa]"
+                   " [--aa-modes MODE,MODE,...]\n");
       return 2;
     }
   }

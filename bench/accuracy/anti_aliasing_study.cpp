@@ -85,11 +85,12 @@ void anti_aliasing_study(const StudyOptions& options) {
   for (const auto& [name, desc] : extra) {
     if (desc) scenes.push_back({name, *desc, int(320 * shrink), int(240 * shrink)});
   }
-  const char* modes[] = {"none",          "grid:2",         "grid:3",          "grid:4",
+  const std::vector<std::string> default_modes = {"none",          "grid:2",         "grid:3",          "grid:4",
                          "jitter:2",      "jitter:3",       "jitter:4",        "adaptive:0.3:3",
                          "adaptive:0.1:3", "adaptive:0.03:3", "adaptive:0.01:3", "corners",
                          "refine:0.1:4",   "refine:0.05:4",   "refine:0.03:4",   "refine:0.02:4",
                          "refine:0.08:8",  "refine:0.04:8",   "refine:0.02:8",   "refine:0.01:8"};
+  const std::vector<std::string>& modes = options.aa_modes.empty() ? default_modes : options.aa_modes;
   std::FILE* f = open_csv(options.out / "anti_aliasing.csv",
                           "scene,width,height,mode,texture_filter,render_ms,camera_rays,rmse,reference_mode,reference_ms");
   for (const SceneCase& sc : scenes) {
@@ -107,7 +108,8 @@ void anti_aliasing_study(const StudyOptions& options) {
       settings.aa = parse_anti_aliasing("jitter:16");
       const RenderResult reference = render(scene, settings);
       settings.trace.seed = 0;
-      for (const char* mode : modes) {
+      for (const std::string& mode_text : modes) {
+        const char* mode = mode_text.c_str();
         settings.aa = parse_anti_aliasing(mode);
         const RenderResult r = render(scene, settings);
         const double error = rmse(r.image, reference.image);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace quiver::accuracy {
 
@@ -12,6 +13,7 @@ struct StudyOptions {
   std::filesystem::path out;
   bool quick = false;  // fewer rays and shorter timing loops (a smoke run)
   std::string only;    // one study by name, or all when empty
+  std::vector<std::string> aa_modes;  // the anti-aliasing study's modes; empty: its own list
 };
 
 // Rays per stress case (kernel errors) and per scale (self-intersection).
