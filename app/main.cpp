@@ -136,15 +136,15 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     const quiver::SceneDesc as_read = quiver::load_scene_timed(scene_path, load_options, load_ms);
     quiver::print_scene_warnings(as_read);
     quiver::SceneDesc desc = as_read;
-    const bool default_view = !desc.camera;
-    if (default_view) quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
+    const std::optional<quiver::DefaultView> default_view =
+        quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
     quiver::SceneInfoContext context;
     context.scene = scene_path;
     context.load_ms = load_ms;
     context.build_ms = build_ms;
-    context.default_view_added = default_view;
+    context.default_view = default_view;
     quiver::write_scene_info(std::cout, as_read, scene, context);
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <tuple>
@@ -188,7 +189,15 @@ void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera) {
 }
 
 void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height) {
-  if (!desc.camera) add_default_view(desc, width, height);
+  if (!desc.camera) {
+    std::optional<Vec3<double>> up;
+    if (flags.up) {
+      const Vec3<float> given = parse_vector_flag("--up", *flags.up);
+      up = Vec3<double>{double(given.x), double(given.y), double(given.z)};
+      if (!(dot(*up, *up) > 0.0)) throw UsageError("--up: expected a direction, found 0,0,0");
+    }
+    add_default_view(desc, width, height, up);
+  }
   apply_camera_flags(flags, *desc.camera);
 }
 

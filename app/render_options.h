@@ -103,8 +103,9 @@ void check_camera_flags(const CameraFlags& flags);
 void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera);
 
 // The view a command renders or traces desc with: the default view of width
-// x height (scene/auto_view.h) when desc has no camera, then the camera
-// flags over its camera (apply_camera_flags).
+// x height (scene/auto_view.h) when desc has no camera, around --up as the
+// model's up axis when given, then the camera flags over its camera
+// (apply_camera_flags).
 void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height);
 
 // The image size: both flags as given; one flag and the other side from the

@@ -130,12 +130,17 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
   out << "bounds          " << vec(scene.bounds_min) << " to " << vec(scene.bounds_max) << " (planes excluded)\n";
 }
 
-void write_camera(std::ostream& out, const Scene& scene, bool default_view_added) {
+void write_camera(std::ostream& out, const Scene& scene, const std::optional<DefaultView>& default_view) {
   const CameraDesc& c = scene.camera;
   out << "camera          from " << vec(c.from) << " at " << vec(c.at) << " up " << vec(c.up) << "\n"
       << "                angle " << number(c.angle_degrees) << " degrees, hither " << number(c.hither)
       << ", resolution " << c.width << "x" << c.height << "\n";
-  if (default_view_added) out << "                (none in the file: a default view of the whole scene)\n";
+  if (default_view) {
+    out << "                (none in the file: a default view of the whole scene,\n"
+        << "                up " << default_view->up_reason << ";\n"
+        << "                front " << default_view->front_reason << ";\n"
+        << "                seen 35 degrees round from the front and 25 above)\n";
+  }
   out << "background      " << vec(scene.background) << "\n"
       << "ambient         " << vec(scene.ambient) << "\n";
 }
@@ -263,7 +268,7 @@ void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& sce
       << "load            " << milliseconds(context.load_ms) << "\n"
       << "build           " << milliseconds(context.build_ms) << "\n";
   write_primitives(out, desc, scene);
-  write_camera(out, scene, context.default_view_added);
+  write_camera(out, scene, context.default_view);
   write_render_settings(out, desc.render);
   write_lights(out, desc, scene);
   write_materials(out, scene);

@@ -6,9 +6,11 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <string>
 
+#include "scene/auto_view.h"
 #include "scene/scene.h"
 #include "scene/scene_desc.h"
 
@@ -22,7 +24,7 @@ std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& layer);
 struct SceneInfoContext {
   std::string scene;  // the file as named on the command line
   double load_ms = 0.0, build_ms = 0.0;
-  bool default_view_added = false;  // the file had no camera
+  std::optional<DefaultView> default_view;  // the file had no camera: the view added
 };
 
 // desc is the scene as read (before any default view was added).

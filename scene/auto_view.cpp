@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "scene/camera_frame.h"
@@ -53,12 +54,135 @@ Vec3<float> to_float(const double v[3]) {
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
 
+Vec3<double> to_double(const Vec3<float>& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+Vec3<double> unit(const Vec3<double>& v) { return v * (1.0 / std::sqrt(dot(v, v))); }
+
+// The faces' area (in total, and on a flat base facing -axis at the box's
+// lowest side along axis), for the triangles of a mesh.
+double base_area(const SceneDesc& scene, int axis, const Bounds& bounds) {
+  const double tolerance = 0.01 * (bounds.hi[axis] - bounds.lo[axis]);
+  const double flat = std::cos(2.0 * std::numbers::pi / 180.0);
+  double area = 0.0;
+  for (const SceneTriangle& t : scene.triangles) {
+    const Vec3<double> a = to_double(t.triangle.p[0]), b = to_double(t.triangle.p[1]), c = to_double(t.triangle.p[2]);
+    bool low = true;
+    for (const Vec3<double>& p : {a, b, c}) low = low && p[axis] - bounds.lo[axis] <= tolerance;
+    const Vec3<double> n = cross(b - a, c - a);
+    const double twice_area = std::sqrt(dot(n, n));
+    if (low && twice_area > 0.0 && std::fabs(n[axis]) >= flat * twice_area) area += 0.5 * twice_area;
+  }
+  return area;
+}
+
+double mesh_area(const SceneDesc& scene) {
+  double area = 0.0;
+  for (const SceneTriangle& t : scene.triangles) {
+    const Vec3<double> a = to_double(t.triangle.p[0]);
+    const Vec3<double> n = cross(to_double(t.triangle.p[1]) - a, to_double(t.triangle.p[2]) - a);
+    area += 0.5 * std::sqrt(dot(n, n));
+  }
+  return area;
+}
+
+// The mesh's top (vertices in the upper two fifths along up, each weighted by
+// a third of its faces' areas) less its area-weighted centre, over the half
+// extent of the vertices along each of the two axes across up.
+std::pair<double, double> top_lean(const SceneDesc& scene, const Vec3<double>& up, const Vec3<double>& front,
+                                   const Vec3<double>& side) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  double extent[2][2] = {{low, high}, {low, high}};
+  for (const SceneTriangle& t : scene.triangles) {
+    for (const Vec3<float>& p : t.triangle.p) {
+      const Vec3<double> q = to_double(p);
+      low = std::min(low, dot(q, up));
+      high = std::max(high, dot(q, up));
+      const double along[2] = {dot(q, front), dot(q, side)};
+      for (int k = 0; k < 2; ++k) {
+        extent[k][0] = std::min(extent[k][0], along[k]);
+        extent[k][1] = std::max(extent[k][1], along[k]);
+      }
+    }
+  }
+  const double top_from = low + 0.6 * (high - low);
+  Vec3<double> centre{0.0, 0.0, 0.0}, top{0.0, 0.0, 0.0};
+  double weight = 0.0, top_weight = 0.0;
+  for (const SceneTriangle& t : scene.triangles) {
+    const Vec3<double> a = to_double(t.triangle.p[0]), b = to_double(t.triangle.p[1]), c = to_double(t.triangle.p[2]);
+    const Vec3<double> n = cross(b - a, c - a);
+    const double w = std::sqrt(dot(n, n)) / 6.0;
+    for (const Vec3<double>& p : {a, b, c}) {
+      centre = centre + p * w;
+      weight += w;
+      if (dot(p, up) >= top_from) {
+        top = top + p * w;
+        top_weight += w;
+      }
+    }
+  }
+  if (!(weight > 0.0) || !(top_weight > 0.0)) return {0.0, 0.0};
+  const Vec3<double> lean = top * (1.0 / top_weight) - centre * (1.0 / weight);
+  const auto share = [](double d, const double range[2]) {
+    const double half = 0.5 * (range[1] - range[0]);
+    return half > 0.0 ? d / half : 0.0;
+  };
+  return {share(dot(lean, front), extent[0]), share(dot(lean, side), extent[1])};
+}
+
+std::string axis_name(const Vec3<double>& v) {
+  for (int a = 0; a < 3; ++a) {
+    if (std::fabs(v[a]) == 1.0) return {v[a] > 0.0 ? '+' : '-', "xyz"[a]};
+  }
+  std::ostringstream text;
+  text << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return text.str();
+}
+
 }  // namespace
 
-void add_default_view(SceneDesc& scene, int width, int height) {
+DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up) {
+  const Vec3<double> y{0.0, 1.0, 0.0}, z{0.0, 0.0, 1.0};
+  const bool mesh = scene.triangles.size() >= kViewMeshTriangles && scene.spheres.empty() && scene.planes.empty() &&
+                    scene.polygons.empty() && scene.cones.empty();
+  DefaultView view{y, z, "+y, the default", "+z, the default"};
+  if (up) {
+    view.up = unit(*up);
+    view.up_reason = axis_name(view.up) + ", from --up";
+  } else if (mesh) {
+    const Bounds bounds = scene_bounds(scene);
+    const double least = 0.02 * mesh_area(scene);
+    if (base_area(scene, 2, bounds) >= least && base_area(scene, 1, bounds) < least) {
+      view.up = z;
+      view.up_reason = "+z: the mesh stands on a flat base at its lowest z";
+    }
+  }
+  // The default front across up: +z, or -y for an up along z.
+  const Vec3<double> toward = std::fabs(dot(view.up, z)) < 0.9 ? z : Vec3<double>{0.0, -1.0, 0.0};
+  view.front = unit(toward - view.up * dot(toward, view.up));
+  view.front_reason = axis_name(view.front) + ", the default";
+  if (mesh) {
+    const Vec3<double> side = cross(view.up, view.front);
+    const auto [along_front, along_side] = top_lean(scene, view.up, view.front, side);
+    const bool front_axis = std::fabs(along_front) >= std::fabs(along_side);
+    const double lean = front_axis ? along_front : along_side;
+    if (std::fabs(lean) >= kViewLean) {
+      view.front = (front_axis ? view.front : side) * (lean > 0.0 ? 1.0 : -1.0);
+      view.front_reason = axis_name(view.front) + ": the mesh's top leans that way";
+    }
+  }
+  return view;
+}
+
+std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
+                                            const std::optional<Vec3<double>>& up) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
     throw std::invalid_argument("add_default_view: width and height must lie in [1, 65536]");
   }
+  if (up && !(dot(*up, *up) > 0.0 && std::isfinite(dot(*up, *up)))) {
+    throw std::invalid_argument("add_default_view: the up axis must be finite and not zero");
+  }
+  std::optional<DefaultView> chosen;
+  if (!scene.camera) chosen = choose_default_view(scene, up);
   // Bounding sphere of the primitives' box (the unit sphere when there is none).
   const Bounds bounds = scene_bounds(scene);
   double center[3] = {0.0, 0.0, 0.0};
@@ -74,10 +198,16 @@ void add_default_view(SceneDesc& scene, int width, int height) {
     if (!(radius > 0.0)) radius = 1.0;  // a single point
   }
 
-  // Three-quarter view: 35 degrees round from +z towards +x, 25 degrees up.
+  // Three-quarter view: 35 degrees round from the front towards the model's
+  // left (+x for the default front +z and up +y), 25 degrees up.
   const double azimuth = 35.0 * std::numbers::pi / 180.0, elevation = 25.0 * std::numbers::pi / 180.0;
-  const double toward_eye[3] = {std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
-                                std::cos(azimuth) * std::cos(elevation)};
+  const DefaultView view = chosen ? *chosen : DefaultView{{0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, {}, {}};
+  const Vec3<double> side = cross(view.up, view.front);
+  double toward_eye[3];
+  for (int a = 0; a < 3; ++a) {
+    toward_eye[a] = std::cos(elevation) * (std::cos(azimuth) * view.front[a] + std::sin(azimuth) * side[a]) +
+                    std::sin(elevation) * view.up[a];
+  }
   // Tangent of the half field of view across the shorter side (CameraDesc:
   // the angle spans the outermost pixel centres of the longer side).
   const int longer = std::max(width, height), shorter = std::min(width, height);
@@ -92,7 +222,7 @@ void add_default_view(SceneDesc& scene, int width, int height) {
     CameraDesc camera{};
     camera.from = to_float(eye);
     camera.at = to_float(center);
-    camera.up = {0.f, 1.f, 0.f};
+    camera.up = {static_cast<float>(view.up.x), static_cast<float>(view.up.y), static_cast<float>(view.up.z)};
     camera.angle_degrees = kDefaultViewAngleDegrees;
     camera.hither = 0.f;
     camera.width = width;
@@ -119,6 +249,7 @@ void add_default_view(SceneDesc& scene, int width, int height) {
     light.color = {intensity, intensity, intensity};
     scene.lights.push_back(light);
   }
+  return chosen;
 }
 
 }  // namespace quiver

@@ -3,6 +3,10 @@
 // light beside it.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -10,12 +14,35 @@ namespace quiver {
 // Field of view of the default camera, in degrees (CameraDesc's meaning).
 inline constexpr float kDefaultViewAngleDegrees = 40.f;
 
+// How the default camera was placed: the model's up axis and front (unit
+// vectors), and why each was chosen, in words for `quiver info`.
+struct DefaultView {
+  Vec3<double> up, front;
+  std::string up_reason, front_reason;
+};
+
+// The up axis and front a default camera takes. Up: the given one, else +y
+// unless the scene is a mesh (triangles only, at least kViewMeshTriangles)
+// standing on a flat base at its lowest z and not at its lowest y (a base:
+// faces within 2 degrees of the axis, within 1% of the extent of the box's
+// side, at least 2% of the mesh's area), which is +z's convention (scans
+// and printed parts). Front: the side towards which a mesh's top (its
+// upper two fifths, area-weighted) leans from its area-weighted centre, by at
+// least kViewLean of the box's half-extent (a figure's head is at its
+// front), along the larger lean of the two axes across up; else +z (-y for
+// a +z up; the default front projected across any other up).
+DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up = std::nullopt);
+inline constexpr std::size_t kViewMeshTriangles = 64;
+inline constexpr double kViewLean = 0.15;
+
 // When scene.camera is empty: a camera of width x height pixels looking at
-// the centre of the primitives' bounding box from the front (+z), above
-// (+y) and to the right (+x), far enough that the box's bounding sphere
-// fits inside the image; up is +y; planes, being infinite, count only by
-// their point. A scene without bounded primitives gets the same view of the
-// unit sphere around the origin.
+// the centre of the primitives' bounding box from the front and above of
+// choose_default_view (35 degrees round towards the model's left, 25 above),
+// far enough that the box's bounding sphere fits inside the image; planes,
+// being infinite, count only by their point. A scene without bounded
+// primitives gets the same view of the unit sphere around the origin.
+// Returns the view chosen, or nothing when the scene had a camera. up: the
+// model's up axis when the user gave one (non-zero).
 // When scene.lights is empty: one white point light above and to the right
 // of the scene's camera (half the eye-to-target distance each way), whose
 // intensity is 1 minus the largest ambient
@@ -24,6 +51,7 @@ inline constexpr float kDefaultViewAngleDegrees = 40.f;
 // std::invalid_argument for width or height outside [1, kMaxImageSide], and
 // as camera_frame (scene/camera_frame.h) when a light is added beside a
 // degenerate camera of the scene's own.
-void add_default_view(SceneDesc& scene, int width, int height);
+std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
+                                            const std::optional<Vec3<double>>& up = std::nullopt);
 
 }  // namespace quiver

@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -551,6 +552,49 @@ TEST_F(Cli, CameraFlagsMoveTheView) {
     EXPECT_EQ(r.exit_code, 2) << bad[0] << " " << bad[1] << ": " << r.err;
     EXPECT_FALSE(fs::exists(work() / "bad.png"));
   }
+}
+
+// A mesh standing on a flat base at its lowest z: the default view stands
+// it on that base, `quiver info` says so, and --up places the view instead.
+TEST_F(Cli, TheDefaultViewStandsAMeshOnItsBaseAndInfoNamesIt) {
+  std::ofstream obj(work() / "column.obj");
+  constexpr int n = 4;  // a column along z: base, top and two walls, 2 n^2 triangles each
+  int vertices = 0;
+  const auto square = [&](auto point) {
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        const auto [x, y, z] = point(-1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n);
+        obj << "v " << x << " " << y << " " << z << "\n";
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const int a = vertices + j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+        obj << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
+      }
+    }
+    vertices += (n + 1) * (n + 1);
+  };
+  square([](double u, double v) { return std::tuple{u, v, 0.0}; });
+  square([](double u, double v) { return std::tuple{u, v, 3.0}; });
+  square([](double u, double v) { return std::tuple{1.0, u, 1.5 + 1.5 * v}; });
+  square([](double u, double v) { return std::tuple{-1.0, u, 1.5 + 1.5 * v}; });
+  obj.close();
+  const Outcome info = run({"info", "column.obj"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("up +z: the mesh stands on a flat base at its lowest z"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("front -y, the default"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("up (0 0 1)"), std::string::npos) << info.out;
+  const Outcome standing = run({"render", "column.obj", "-o", "standing.exr", "--width", "16", "--height", "16", "-q"});
+  ASSERT_EQ(standing.exit_code, 0) << standing.err;
+  const Outcome lying = run({"render", "column.obj", "-o", "lying.exr", "--width", "16", "--height", "16", "-q",
+                             "--up", "0,1,0"});
+  ASSERT_EQ(lying.exit_code, 0) << lying.err;
+  EXPECT_NE(read_image(work() / "standing.exr").pixels, read_image(work() / "lying.exr").pixels);
+  const Outcome zero = run({"render", "column.obj", "-o", "zero.png", "--width", "8", "-q", "--up", "0,0,0"});
+  EXPECT_EQ(zero.exit_code, 2) << zero.err;
+  EXPECT_NE(zero.err.find("--up"), std::string::npos) << zero.err;
+  EXPECT_FALSE(fs::exists(work() / "zero.png"));
 }
 
 TEST_F(Cli, InfoPrintsTheCounts) {

@@ -79,7 +79,7 @@ TEST(SceneInfo, CountRows) {
   const SceneDesc desc = mixed_scene();
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, false});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt});
   const std::string report = out.str();
   // read, kept, non-finite, degenerate, opaque, transmissive
   EXPECT_EQ(row(report, "spheres"), (std::vector<std::size_t>{4, 2, 1, 1, 1, 1}));

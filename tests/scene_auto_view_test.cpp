@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <stdexcept>
 #include <utility>
 
@@ -131,6 +133,105 @@ TEST(AutoView, KeepsWhatTheSceneHas) {
   add_default_view(scene, 640, 480);
   EXPECT_EQ(scene.lights.size(), 1u);
   EXPECT_THROW(add_default_view(scene, 0, 480), std::invalid_argument);
+}
+
+// A square of 2 n^2 triangles centred at c, spanning 2 h along axes a and b.
+void add_square(SceneDesc& scene, const Vec3<float>& c, int a, int b, float h, int n) {
+  if (scene.materials.empty()) scene.materials.emplace_back();
+  const auto at = [&](int i, int j) {
+    Vec3<float> p = c;
+    p[a] += -h + 2.f * h * float(i) / float(n);
+    p[b] += -h + 2.f * h * float(j) / float(n);
+    return p;
+  };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      SceneTriangle t{};
+      t.triangle.p = {at(i, j), at(i + 1, j), at(i + 1, j + 1)};
+      scene.triangles.push_back(t);
+      t.triangle.p = {at(i, j), at(i + 1, j + 1), at(i, j + 1)};
+      scene.triangles.push_back(t);
+    }
+  }
+}
+
+double box_centre(const SceneDesc& scene, int axis) {
+  double lo = 1e300, hi = -1e300;
+  for (const SceneTriangle& t : scene.triangles) {
+    for (const Vec3<float>& p : t.triangle.p) {
+      lo = std::min(lo, double(p[axis]));
+      hi = std::max(hi, double(p[axis]));
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(AutoView, AMeshIsSeenFromTheSideItsTopLeansTo) {
+  // A body (a floor square at y = 0) and a head above its -z end: a figure facing -z.
+  SceneDesc figure;
+  add_square(figure, {0.f, 0.f, 0.f}, 0, 2, 1.f, 6);
+  add_square(figure, {0.f, 2.f, -0.75f}, 0, 2, 0.25f, 3);
+  ASSERT_GE(figure.triangles.size(), kViewMeshTriangles);
+  const DefaultView view = choose_default_view(figure);
+  EXPECT_EQ(view.up.y, 1.0) << view.up_reason;
+  EXPECT_EQ(view.front.z, -1.0) << view.front_reason;
+  EXPECT_NE(view.front_reason.find("leans"), std::string::npos);
+  SceneDesc framed = figure;
+  const std::optional<DefaultView> added = add_default_view(framed, 320, 240);
+  ASSERT_TRUE(added.has_value());
+  const CameraDesc& c = *framed.camera;
+  EXPECT_LT(c.from.z, box_centre(figure, 2));  // in front of the face
+  EXPECT_GT(c.from.y, box_centre(figure, 1));  // above
+  EXPECT_LT(c.from.x, box_centre(figure, 0));  // round to the figure's left (-x when facing -z)
+
+  // The same head over the middle: no lean, the default front +z.
+  SceneDesc upright;
+  add_square(upright, {0.f, 0.f, 0.f}, 0, 2, 1.f, 6);
+  add_square(upright, {0.f, 2.f, 0.f}, 0, 2, 0.25f, 3);
+  const DefaultView straight = choose_default_view(upright);
+  EXPECT_EQ(straight.front.z, 1.0) << straight.front_reason;
+
+  // Too few triangles to be a mesh (a hand-made scene): the default view.
+  SceneDesc small;
+  add_square(small, {0.f, 0.f, 0.f}, 0, 2, 1.f, 2);
+  add_square(small, {0.f, 2.f, -0.75f}, 0, 2, 0.25f, 1);
+  EXPECT_EQ(choose_default_view(small).front.z, 1.0);
+}
+
+TEST(AutoView, AMeshOnAFlatBaseAtItsLowestZStandsOnIt) {
+  // A column along z: a base at z = 0, a top at z = 3, walls of x = +-1.
+  SceneDesc column;
+  add_square(column, {0.f, 0.f, 0.f}, 0, 1, 1.f, 4);
+  add_square(column, {0.f, 0.f, 3.f}, 0, 1, 1.f, 4);
+  add_square(column, {1.f, 0.f, 1.5f}, 1, 2, 1.f, 4);
+  add_square(column, {-1.f, 0.f, 1.5f}, 1, 2, 1.f, 4);
+  const DefaultView view = choose_default_view(column);
+  EXPECT_EQ(view.up.z, 1.0) << view.up_reason;
+  EXPECT_EQ(view.front.y, -1.0) << view.front_reason;  // +z's default front
+  SceneDesc framed = column;
+  add_default_view(framed, 320, 240);
+  EXPECT_EQ(framed.camera->up.z, 1.f);
+  EXPECT_GT(framed.camera->from.z, 1.5f);  // above, along z
+  EXPECT_LT(framed.camera->from.y, 0.f);   // in front
+
+  // A flat face at its lowest y as well: +y's convention stays.
+  SceneDesc both = column;
+  add_square(both, {0.f, -1.f, 1.5f}, 0, 2, 1.f, 4);
+  EXPECT_EQ(choose_default_view(both).up.y, 1.0);
+}
+
+TEST(AutoView, AGivenUpAxisPlacesTheView) {
+  SceneDesc scene;
+  add_square(scene, {0.f, 0.f, 0.f}, 1, 2, 1.f, 6);
+  const std::optional<DefaultView> view = add_default_view(scene, 320, 240, Vec3<double>{2.0, 0.0, 0.0});
+  ASSERT_TRUE(view.has_value());
+  EXPECT_EQ(view->up.x, 1.0);
+  EXPECT_NE(view->up_reason.find("--up"), std::string::npos);
+  EXPECT_EQ(scene.camera->up.x, 1.f);
+  EXPECT_GT(scene.camera->from.x, 0.f);  // above along +x
+  EXPECT_THROW(add_default_view(scene, 320, 240, Vec3<double>{0.0, 0.0, 0.0}), std::invalid_argument);
+  // A scene with a camera keeps it and reports no view.
+  EXPECT_FALSE(add_default_view(scene, 320, 240).has_value());
 }
 
 }  // namespace
