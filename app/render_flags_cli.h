@@ -38,8 +38,9 @@ struct RawRenderFlags {
 // --strict, the same for render, info and trace.
 inline void add_strict_flag(CLI::App& command, bool& strict) {
   command.add_flag("--strict", strict,
-                   "Refuse what the OBJ/MTL reader otherwise forgives with a warning (a missing mtllib file or "
-                   "map_Kd image, a usemtl of an undefined material, a trailing comment)");
+                   "Refuse what the mesh readers otherwise forgive with a warning (a missing mtllib file or "
+                   "map_Kd image, a usemtl of an undefined material, a trailing comment in OBJ; a missing or "
+                   "embedded glTF texture; points and lines in PLY, glTF or STL)");
 }
 
 // --crease-angle, the same for render, info and trace; the caller copies
@@ -47,7 +48,7 @@ inline void add_strict_flag(CLI::App& command, bool& strict) {
 inline CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
   return command
       .add_option("--crease-angle", degrees,
-                  "Smooth normals for OBJ meshes without normals: faces meeting at a vertex at an angle up to this "
+                  "Smooth normals for OBJ, PLY and STL meshes without normals (STL's facet normals count as none): faces meeting at a vertex at an angle up to this "
                   "many degrees, 0..180, are shaded smooth there (angle-weighted); sharper edges stay hard; 0: "
                   "faceted. Meshes with normals keep theirs. Default: a TOML mesh's crease_angle, else " +
                       std::to_string(int(quiver::kDefaultCreaseAngleDegrees)))
@@ -85,8 +86,8 @@ inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
 
 inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("scene", args.scene,
-                    "Scene file: .nff, .toml or .obj (any case). Absent: the built-in scene. A scene without a "
-                    "camera (OBJ) gets a default view framing it (and, if it has no lights, a white point light "
+                    "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). Absent: the built-in "
+                    "scene. A scene without a camera (a mesh) gets a default view framing it (and, if it has no lights, a white point light "
                     "above and to the right of that view)")
       ->type_name("SCENE");
   render.add_option("-o,--output", args.output,

@@ -25,7 +25,8 @@ std::vector<RoleFile> files_read(const SceneDesc& desc, bool first_is_scene) {
     const std::string extension = lowercase_extension(path);
     const char* role = i == 0 && first_is_scene ? "the scene file"
                        : extension == ".mtl"    ? "an MTL material library"
-                                                : "an OBJ mesh";
+                       : extension == ".obj"    ? "an OBJ mesh"
+                                                : "a mesh";
     files.push_back({role, path});
   }
   for (const TextureDesc& texture : desc.textures) {

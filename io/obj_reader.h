@@ -28,7 +28,7 @@ inline constexpr std::size_t kMaxMtlBytes = std::size_t{64} << 20;
 inline constexpr std::size_t kMaxMtlLibraries = 64;
 // Most `v`, `vt` and `vn` statements (each kind), and most triangles after
 // triangulation; the triangle bound also caps a whole scene's triangles
-// when meshes are appended to it.
+// when meshes are appended to it (io/mesh_append.h), whatever their format.
 inline constexpr std::size_t kMaxObjVertices = std::size_t{1} << 24;
 inline constexpr std::size_t kMaxObjTriangles = std::size_t{1} << 24;
 // Most corners of `f`, `l` and `p` statements together.
@@ -59,31 +59,15 @@ using MtlLookup = std::function<std::optional<MtlLibrary>(std::string_view name)
 // is a ParseError. Faces without `vn` get smooth normals: angle-weighted over the
 // faces that share each `v` index and whose normals lie within
 // crease_angle_degrees of the face's own ([0, 180]; 0 leaves them faceted).
-// Faces with `vn` keep theirs. Throws ParseError, and std::invalid_argument
-// for a crease angle outside [0, 180].
+// Faces with `vn` keep theirs. At most triangle_budget triangles. Throws
+// ParseError, and std::invalid_argument for a crease angle outside [0, 180].
 SceneDesc read_obj_scene(const std::filesystem::path& path,
-                         double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
+                         double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
+                         std::size_t triangle_budget = kMaxObjTriangles);
 
 // Parses OBJ text; file_name labels error messages; `mtllib` names go
 // through find_library.
 SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, const MtlLookup& find_library,
                           double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
-
-// Reads the OBJ file at `path` (as read_obj_scene) and appends its triangles
-// to `scene`, transformed by `transform` (a 4x4 matrix, column-major:
-// element (row r, column c) at [4 * c + r]) for positions and by its
-// inverse transpose for normals; a transform that mirrors (negative
-// determinant) reverses each triangle's winding. With material_override
-// (an index into scene.materials) every triangle uses it and the MTL
-// materials are not added; otherwise the mesh's materials and textures are
-// appended. Smooth normals (crease_angle_degrees, as read_obj_scene) are
-// computed before the transform, on the mesh as written; its warnings are
-// appended to scene.warnings. Throws ParseError, also when scene.triangles would exceed
-// kMaxObjTriangles or a transformed vertex is not finite, and
-// std::invalid_argument for a singular or non-finite transform or an
-// override that is not a material index; `scene` is then unchanged.
-void append_obj_mesh(const std::filesystem::path& path, const std::array<float, 16>& transform,
-                     std::optional<std::size_t> material_override, SceneDesc& scene,
-                     double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
 
 }  // namespace quiver

@@ -1,9 +1,6 @@
 // Loads the quiver_oiio module (io/oiio_module.h) on first use: OpenImageIO
 // is mapped only by a run that reads a texture image or writes JPEG, HDR or
-// TIFF. The module is looked for, in order: at $QUIVER_OIIO_MODULE alone
-// when that is set; beside the running executable (the build tree's bin/);
-// in <executable>/../<libdir>/quiver (an installed tree); in the configured
-// install directory; in the build directory.
+// TIFF. Where it is looked for: io/module_loader.h, with $QUIVER_OIIO_MODULE.
 #pragma once
 
 #include "io/oiio_module.h"

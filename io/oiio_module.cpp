@@ -17,22 +17,11 @@
 #include <string_view>
 #include <vector>
 
+#include "io/module_message.h"
+
 namespace quiver {
 
 namespace {
-
-// Copies message into the caller's buffer on one line (OpenImageIO joins
-// its messages with line breaks; they become "; "), cut to fit,
-// NUL-terminated.
-void copy_message(std::string_view message, char* error, std::size_t error_size) {
-  if (error == nullptr || error_size == 0) return;
-  while (!message.empty() && message.back() == '\n') message.remove_suffix(1);
-  std::string line;
-  for (char c : message) line += c == '\n' ? std::string_view("; ") : std::string_view(&c, 1);
-  const std::size_t length = std::min(line.size(), error_size - 1);
-  std::memcpy(error, line.data(), length);
-  error[length] = '\0';
-}
 
 // Sends what is printed to stderr while it lives (libpng, under
 // OpenImageIO, prints "libpng error: ..." there) to a memory file, so that

@@ -4,6 +4,7 @@
 
 #include "geometry/vertex_normals.h"
 #include "io/file_extension.h"
+#include "io/mesh_import.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
@@ -21,10 +22,12 @@ SceneDesc load_scene(const std::filesystem::path& path, const SceneLoadOptions& 
     scene = read_toml_scene(path, options.crease_angle_degrees, options.strict);
   } else if (extension == ".obj") {
     scene = read_obj_scene(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees), options.strict);
+  } else if (is_imported_mesh_extension(extension)) {
+    scene = read_imported_mesh(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees), options.strict);
   } else {
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
-    throw ParseError::whole_file(path.string(),
-                                 "unknown scene format (" + shown + "): expected .nff, .toml or .obj");
+    throw ParseError::whole_file(
+        path.string(), "unknown scene format (" + shown + "): expected .nff, .toml, .obj, .ply, .gltf, .glb or .stl");
   }
   scene.source_files.insert(scene.source_files.begin(), path.string());
   read_texture_images(scene);

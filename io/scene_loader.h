@@ -1,5 +1,6 @@
 // Loads a scene file with the reader its extension names (.nff, .toml,
-// .obj; case-insensitive), and reads the image files its textures name.
+// .obj; .ply, .gltf, .glb and .stl through io/mesh_import.h;
+// case-insensitive), and reads the image files its textures name.
 #pragma once
 
 #include <filesystem>
@@ -10,12 +11,12 @@
 namespace quiver {
 
 struct SceneLoadOptions {
-  // The crease angle of every OBJ mesh (the scene itself, or a TOML
+  // The crease angle of every OBJ, PLY and STL mesh (the scene itself, or a TOML
   // [[meshes]] entry, over its `crease_angle` key), degrees in [0, 180];
   // 0 is faceted. Absent: a mesh's own key, else kDefaultCreaseAngleDegrees
   // (geometry/vertex_normals.h).
   std::optional<double> crease_angle_degrees;
-  // OBJ meshes (the scene, or TOML [[meshes]]) read strictly: what is
+  // Meshes (the scene, or TOML [[meshes]]) read strictly: what is
   // otherwise a warning in SceneDesc::warnings is an error (obj_reader.h).
   bool strict = false;
 };

@@ -28,6 +28,7 @@
 #include "geometry/vertex_normals.h"
 #include "integrator/anti_aliasing.h"
 #include "io/nff_reader.h"
+#include "io/mesh_append.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
@@ -707,8 +708,10 @@ class TomlSceneReader {
     constexpr std::string_view s = "[[meshes]]";
     check_keys(t, {"file", "material", "translate", "rotate", "scale", "crease_angle"}, s);
     const toml::node& file_node = required(t, "file", s);
-    const std::string path = existing_file(file_node, "file", s, "an OBJ file");
-    if (lowercase_extension(path) != ".obj") fail(file_node, expected_for("an OBJ file (.obj)", "file", s));
+    const std::string path = existing_file(file_node, "file", s, "a mesh file");
+    if (!is_mesh_extension(lowercase_extension(path))) {
+      fail(file_node, expected_for("a mesh file (.obj, .ply, .gltf, .glb or .stl)", "file", s));
+    }
     std::optional<std::size_t> material;
     if (t.contains("material")) material = material_of(t, s);
     double crease_angle = kDefaultCreaseAngleDegrees;
@@ -744,11 +747,11 @@ class TomlSceneReader {
       for (int r = 0; r < 4; ++r) columns[static_cast<std::size_t>(4 * c + r)] = static_cast<float>(m[c][r]);
     }
     try {
-      append_obj_mesh(path, columns, material, scene_, crease_angle, strict_);
+      append_mesh(path, columns, material, scene_, crease_angle, strict_);
     } catch (const std::invalid_argument&) {
       fail(t, "a [[meshes]] transform that is not singular once rounded to float");
     } catch (const ParseError& error) {
-      throw ParseError::in_named_file(named_at(file_node), "OBJ mesh", error);
+      throw ParseError::in_named_file(named_at(file_node), "mesh", error);
     }
   }
 

@@ -327,7 +327,7 @@ PYBIND11_MODULE(quiver, m) {
            "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");
 
   m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(),
-        "Reads a scene file (.nff, .toml, .obj) and builds it");
+        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl) and builds it");
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
         arg("triangles") = py::none(),
         "A scene of spheres (N, 4: centre, radius) and triangles (vertices (V, 3), indices (F, 3))");

@@ -37,6 +37,7 @@ const fs::path kCli = QUIVER_CLI_PATH;
 const fs::path kTiny = fs::path(QUIVER_TEST_DATA_DIR) / "scenes" / "tiny.nff";
 const fs::path kQuadObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "quad.obj";
 const fs::path kTexturedObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "materials.obj";  // tex/checker.png
+const fs::path kRoofPly = fs::path(QUIVER_TEST_DATA_DIR) / "mesh" / "roof.ply";
 
 struct Outcome {
   int exit_code = -1;
@@ -659,6 +660,43 @@ TEST_F(Cli, AMissingOpenImageIOModuleIsAClearErrorOnlyWhereItIsNeeded) {
   EXPECT_EQ(wrong.exit_code, 1);
   EXPECT_NE(wrong.err.find(not_a_module.string() + ": "), std::string::npos) << wrong.err;
   EXPECT_EQ(work_files(), std::vector<std::string>{"out.png"});
+}
+
+// Assimp, like OpenImageIO, is mapped only by a run that reads a PLY, glTF
+// or STL mesh; without its module such a run fails clearly and others work.
+TEST_F(Cli, PlyGltfAndStlRenderWithOneCommandAndOnlyThoseLoadAssimp) {
+  const std::string trace = "LD_DEBUG=files";
+  const auto maps_assimp = [](const Outcome& r) { return r.err.find("libassimp") != std::string::npos; };
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"--version"},
+           {"info", kQuadObj.string()},
+           {"render", kTiny.string(), "-o", "out.png", "--width", "8", "-q"}}) {
+    const Outcome r = run(args, trace);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("file="), std::string::npos) << "no loader trace: the check would pass blindly";
+    EXPECT_FALSE(maps_assimp(r)) << args[0];
+  }
+  const fs::path meshes = kRoofPly.parent_path();
+  for (const char* name : {"roof.ply", "roof.stl", "triangle.gltf"}) {
+    const Outcome r = run({"render", (meshes / name).string(), "-o", "mesh.png", "--width", "16", "-q"}, trace);
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+    EXPECT_TRUE(maps_assimp(r)) << name;
+    EXPECT_TRUE(fs::is_regular_file(work() / "mesh.png")) << name;
+    fs::remove(work() / "mesh.png");
+  }
+
+  const std::string missing = (io() / "nowhere" / "quiver_assimp.so").string();
+  const std::string environment = "QUIVER_ASSIMP_MODULE=" + missing;
+  EXPECT_EQ(run({"render", kQuadObj.string(), "-o", "obj.png", "--width", "8", "-q"}, environment).exit_code, 0);
+  const Outcome ply = run({"render", kRoofPly.string(), "-o", "ply.png", "--width", "8", "-q"}, environment);
+  EXPECT_EQ(ply.exit_code, 1);
+  EXPECT_EQ(ply.err.rfind("quiver: " + kRoofPly.string() + ": cannot load quiver's Assimp module (quiver_assimp.so; "
+                          "needed for PLY, glTF and STL meshes); tried:", 0),
+            0u)
+      << ply.err;
+  EXPECT_NE(ply.err.find(missing + ": "), std::string::npos) << ply.err;
+  EXPECT_TRUE(fs::is_regular_file(work() / "obj.png"));
+  EXPECT_FALSE(fs::exists(work() / "ply.png"));
 }
 
 // `quiver trace`: one JSON line on stdout, nothing else, and no files.

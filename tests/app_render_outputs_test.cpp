@@ -60,19 +60,20 @@ TEST_F(RenderOutputs, AnOutputNamingAnInputIsAUsageErrorNamingBoth) {
 
 TEST_F(RenderOutputs, FilesReadNameTheirRoles) {
   SceneDesc desc;
-  desc.source_files = {"scene.toml", "mesh.obj", "mesh.MTL"};
+  desc.source_files = {"scene.toml", "mesh.obj", "mesh.MTL", "bunny.ply"};
   TextureDesc image;
   image.kind = TextureDesc::Kind::image;
   image.path = "wood.png";
   desc.textures = {TextureDesc{}, image};  // a checker has no file
   const std::vector<RoleFile> read = files_read(desc, true);
-  ASSERT_EQ(read.size(), 4u);
+  ASSERT_EQ(read.size(), 5u);
   EXPECT_EQ(read[0].role, "the scene file");
   EXPECT_EQ(read[1].role, "an OBJ mesh");
   EXPECT_EQ(read[2].role, "an MTL material library");
-  EXPECT_EQ(read[3].role, "a texture image");
-  EXPECT_EQ(read[3].path, "wood.png");
-  EXPECT_EQ(files_read(desc, false)[0].role, "an OBJ mesh");
+  EXPECT_EQ(read[3].role, "a mesh");
+  EXPECT_EQ(read[4].role, "a texture image");
+  EXPECT_EQ(read[4].path, "wood.png");
+  EXPECT_EQ(files_read(desc, false)[0].role, "a mesh");  // not .obj, not .mtl
 }
 
 }  // namespace

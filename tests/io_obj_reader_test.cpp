@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "io/mesh_append.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "tests/support/temporary_directory.h"
@@ -586,7 +587,7 @@ TEST(ObjReader, NoFacesIsAnErrorAtTheEndOfTheFile) {
   std::ofstream(mesh) << kTriangle << "p 1 2 3\n";
   SceneDesc scene;
   try {
-    append_obj_mesh(mesh, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, std::nullopt, scene);
+    append_mesh(mesh, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, std::nullopt, scene);
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& error) {
     EXPECT_EQ(std::string(error.what()), mesh.string() + ":5:1: " + std::string(no_objects));
@@ -637,7 +638,7 @@ TEST(ObjReader, AppendedMeshIsTransformedAndMirroringKeepsTheFacing) {
   m[10] = 1.f;
   m[15] = 1.f;
   m[12] = 5.f;
-  append_obj_mesh(kTestData / "normals_uvs.obj", m, std::size_t{0}, scene);
+  append_mesh(kTestData / "normals_uvs.obj", m, std::size_t{0}, scene);
   ASSERT_EQ(scene.triangles.size(), 3u);
   EXPECT_EQ(scene.materials.size(), 1u);  // the override: no material added
   const TriangleDesc& t = scene.triangles[0].triangle;
@@ -658,11 +659,11 @@ TEST(ObjReader, AppendedMeshIsTransformedAndMirroringKeepsTheFacing) {
   EXPECT_EQ((*t.uvs)[1][1], 1.f);  // uv of corner 3 moved with it
 
   const std::array<float, 16> singular{};
-  EXPECT_THROW(append_obj_mesh(kTestData / "quad.obj", singular, std::nullopt, scene), std::invalid_argument);
+  EXPECT_THROW(append_mesh(kTestData / "quad.obj", singular, std::nullopt, scene), std::invalid_argument);
   std::array<float, 16> huge = m;
   huge[0] = 3e38f;
   huge[12] = 3e38f;
-  EXPECT_THROW(append_obj_mesh(kTestData / "quad.obj", huge, std::nullopt, scene), ParseError);
+  EXPECT_THROW(append_mesh(kTestData / "quad.obj", huge, std::nullopt, scene), ParseError);
   EXPECT_EQ(scene.triangles.size(), 3u);  // unchanged by the failures
 }
 
@@ -672,7 +673,7 @@ TEST(ObjReader, AppendedMeshBringsItsMaterialsAndTextures) {
   scene.textures.resize(1);
   std::array<float, 16> identity{};
   identity[0] = identity[5] = identity[10] = identity[15] = 1.f;
-  append_obj_mesh(kTestData / "materials.obj", identity, std::nullopt, scene);
+  append_mesh(kTestData / "materials.obj", identity, std::nullopt, scene);
   ASSERT_EQ(scene.materials.size(), 6u);
   ASSERT_EQ(scene.textures.size(), 2u);
   EXPECT_EQ(scene.triangles[2].material, 4u);  // "textured", after the two already there
@@ -740,7 +741,7 @@ TEST(ObjReader, AppendedMeshesAreSmoothedBeforeTheTransform) {
   m[5] = m[10] = m[15] = 1.f;
   SceneDesc smooth;
   smooth.materials.push_back(MaterialDesc{});
-  append_obj_mesh(kTestData / "roof.obj", m, std::size_t{0}, smooth);
+  append_mesh(kTestData / "roof.obj", m, std::size_t{0}, smooth);
   ASSERT_EQ(smooth.triangles.size(), 2u);
   for (const SceneTriangle& t : smooth.triangles) {
     ASSERT_TRUE(t.triangle.normals.has_value());
@@ -749,7 +750,7 @@ TEST(ObjReader, AppendedMeshesAreSmoothedBeforeTheTransform) {
   EXPECT_LT(degrees_from((*smooth.triangles[0].triangle.normals)[0], 0, 0, 1), 1e-4);
   SceneDesc faceted;
   faceted.materials.push_back(MaterialDesc{});
-  append_obj_mesh(kTestData / "roof.obj", m, std::size_t{0}, faceted, 0.0);
+  append_mesh(kTestData / "roof.obj", m, std::size_t{0}, faceted, 0.0);
   for (const SceneTriangle& t : faceted.triangles) EXPECT_FALSE(t.triangle.normals.has_value());
 }
 

@@ -41,8 +41,9 @@ TEST(SceneLoader, ChoosesTheReaderByExtensionIgnoringCase) {
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& error) {
     EXPECT_EQ(error.line(), 0u);
-    EXPECT_NE(std::string(error.what()).find("unknown scene format (extension '.txt'): expected .nff, .toml or .obj"),
-              std::string::npos)
+    const std::string expected =
+        "unknown scene format (extension '.txt'): expected .nff, .toml, .obj, .ply, .gltf, .glb or .stl";
+    EXPECT_NE(std::string(error.what()).find(expected), std::string::npos)
         << error.what();
   }
 }

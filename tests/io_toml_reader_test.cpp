@@ -475,8 +475,8 @@ TEST(TomlReader, MeshCreaseAngleKeyAndTheCommandLineOverride) {
 TEST(TomlReader, FilesMustExist) {
   EXPECT_TRUE(error_at("[[textures]]\nname = \"t\"\ntype = \"image\"\nfile = \"none.png\"\n", 4, 8,
                        "the path of an image file that exists"));
-  EXPECT_TRUE(error_at("[[meshes]]\nfile = \"none.obj\"\n", 2, 8, "the path of an OBJ file that exists"));
-  EXPECT_TRUE(error_at("[[meshes]]\nfile = \"minimal.toml\"\n", 2, 8, "an OBJ file (.obj)"));
+  EXPECT_TRUE(error_at("[[meshes]]\nfile = \"none.obj\"\n", 2, 8, "the path of a mesh file that exists"));
+  EXPECT_TRUE(error_at("[[meshes]]\nfile = \"minimal.toml\"\n", 2, 8, "a mesh file (.obj, .ply, .gltf, .glb or .stl)"));
   EXPECT_TRUE(error_at("[[meshes]]\nfile = \"triangle.obj\"\nscale = [1, 0, 1]\n", 3, 9, "a non-zero scale"));
   const ParseError error = read_error(kTestData / "none.toml");
   EXPECT_EQ(error.line(), 0u);
@@ -502,7 +502,7 @@ TEST(TomlReader, WholeFileErrorsOfAnIncludedMeshPointAtItsFileKey) {
   std::ofstream(dir / "huge.obj") << "v 3e38 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
   std::ofstream(dir / "scene.toml") << "[[meshes]]\nfile = \"huge.obj\"\nscale = 10\n";
   const ParseError error = read_error(dir / "scene.toml");
-  EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the OBJ mesh named here: " +
+  EXPECT_EQ(std::string(error.what()), (dir / "scene.toml").string() + ":2:8: in the mesh named here: " +
                                            (dir / "huge.obj").string() +
                                            ": a vertex is not finite after the mesh transform of the including scene");
   EXPECT_EQ(error.line(), 2u);

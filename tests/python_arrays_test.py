@@ -87,6 +87,7 @@ def test_scene_file_errors_carry_the_cli_text():
                   "f 1 1 1 1 0 0 0 1\ns 0 0 x 1\n"),
             write(folder, "bad.toml", "[[spheres]]\ncenter = [0, 0]\nradius = 1\n"),
             write(folder, "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n"),
+            write(folder, "bad.ply", "ply\nformat ascii 1.0\nelement vertex 99\nproperty float x\nend_header\n0\n"),
             os.path.join(folder, "absent.nff"),
             write(folder, "scene.xyz", "nothing"),
         ]
@@ -96,6 +97,9 @@ def test_scene_file_errors_carry_the_cli_text():
             assert isinstance(error.value, ValueError)
             assert str(error.value) == cli_error("info", path), path
             assert str(error.value).startswith(path)
+        # PLY, glTF and STL go through the Assimp module from Python too.
+        roof = os.path.join(os.environ["QUIVER_TEST_DATA_DIR"], "mesh", "roof.ply")
+        assert "2 primitives" in repr(quiver.load(roof))
         # A file:line:column position where the error has one.
         with pytest.raises(quiver.ParseError) as error:
             quiver.load(cases[0])

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the scene readers with libFuzzer + ASan + UBSan, each for SECONDS
 # (default 60), one after another.
-#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj (default: all three)
+#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh (default: all four)
 # Configures the "fuzz" preset when needed (clang++) and builds the fuzzers
 # in build-fuzz/, seeds build-fuzz/corpus-FUZZER from the repository's test
 # data (and the small SPD scenes of ../shared for nff, when present), runs
@@ -11,7 +11,7 @@
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 [SECONDS] [nff|toml|obj ...]  (SECONDS a positive integer, default 60; default: all fuzzers)" >&2
+  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh ...]  (SECONDS a positive integer, default 60; default: all fuzzers)" >&2
   exit 2
 }
 
@@ -22,9 +22,9 @@ if [ $# -gt 0 ] && [[ "$1" =~ ^[0-9]+$ ]]; then
 fi
 if [ "$seconds" -lt 1 ]; then usage; fi
 fuzzers=("$@")
-if [ ${#fuzzers[@]} -eq 0 ]; then fuzzers=(nff toml obj); fi
+if [ ${#fuzzers[@]} -eq 0 ]; then fuzzers=(nff toml obj mesh); fi
 for name in "${fuzzers[@]}"; do
-  case "$name" in nff | toml | obj) ;; *) usage ;; esac
+  case "$name" in nff | toml | obj | mesh) ;; *) usage ;; esac
 done
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -69,6 +69,19 @@ seed_corpus() {
           printf '\0' >>"$out"
           cat "$(dirname "$seed")/$library" >>"$out"
         fi
+      done
+      ;;
+    mesh)
+      # The check's selector byte (0 PLY, 1 STL, 2 glTF; mesh_fuzzer.cpp), then the file.
+      for seed in "$root"/tests/data/mesh/*; do
+        local out="$corpus/seed-$(basename "$seed")"
+        case "$seed" in
+          *.ply) printf '\0' >"$out" ;;
+          *.stl) printf '\1' >"$out" ;;
+          *.gltf) printf '\2' >"$out" ;;
+          *) continue ;;
+        esac
+        cat "$seed" >>"$out"
       done
       ;;
   esac

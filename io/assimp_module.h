@@ -1,0 +1,70 @@
+// The C-style interface of the quiver_assimp module (io/assimp_module.cpp),
+// the shared library that holds every use of Assimp (PLY, glTF 2.0 and STL
+// import). quiver loads it with dlopen on first use (io/module_loader.h),
+// so a run that reads no such file never maps Assimp. The module exports
+// one function, kAssimpModuleEntry, returning a table of plain functions;
+// no C++ type or exception crosses the boundary. Failure is reported by the
+// return value, with Assimp's message, cut to fit and NUL-terminated, in
+// the caller's error buffer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace quiver {
+
+// Bumped whenever AssimpModuleApi or the structs below change.
+inline constexpr int kAssimpModuleVersion = 1;
+
+inline constexpr const char* kAssimpModuleEntry = "quiver_assimp_module_api";
+inline constexpr const char* kAssimpModuleFileName = "quiver_assimp.so";
+
+// A material as the file gives it (glTF's base colour; others' diffuse).
+struct ImportedMaterial {
+  float color[3];
+  int has_color;        // 0: the file names no colour
+  int two_sided;        // glTF doubleSided; 1 when the format has no such flag
+  char texture[1024];   // the colour texture's path as written ("" none, "*N" embedded), cut to fit
+};
+
+// One mesh of the file, in world space (the file's node transforms applied),
+// triangles only. The arrays live as long as the import's handle.
+struct ImportedPart {
+  std::size_t vertex_count;
+  const float* positions;  // 3 floats per vertex
+  const float* normals;    // 3 floats per vertex, or null
+  const float* uvs;        // first uv channel, uv_stride floats per vertex, or null
+  std::size_t uv_stride;
+  std::size_t triangle_count;
+  const std::uint32_t* indices;  // 3 per triangle, below vertex_count
+  std::size_t material;          // index into ImportedMesh::materials
+};
+
+struct ImportedMesh {
+  std::size_t part_count;
+  const ImportedPart* parts;
+  std::size_t material_count;
+  const ImportedMaterial* materials;
+  std::size_t dropped_points_and_lines;  // primitives that are not triangles
+};
+
+struct AssimpModuleApi {
+  int version;  // kAssimpModuleVersion
+
+  // Imports a mesh with Assimp (polygons triangulated, node transforms
+  // applied, points and lines counted apart, normals only as the file gives
+  // them) and fills mesh: from the size bytes at data, of the format named
+  // by the extension `hint` ("ply"), when data is not null; else from the
+  // file at path (whose format may name others beside it). Returns a handle
+  // that owns mesh's arrays, for free_import, or null with a message.
+  void* (*import_mesh)(const char* path, const void* data, std::size_t size, const char* hint, ImportedMesh* mesh,
+                       char* error, std::size_t error_size);
+
+  // Frees the import and its arrays.
+  void (*free_import)(void* handle);
+};
+
+}  // namespace quiver
+
+// The one exported function (C linkage, name kAssimpModuleEntry).
+extern "C" const quiver::AssimpModuleApi* quiver_assimp_module_api();

@@ -1,0 +1,94 @@
+#include "io/mesh_append.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "io/file_extension.h"
+#include "io/mesh_import.h"
+#include "io/obj_reader.h"
+#include "io/parse_error.h"
+
+namespace quiver {
+
+namespace fs = std::filesystem;
+
+bool is_mesh_extension(std::string_view extension) {
+  return extension == ".obj" || is_imported_mesh_extension(extension);
+}
+
+void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
+                 std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees,
+                 bool strict) {
+  const std::string extension = lowercase_extension(path);
+  if (!is_mesh_extension(extension)) throw std::invalid_argument("append_mesh: not a mesh file name");
+  if (material_override && *material_override >= scene.materials.size()) {
+    throw std::invalid_argument("append_mesh: material_override is not an index into scene.materials");
+  }
+  const glm::dmat4 m(glm::make_mat4(transform.data()));
+  const glm::dmat3 linear(m);
+  const double determinant = glm::determinant(linear);
+  if (!std::isfinite(determinant) || determinant == 0.0) {
+    throw std::invalid_argument("append_mesh: the transform is singular or not finite");
+  }
+  const glm::dmat3 normal_matrix = glm::inverseTranspose(linear);
+  const bool mirrors = determinant < 0.0;
+
+  const std::string name = path.string();
+  const std::size_t budget = kMaxObjTriangles - std::min(scene.triangles.size(), kMaxObjTriangles);
+  SceneDesc mesh = extension == ".obj" ? read_obj_scene(path, crease_angle_degrees, strict, budget)
+                                       : read_imported_mesh(path, crease_angle_degrees, strict, budget);
+
+  auto not_finite = [&] {
+    throw ParseError::whole_file(name, "a vertex is not finite after the mesh transform of the including scene");
+  };
+  for (SceneTriangle& t : mesh.triangles) {
+    for (Vec3<float>& p : t.triangle.p) {
+      const glm::dvec4 q = m * glm::dvec4(p.x, p.y, p.z, 1.0);
+      p = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) not_finite();
+    }
+    if (t.triangle.normals) {
+      for (Vec3<float>& n : *t.triangle.normals) {
+        glm::dvec3 q = normal_matrix * glm::dvec3(n.x, n.y, n.z);
+        const double length = glm::length(q);
+        if (length > 0.0) q /= length;  // unit in double, so the float never overflows
+        n = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+      }
+    }
+    if (mirrors) {
+      std::swap(t.triangle.p[1], t.triangle.p[2]);
+      if (t.triangle.normals) std::swap((*t.triangle.normals)[1], (*t.triangle.normals)[2]);
+      if (t.triangle.uvs) std::swap((*t.triangle.uvs)[1], (*t.triangle.uvs)[2]);
+    }
+  }
+
+  // Nothing below throws except on allocation: the scene changes only here.
+  const std::size_t material_base = scene.materials.size();
+  const std::size_t texture_base = scene.textures.size();
+  mesh.source_files.insert(mesh.source_files.begin(), name);
+  for (std::string& file : mesh.source_files) {
+    const auto& known = scene.source_files;
+    if (std::find(known.begin(), known.end(), file) == known.end()) scene.source_files.push_back(std::move(file));
+  }
+  if (!material_override) {
+    for (TextureDesc& texture : mesh.textures) scene.textures.push_back(std::move(texture));
+    for (MaterialDesc material : mesh.materials) {
+      if (material.texture) *material.texture += texture_base;
+      scene.materials.push_back(material);
+    }
+  }
+  scene.warnings.insert(scene.warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
+  scene.triangles.reserve(scene.triangles.size() + mesh.triangles.size());
+  for (SceneTriangle& t : mesh.triangles) {
+    t.material = material_override ? *material_override : t.material + material_base;
+    scene.triangles.push_back(std::move(t));
+  }
+}
+
+}  // namespace quiver

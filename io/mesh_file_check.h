@@ -1,0 +1,33 @@
+// Structural checks of PLY, STL and glTF/GLB files before Assimp reads them
+// (io/mesh_import.h), so that no count in a file makes the importer
+// allocate more than the file's bytes can back: every PLY element count and
+// list length against the bytes left (the data walked once, as the header
+// declares it), a binary STL's triangle count against the file's size, a
+// GLB's length and chunks, and every glTF buffer's byteLength against the
+// file or data URI that holds it. Errors in text name file:line:column;
+// in binary data, "file: byte N: expected X, found Y".
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string_view>
+
+namespace quiver {
+
+// What the file's header declares, for the caller's bounds.
+struct MeshFileCounts {
+  std::size_t vertices = 0;   // PLY's vertex element; 0 when unknown
+  std::size_t triangles = 0;  // after fan triangulation; 0 when unknown
+  bool stl_binary = false;
+};
+
+// `bytes` is the whole file, `file` its name in messages. Throws ParseError.
+MeshFileCounts check_ply(std::string_view bytes, std::string_view file);
+MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
+// glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
+// URI are looked for relative to `directory`, and their sizes added up with
+// the file's against max_total_bytes.
+void check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
+                bool binary, std::size_t max_total_bytes);
+
+}  // namespace quiver

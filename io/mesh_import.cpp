@@ -1,0 +1,227 @@
+#include "io/mesh_import.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "io/assimp_loader.h"
+#include "io/file_extension.h"
+#include "io/mesh_file_check.h"
+#include "io/parse_error.h"
+#include "io/reader_warnings.h"
+#include "io/text_file.h"
+
+namespace quiver {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+enum class MeshFormat { ply, gltf, glb, stl };
+
+std::optional<MeshFormat> format_of(std::string_view extension) {
+  if (extension == ".ply") return MeshFormat::ply;
+  if (extension == ".gltf") return MeshFormat::gltf;
+  if (extension == ".glb") return MeshFormat::glb;
+  if (extension == ".stl") return MeshFormat::stl;
+  return std::nullopt;
+}
+
+// Frees an import when it goes out of scope.
+struct ImportDeleter {
+  const AssimpModuleApi* api;
+  void operator()(void* handle) const { api->free_import(handle); }
+};
+using ImportHandle = std::unique_ptr<void, ImportDeleter>;
+
+// Welds vertices by exact position (-0 as +0), for the normals of meshes
+// whose files share no vertices (STL) or split them at seams.
+class PositionWelder {
+ public:
+  std::uint32_t index_of(const Vec3<float>& p) {
+    const Vec3<float> q{p.x + 0.f, p.y + 0.f, p.z + 0.f};
+    std::array<std::uint32_t, 3> key;
+    std::memcpy(key.data(), &q.x, 4);
+    std::memcpy(key.data() + 1, &q.y, 4);
+    std::memcpy(key.data() + 2, &q.z, 4);
+    const auto [entry, added] = index_.try_emplace(key, static_cast<std::uint32_t>(positions_.size()));
+    if (added) positions_.push_back(q);
+    return entry->second;
+  }
+  const std::vector<Vec3<float>>& positions() const { return positions_; }
+
+ private:
+  struct KeyHash {
+    std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
+      return (std::size_t{k[0]} * 73856093u) ^ (std::size_t{k[1]} * 19349663u) ^ (std::size_t{k[2]} * 83492791u);
+    }
+  };
+  std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, KeyHash> index_;
+  std::vector<Vec3<float>> positions_;
+};
+
+Vec3<float> vector_at(const float* data, std::size_t stride, std::size_t index) {
+  const float* v = data + stride * index;
+  return {v[0], v[1], v[2]};
+}
+
+bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// glTF materials into the scene (PLY and STL: one default material).
+void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
+                   ReaderWarnings& warnings, SceneDesc& scene) {
+  if (format != MeshFormat::gltf && format != MeshFormat::glb) {
+    scene.materials.assign(1, MaterialDesc{});
+    return;
+  }
+  const FilePosition whole_file{std::string(file), 0, 0};
+  for (std::size_t i = 0; i < mesh.material_count; ++i) {
+    const ImportedMaterial& m = mesh.materials[i];
+    MaterialDesc material;
+    if (m.has_color) material.color = {m.color[0], m.color[1], m.color[2]};
+    material.two_sided = m.two_sided != 0;
+    const std::string_view texture(m.texture, ::strnlen(m.texture, sizeof m.texture));
+    if (!texture.empty() && (texture[0] == '*' || texture.rfind("data:", 0) == 0)) {
+      warnings.warn("embedded texture", whole_file, "a base colour texture in a file beside the mesh",
+                    "an image embedded in the mesh", "the base colour alone");
+    } else if (!texture.empty()) {
+      const fs::path path = (directory / fs::path(texture)).lexically_normal();
+      std::error_code error;
+      if (fs::is_regular_file(path, error)) {
+        TextureDesc image;
+        image.kind = TextureDesc::Kind::image;
+        image.path = path.string();
+        image.named_at = whole_file;
+        material.texture = scene.textures.size();
+        scene.textures.push_back(std::move(image));
+      } else {
+        warnings.warn(joined({"texture ", path.string()}), whole_file,
+                      joined({"an image file that exists (looked for '", path.string(), "')"}), quoted_token(texture),
+                      "the material is not textured");
+      }
+    }
+    scene.materials.push_back(material);
+  }
+}
+
+SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
+                     double crease_angle_degrees, bool strict, std::size_t triangle_budget) {
+  ReaderWarnings warnings(strict);
+  SceneDesc scene;
+  add_materials(mesh, format, file, directory, warnings, scene);
+  if (mesh.dropped_points_and_lines > 0) {
+    warnings.warn("points and lines", {std::string(file), 0, 0}, "triangles",
+                  joined({std::to_string(mesh.dropped_points_and_lines), " points and lines"}), "they are not drawn");
+  }
+  std::size_t triangles = 0;
+  for (std::size_t i = 0; i < mesh.part_count; ++i) triangles += mesh.parts[i].triangle_count;
+  if (triangles == 0) throw ParseError::whole_file(file, "expected at least one triangle, found none");
+  if (triangles > triangle_budget) {
+    throw ParseError::whole_file(file, joined({"expected at most ", std::to_string(triangle_budget),
+                                               " triangles in the scene, found ", std::to_string(triangles)}));
+  }
+  scene.triangles.reserve(triangles);
+
+  // STL's normals are its facets': smooth ones are computed as for PLY.
+  const bool file_normals_kept = format != MeshFormat::stl;
+  const bool smooth_missing = format == MeshFormat::ply || format == MeshFormat::stl;
+  PositionWelder welder;
+  std::vector<TriangleIndices> welded;    // of the triangles to smooth
+  std::vector<std::size_t> welded_owner;  // their index in scene.triangles
+  for (std::size_t i = 0; i < mesh.part_count; ++i) {
+    const ImportedPart& part = mesh.parts[i];
+    const bool has_normals = file_normals_kept && part.normals != nullptr;
+    const std::size_t material = part.material < scene.materials.size() ? part.material : 0;
+    for (std::size_t t = 0; t < part.triangle_count; ++t) {
+      SceneTriangle triangle{};
+      triangle.material = material;
+      std::array<Vec3<float>, 3> normals{};
+      std::array<std::array<float, 2>, 3> uvs{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint32_t v = part.indices[3 * t + k];
+        triangle.triangle.p[k] = vector_at(part.positions, 3, v);
+        if (!finite(triangle.triangle.p[k])) {
+          throw ParseError::whole_file(file, joined({"expected finite vertex positions, found one that is not "
+                                                     "(mesh ",
+                                                     std::to_string(i), ", vertex ", std::to_string(v), ")"}));
+        }
+        if (has_normals) normals[k] = vector_at(part.normals, 3, v);
+        if (part.uvs != nullptr) uvs[k] = {part.uvs[part.uv_stride * v], part.uvs[part.uv_stride * v + 1]};
+      }
+      if (has_normals && finite(normals[0]) && finite(normals[1]) && finite(normals[2])) {
+        triangle.triangle.normals = normals;
+      } else if (smooth_missing) {
+        welded.push_back({welder.index_of(triangle.triangle.p[0]), welder.index_of(triangle.triangle.p[1]),
+                          welder.index_of(triangle.triangle.p[2])});
+        welded_owner.push_back(scene.triangles.size());
+      }
+      if (part.uvs != nullptr) triangle.triangle.uvs = uvs;
+      scene.triangles.push_back(triangle);
+    }
+  }
+  const std::vector<std::optional<CornerNormals>> smooth =
+      smooth_vertex_normals(welder.positions(), welded, crease_angle_degrees);
+  for (std::size_t k = 0; k < welded.size(); ++k) {
+    if (smooth[k]) scene.triangles[welded_owner[k]].triangle.normals = *smooth[k];
+  }
+  scene.warnings = warnings.lines();
+  return scene;
+}
+
+}  // namespace
+
+bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
+
+SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, bool strict,
+                             std::size_t triangle_budget) {
+  if (!valid_crease_angle(crease_angle_degrees)) {
+    throw std::invalid_argument("mesh reader: the crease angle is not in [0, 180] degrees");
+  }
+  const std::string file = path.string();
+  const std::string extension = lowercase_extension(path);
+  const std::optional<MeshFormat> format = format_of(extension);
+  if (!format) throw std::invalid_argument("read_imported_mesh: not a PLY, glTF or STL file name");
+
+  const std::string bytes = read_text_file(path, kMaxImportedMeshBytes, "a mesh");
+  const fs::path directory = path.parent_path();
+  switch (*format) {
+    case MeshFormat::ply:
+      check_ply(bytes, file);
+      break;
+    case MeshFormat::stl:
+      check_stl(bytes, file);
+      break;
+    case MeshFormat::gltf:
+      check_gltf(bytes, file, directory, false, kMaxImportedMeshBytes);
+      break;
+    case MeshFormat::glb:
+      check_gltf(bytes, file, directory, true, kMaxImportedMeshBytes);
+      break;
+  }
+
+  const AssimpModuleApi* api = nullptr;
+  try {
+    api = &assimp_module();
+  } catch (const std::runtime_error& error) {
+    throw ParseError::whole_file(file, error.what());
+  }
+  // PLY and STL are read from the bytes checked; glTF from its file, whose
+  // buffers and images are named relative to it.
+  const bool from_memory = *format == MeshFormat::ply || *format == MeshFormat::stl;
+  ImportedMesh mesh{};
+  char error[1024] = {};
+  ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),
+                                       extension.c_str() + 1, &mesh, error, sizeof error),
+                      ImportDeleter{api});
+  if (!handle) throw ParseError::whole_file(file, joined({"Assimp: ", error}));
+  return scene_from(mesh, *format, file, directory, crease_angle_degrees, strict, triangle_budget);
+}
+
+}  // namespace quiver

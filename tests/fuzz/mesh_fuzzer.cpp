@@ -1,0 +1,62 @@
+// libFuzzer target for the structural checks run before Assimp reads a PLY,
+// STL or glTF file (io/mesh_file_check.h), whose walk over binary counts is
+// quiver's own code. The input's first byte picks the check (0 PLY, 1 STL,
+// 2 glTF text, 3 GLB; modulo 4), the rest is the file's bytes; glTF buffer
+// URIs resolve in tests/data/mesh. quiver::ParseError is the only accepted
+// failure; any other exception, a sanitizer report or a broken invariant is
+// a finding.
+//
+// Invariants on success: the counts are within the OBJ bounds
+// (kMaxObjVertices, kMaxObjTriangles), and a binary STL's triangle count
+// is what its size says.
+// Invariants on ParseError: file() is the input's name; an error with a
+// line points into the input as the text readers' do (PLY's header and
+// ASCII data, glTF's JSON), one without reads "name: ...".
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "io/mesh_file_check.h"
+#include "io/obj_reader.h"
+#include "io/parse_error.h"
+#include "tests/fuzz/scene_invariants.h"
+
+namespace {
+
+constexpr std::string_view kNames[] = {"fuzz.ply", "fuzz.stl", "fuzz.gltf", "fuzz.glb"};
+constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::size_t kind = data[0] % 4;
+  const std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
+  const std::string_view name = kNames[kind];
+  using quiver::fuzz::check;
+  try {
+    switch (kind) {
+      case 0: {
+        const quiver::MeshFileCounts counts = quiver::check_ply(bytes, name);
+        check(counts.vertices <= quiver::kMaxObjVertices && counts.triangles <= quiver::kMaxObjTriangles);
+        break;
+      }
+      case 1: {
+        const quiver::MeshFileCounts counts = quiver::check_stl(bytes, name);
+        check(!counts.stl_binary || 84 + 50 * counts.triangles == bytes.size());
+        break;
+      }
+      default:
+        quiver::check_gltf(bytes, name, QUIVER_FUZZ_FILES_DIR, kind == 3, kMaxBytes);
+    }
+  } catch (const quiver::ParseError& error) {
+    check(error.file() == name);
+    if (error.line() == 0) {
+      check(std::string_view(error.what()).substr(0, name.size() + 2) == std::string(name) + ": ");
+    } else if (kind != 3) {
+      quiver::fuzz::check_error_position(error, bytes, false);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,366 @@
+// Tests of io/mesh_import.h (PLY, glTF 2.0 and STL through the quiver_assimp
+// module), io/mesh_file_check.h (the bounds checked before Assimp reads a
+// file) and io/mesh_append.h (a mesh of any format under a transform).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/mesh_append.h"
+#include "io/mesh_import.h"
+#include "io/obj_reader.h"
+#include "io/parse_error.h"
+#include "io/scene_loader.h"
+#include "tests/support/temporary_directory.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kMeshes = fs::path(QUIVER_TEST_DATA_DIR) / "mesh";
+const fs::path kObj = fs::path(QUIVER_TEST_DATA_DIR) / "obj";
+
+void write_file(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+template <typename T>
+void put(std::string& bytes, T value, bool big_endian = false) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  if (big_endian) std::reverse(raw, raw + sizeof(T));
+  bytes.append(raw, sizeof(T));
+}
+
+// The roof (tests/data/obj/roof.obj) as a binary PLY of the OBJ reader's
+// float positions, in either byte order.
+std::string binary_roof_ply(const SceneDesc& obj, bool big_endian) {
+  std::string bytes = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  // roof.obj's faces are 1 3 2 and 1 2 4: vertex k is the first corner that names it.
+  const std::array<Vec3<float>, 4> v{obj.triangles[0].triangle.p[0], obj.triangles[0].triangle.p[2],
+                                     obj.triangles[0].triangle.p[1], obj.triangles[1].triangle.p[2]};
+  for (const Vec3<float>& p : v) {
+    put(bytes, p.x, big_endian);
+    put(bytes, p.y, big_endian);
+    put(bytes, p.z, big_endian);
+  }
+  for (const std::array<std::int32_t, 3>& face : {std::array<std::int32_t, 3>{0, 2, 1}, {0, 1, 3}}) {
+    put<std::uint8_t>(bytes, 3);
+    for (std::int32_t index : face) put(bytes, index, big_endian);
+  }
+  return bytes;
+}
+
+// The roof as a binary STL whose facet normals are all +x (wrong on purpose:
+// STL's normals are not used).
+std::string binary_roof_stl(const SceneDesc& obj) {
+  std::string bytes(80, ' ');
+  put<std::uint32_t>(bytes, 2);
+  for (const SceneTriangle& t : obj.triangles) {
+    for (float n : {1.f, 0.f, 0.f}) put(bytes, n);
+    for (const Vec3<float>& p : t.triangle.p) {
+      put(bytes, p.x);
+      put(bytes, p.y);
+      put(bytes, p.z);
+    }
+    put<std::uint16_t>(bytes, 0);
+  }
+  return bytes;
+}
+
+void expect_same_triangles(const SceneDesc& a, const SceneDesc& b, float tolerance) {
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  for (std::size_t t = 0; t < a.triangles.size(); ++t) {
+    const TriangleDesc& x = a.triangles[t].triangle;
+    const TriangleDesc& y = b.triangles[t].triangle;
+    ASSERT_EQ(x.normals.has_value(), y.normals.has_value()) << "triangle " << t;
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_NEAR(x.p[k].x, y.p[k].x, tolerance) << t << "," << k;
+      EXPECT_NEAR(x.p[k].y, y.p[k].y, tolerance) << t << "," << k;
+      EXPECT_NEAR(x.p[k].z, y.p[k].z, tolerance) << t << "," << k;
+      if (!x.normals) continue;
+      EXPECT_NEAR((*x.normals)[k].x, (*y.normals)[k].x, tolerance) << t << "," << k;
+      EXPECT_NEAR((*x.normals)[k].y, (*y.normals)[k].y, tolerance) << t << "," << k;
+      EXPECT_NEAR((*x.normals)[k].z, (*y.normals)[k].z, tolerance) << t << "," << k;
+    }
+  }
+}
+
+// What read_imported_mesh throws for path, or "" when it reads it.
+std::string import_error(const fs::path& path) {
+  try {
+    read_imported_mesh(path);
+  } catch (const ParseError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(MeshImport, AsciiPlyIsTheSameRoofAsTheObjWithTheSameSmoothNormals) {
+  const SceneDesc obj = read_obj_scene(kObj / "roof.obj");
+  const SceneDesc ply = read_imported_mesh(kMeshes / "roof.ply");
+  ASSERT_TRUE(obj.triangles[0].triangle.normals.has_value());  // 30 degrees apart: smooth at the default 60
+  // Assimp's decimal parser is not correctly rounded: the last bit may differ.
+  expect_same_triangles(obj, ply, 1e-6f);
+  ASSERT_EQ(ply.materials.size(), 1u);
+  EXPECT_EQ(ply.materials[0].color.x, MaterialDesc{}.color.x);
+  EXPECT_TRUE(ply.warnings.empty());
+  // The crease angle applies as to OBJ: below 30 degrees, faceted.
+  const SceneDesc faceted = read_imported_mesh(kMeshes / "roof.ply", 20.0);
+  EXPECT_FALSE(faceted.triangles[0].triangle.normals.has_value());
+}
+
+TEST(MeshImport, BinaryPlyInEitherByteOrderAndBinaryStlMatchTheObjExactly) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const SceneDesc obj = read_obj_scene(kObj / "roof.obj");
+  for (bool big_endian : {false, true}) {
+    const fs::path path = temporary.path() / (big_endian ? "big.ply" : "little.ply");
+    write_file(path, binary_roof_ply(obj, big_endian));
+    expect_same_triangles(obj, read_imported_mesh(path), 0.f);
+  }
+  // STL shares no vertices: they are welded by position, and its facet
+  // normals (all +x here) are replaced by smooth ones.
+  const fs::path stl = temporary.path() / "roof.stl";
+  write_file(stl, binary_roof_stl(obj));
+  expect_same_triangles(obj, read_imported_mesh(stl), 0.f);
+  expect_same_triangles(obj, read_imported_mesh(kMeshes / "roof.stl"), 1e-6f);  // ASCII STL
+}
+
+TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path path = temporary.path() / "quad.ply";
+  write_file(path,
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
+             "element face 1\nproperty list uchar uint vertex_indices\nend_header\n"
+             "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0.6 0 0.8 0 1\n4 0 1 2 3\n");
+  const SceneDesc scene = read_imported_mesh(path);
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  for (const SceneTriangle& t : scene.triangles) {
+    ASSERT_TRUE(t.triangle.normals.has_value());
+    ASSERT_TRUE(t.triangle.uvs.has_value());
+    for (std::size_t k = 0; k < 3; ++k) {
+      // Each corner's uv is its position's x, y here; vertex 3's normal is its own.
+      EXPECT_EQ((*t.triangle.uvs)[k][0], t.triangle.p[k].x);
+      EXPECT_EQ((*t.triangle.uvs)[k][1], t.triangle.p[k].y);
+      const bool corner3 = t.triangle.p[k].x == 0.f && t.triangle.p[k].y == 1.f;
+      EXPECT_FLOAT_EQ((*t.triangle.normals)[k].x, corner3 ? 0.6f : 0.f);
+    }
+  }
+}
+
+TEST(MeshImport, GltfGetsItsNodeTransformAndBaseColourAndStaysFacetedWithoutNormals) {
+  const SceneDesc scene = read_imported_mesh(kMeshes / "triangle.gltf");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  const TriangleDesc& t = scene.triangles[0].triangle;
+  EXPECT_FALSE(t.normals.has_value());  // glTF: flat shading when normals are absent
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(t.p[k].z, 2.f);  // the node's translation
+  EXPECT_EQ(t.p[0].x + t.p[1].x + t.p[2].x, 1.f);
+  const MaterialDesc& m = scene.materials.at(scene.triangles[0].material);
+  EXPECT_EQ(m.color.x, 0.8f);
+  EXPECT_EQ(m.color.y, 0.25f);
+  EXPECT_EQ(m.color.z, 0.125f);
+  EXPECT_FALSE(m.two_sided);  // glTF's doubleSided defaults to false
+}
+
+// A .glb of triangle.gltf's JSON with its buffer in the binary chunk.
+std::string glb_of_triangle(std::uint32_t stated_length_extra = 0) {
+  std::ifstream in(kMeshes / "triangle.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t uri = json.find("\"uri\"");
+  const std::size_t data = json.find("base64,", uri) + 7;
+  const std::size_t end = json.find('"', data);
+  // Decode the base64 payload (standard alphabet).
+  std::string binary;
+  std::uint32_t bits = 0;
+  int count = 0;
+  for (std::size_t i = data; i < end; ++i) {
+    const char c = json[i];
+    if (c == '=') break;
+    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    bits = (bits << 6) | static_cast<std::uint32_t>(alphabet.find(c));
+    if ((count += 6) >= 8) binary += static_cast<char>((bits >> (count -= 8)) & 0xff);
+  }
+  json.erase(uri, end + 1 - uri);
+  json.erase(json.rfind(',', uri), uri - json.rfind(',', uri));  // the comma before "uri"
+  while (json.size() % 4 != 0) json += ' ';
+  while (binary.size() % 4 != 0) binary += '\0';
+  std::string bytes = "glTF";
+  put<std::uint32_t>(bytes, 2);
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + binary.size()) +
+                                stated_length_extra);
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(json.size()));
+  put<std::uint32_t>(bytes, 0x4E4F534A);
+  bytes += json;
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(binary.size()));
+  put<std::uint32_t>(bytes, 0x004E4942);
+  bytes += binary;
+  return bytes;
+}
+
+TEST(MeshImport, GlbReadsAsItsGltf) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path path = temporary.path() / "triangle.glb";
+  write_file(path, glb_of_triangle());
+  expect_same_triangles(read_imported_mesh(kMeshes / "triangle.gltf"), read_imported_mesh(path), 0.f);
+  write_file(path, glb_of_triangle(4));
+  EXPECT_NE(import_error(path).find(": byte 8: expected the GLB length "), std::string::npos) << import_error(path);
+}
+
+TEST(MeshImport, PointsAndLinesAreAWarningOrUnderStrictAnError) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  std::ifstream in(kMeshes / "triangle.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A second primitive drawing the same vertices as points (mode 0).
+  const std::string primitive = "\"material\": 0\n    }";
+  const std::size_t at = json.find(primitive);
+  ASSERT_NE(at, std::string::npos);
+  json.insert(at + primitive.size(), ", {\"attributes\": {\"POSITION\": 0}, \"mode\": 0}");
+  const fs::path path = temporary.path() / "points.gltf";
+  write_file(path, json);
+  const SceneDesc scene = read_imported_mesh(path);
+  EXPECT_EQ(scene.triangles.size(), 1u);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("warning: expected triangles, found 3 points and lines"), std::string::npos)
+      << scene.warnings[0];
+  EXPECT_THROW(read_imported_mesh(path, kDefaultCreaseAngleDegrees, true), ParseError);
+}
+
+// Counts that would make an importer allocate more than the file holds are
+// refused before Assimp reads anything, where they are written.
+TEST(MeshFileCheck, PlyCountsAreBoundedByTheBytesThatFollow) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path path = temporary.path() / "bad.ply";
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string file = path.string();
+
+  write_file(path, "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nend_header\n0\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":3:16: expected an element count that the 2 bytes after the header "
+                                            "can hold, found '4000000000'", 0),
+            0u)
+      << import_error(path);
+
+  write_file(path, header + vertices + "4000000000 0 1 2\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":13:1: expected a list length", 0), 0u) << import_error(path);
+
+  write_file(path, header + "0 0 0\n1 0 0\n0 1");  // a value short
+  EXPECT_EQ(import_error(path).rfind(file + ":12:4: expected a value of element 'vertex', found end of file", 0), 0u)
+      << import_error(path);
+
+  write_file(path, "ply\nformat ascii 2.0\nend_header\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":2:14: expected the format version 1.0, found '2.0'", 0), 0u)
+      << import_error(path);
+  write_file(path, "ply\nformat ascii 1.0\nelement vertex 1\nproperty list float int v\nend_header\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":4:15: expected a list's count type", 0), 0u) << import_error(path);
+  write_file(path, "ply\nformat ascii 1.0\nelement vertex 0\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":4:1: expected a PLY header line ending with 'end_header', found end "
+                                            "of file", 0),
+            0u)
+      << import_error(path);
+  write_file(path, "ply\ncomment x");  // no final line break (a fuzzer's find): the end is on line 2
+  EXPECT_EQ(import_error(path).rfind(file + ":2:10: expected a PLY header line ending with 'end_header'", 0), 0u)
+      << import_error(path);
+  write_file(path, "solid\n");
+  EXPECT_EQ(import_error(path).rfind(file + ":1:1: expected 'ply', the first line of a PLY file, found 'solid'", 0),
+            0u)
+      << import_error(path);
+
+  // Binary: a list claiming more indices than the file holds, at its byte.
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                       "property list uint int vertex_indices\nend_header\n";
+  const std::size_t offset = binary.size();
+  put<std::uint32_t>(binary, 0x40000000);
+  put<std::int32_t>(binary, 0);
+  write_file(path, binary);
+  EXPECT_EQ(import_error(path), file + ": byte " + std::to_string(offset) +
+                                    ": expected a list length that the rest of the file can hold, found 1073741824");
+  binary.resize(offset + 2);  // the count itself cut short
+  write_file(path, binary);
+  EXPECT_NE(import_error(path).find(": byte " + std::to_string(offset) + ": expected the data of element 'face'"),
+            std::string::npos)
+      << import_error(path);
+}
+
+TEST(MeshFileCheck, StlAndGltfStateTheirSizesTruthfully) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const SceneDesc obj = read_obj_scene(kObj / "roof.obj");
+  std::string stl = binary_roof_stl(obj);
+  stl[80] = 3;  // three triangles stated, two present
+  const fs::path path = temporary.path() / "bad.stl";
+  write_file(path, stl);
+  EXPECT_EQ(import_error(path), path.string() + ": byte 80: expected a binary STL's triangle count N with 84 + 50 N "
+                                                "= 184, the file's size (or an ASCII STL starting 'solid'), found 3");
+
+  std::ifstream in(kMeshes / "triangle.gltf");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path gltf = temporary.path() / "bad.gltf";
+  std::string lying = json;
+  const std::size_t length = lying.find("\"byteLength\": 44");
+  ASSERT_NE(length, std::string::npos);
+  lying.replace(length, 16, "\"byteLength\": 99999999999");
+  write_file(gltf, lying);
+  EXPECT_EQ(import_error(gltf), gltf.string() + ": expected buffers[0].byteLength to be at most the 44 bytes of its "
+                                                "data URI, found 99999999999");
+  std::string missing = json;
+  const std::size_t uri = missing.find("data:");
+  missing.replace(uri, missing.find('"', uri) - uri, "nowhere.bin");
+  write_file(gltf, missing);
+  EXPECT_EQ(import_error(gltf), gltf.string() + ": expected buffers[0]'s file 'nowhere.bin' beside it, found no "
+                                                "such file");
+  // A number past double's range is nlohmann's out_of_range, not a parse error (a fuzzer's find).
+  write_file(gltf, "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 1e999}\n");
+  EXPECT_NE(import_error(gltf).find(gltf.string() + ": expected glTF's JSON, found: [json.exception.out_of_range"),
+            std::string::npos)
+      << import_error(gltf);
+  write_file(gltf, "{\"asset\": {\"version\": \"2.0\"},\n \"buffers\": [,]}\n");
+  EXPECT_EQ(import_error(gltf).rfind(gltf.string() + ":2:14: expected glTF's JSON, found ',]}'", 0), 0u)
+      << import_error(gltf);
+}
+
+TEST(MeshImport, AssimpsOwnErrorsNameTheFileAndAnEmptyMeshIsAnError) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path empty = temporary.path() / "empty.ply";
+  write_file(empty, "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nend_header\n");
+  EXPECT_EQ(import_error(empty).rfind(empty.string() + ": ", 0), 0u) << import_error(empty);
+  // Valid JSON that is no glTF Assimp can read: its message, after the file's name.
+  const fs::path gltf = temporary.path() / "wrong.gltf";
+  write_file(gltf, "{\"asset\": {\"version\": \"1.0\"}}\n");
+  EXPECT_EQ(import_error(gltf).rfind(gltf.string() + ": Assimp: ", 0), 0u) << import_error(gltf);
+}
+
+TEST(MeshAppend, APlyMeshIsPlacedAndCountedLikeAnObj) {
+  SceneDesc from_obj, from_ply;
+  from_obj.materials.push_back(MaterialDesc{});
+  from_ply.materials.push_back(MaterialDesc{});
+  const std::array<float, 16> shifted{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+  append_mesh(kObj / "roof.obj", shifted, std::size_t{0}, from_obj);
+  append_mesh(kMeshes / "roof.ply", shifted, std::size_t{0}, from_ply);
+  expect_same_triangles(from_obj, from_ply, 1e-6f);
+  EXPECT_EQ(from_ply.triangles[0].triangle.p[0].x, 5.f);
+  EXPECT_EQ(from_ply.source_files, std::vector<std::string>{(kMeshes / "roof.ply").string()});
+  EXPECT_THROW(append_mesh(kMeshes / "roof.txt", shifted, std::nullopt, from_ply), std::invalid_argument);
+}
+
+TEST(MeshImport, TheSceneLoaderReadsEveryFormatByExtension) {
+  for (const char* name : {"roof.ply", "roof.stl", "triangle.gltf"}) {
+    const SceneDesc scene = load_scene(kMeshes / name);
+    EXPECT_FALSE(scene.triangles.empty()) << name;
+    EXPECT_EQ(scene.source_files.front(), (kMeshes / name).string());
+  }
+}
+
+}  // namespace
+}  // namespace quiver
