@@ -31,7 +31,7 @@ struct Import {
   std::vector<ImportedMaterial> materials;
 };
 
-ImportedMaterial material_of(const aiMaterial& m) {
+ImportedMaterial material_of(const aiScene& scene, const aiMaterial& m) {
   ImportedMaterial out{};
   aiColor4D color;
   if (m.Get(AI_MATKEY_BASE_COLOR, color) == aiReturn_SUCCESS ||
@@ -47,6 +47,14 @@ ImportedMaterial material_of(const aiMaterial& m) {
   if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == aiReturn_SUCCESS ||
       m.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == aiReturn_SUCCESS) {
     copy_message(std::string_view(texture.data, texture.length), out.texture, sizeof out.texture);
+    if (const aiTexture* embedded = scene.GetEmbeddedTexture(texture.C_Str())) {
+      if (embedded->mHeight == 0) {  // a compressed file of mWidth bytes
+        out.embedded = reinterpret_cast<const unsigned char*>(embedded->pcData);
+        out.embedded_size = embedded->mWidth;
+      } else {
+        out.embedded_raw = 1;
+      }
+    }
   }
   return out;
 }
@@ -55,7 +63,7 @@ ImportedMaterial material_of(const aiMaterial& m) {
 // aiProcess_SortByPType a mesh holds one kind) are counted and left out.
 void collect(const aiScene& scene, Import& import, ImportedMesh& mesh) {
   mesh = {};
-  for (unsigned i = 0; i < scene.mNumMaterials; ++i) import.materials.push_back(material_of(*scene.mMaterials[i]));
+  for (unsigned i = 0; i < scene.mNumMaterials; ++i) import.materials.push_back(material_of(scene, *scene.mMaterials[i]));
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
     const aiMesh& m = *scene.mMeshes[i];
     // The flags beside the kinds (aiPrimitiveType_NGONEncodingFlag) do not matter.

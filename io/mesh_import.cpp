@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -82,15 +83,30 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
     return;
   }
   const FilePosition whole_file{std::string(file), 0, 0};
+  // Each image once, however many materials use it: by its bytes' address or its path.
+  std::map<std::string, std::size_t> texture_of;
+  const auto add_texture = [&](const std::string& key, TextureDesc image) {
+    const auto [entry, added] = texture_of.try_emplace(key, scene.textures.size());
+    if (added) scene.textures.push_back(std::move(image));
+    return entry->second;
+  };
   for (std::size_t i = 0; i < mesh.material_count; ++i) {
     const ImportedMaterial& m = mesh.materials[i];
     MaterialDesc material;
     if (m.has_color) material.color = {m.color[0], m.color[1], m.color[2]};
     material.two_sided = m.two_sided != 0;
     const std::string_view texture(m.texture, ::strnlen(m.texture, sizeof m.texture));
-    if (!texture.empty() && (texture[0] == '*' || texture.rfind("data:", 0) == 0)) {
-      warnings.warn("embedded texture", whole_file, "a base colour texture in a file beside the mesh",
-                    "an image embedded in the mesh", "the base colour alone");
+    if (m.embedded != nullptr) {
+      // Decoded with the scene's other images (io/texture_image.h).
+      TextureDesc image;
+      image.kind = TextureDesc::Kind::image;
+      image.encoded.assign(m.embedded, m.embedded + m.embedded_size);
+      image.named_at = whole_file;
+      material.texture = add_texture("embedded " + std::to_string(reinterpret_cast<std::uintptr_t>(m.embedded)),
+                                     std::move(image));
+    } else if (m.embedded_raw != 0 || (!texture.empty() && texture[0] == '*')) {
+      warnings.warn("embedded texture", whole_file, "a base colour texture as an image file",
+                    "an image embedded as raw texels", "the base colour alone");
     } else if (!texture.empty()) {
       const fs::path path = (directory / fs::path(texture)).lexically_normal();
       std::error_code error;
@@ -99,12 +115,11 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
         image.kind = TextureDesc::Kind::image;
         image.path = path.string();
         image.named_at = whole_file;
-        material.texture = scene.textures.size();
-        scene.textures.push_back(std::move(image));
+        material.texture = add_texture("file " + image.path, std::move(image));
       } else {
         warnings.warn(joined({"texture ", path.string()}), whole_file,
-                      joined({"an image file that exists (looked for '", path.string(), "')"}), quoted_token(texture),
-                      "the material is not textured");
+                      joined({"an image file that exists (looked for '", path.string(), "')"}),
+                      quoted_token(texture), "the material is not textured");
       }
     }
     scene.materials.push_back(material);

@@ -9,9 +9,10 @@
 // every STL face (whose normals are per facet) get smooth normals with the
 // crease angle, over vertices welded by exact position; a glTF mesh without
 // normals stays faceted, as its specification asks. Materials: glTF's base
-// colour, its texture when that is a file beside the mesh (an embedded image
-// is a warning: the colour alone) and doubleSided; PLY and STL faces get the
-// default material. The format rules and bounds are in io/README.md.
+// colour, its texture (a file beside the mesh, or an image embedded in the
+// GLB or a data URI, kept encoded in TextureDesc::encoded for
+// io/texture_image.h) and doubleSided; PLY and STL faces get the default
+// material. The format rules and bounds are in io/README.md.
 #pragma once
 
 #include <cstddef>

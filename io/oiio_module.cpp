@@ -3,6 +3,7 @@
 // shared module that quiver dlopens on first use; nothing here throws.
 #include "io/oiio_module.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -119,23 +120,39 @@ int write_image(const char* path, const char* format, int width, int height, int
   }
 }
 
-void* open_input(const char* path, const char* format, OiioImageHeader* header, char* error,
-                 std::size_t error_size) {
+// An opened image: its ImageInput and, when it reads from memory, the
+// proxy that serves it the bytes.
+struct Input {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+  std::unique_ptr<OIIO::ImageInput> image;
+};
+
+// Opens `name` with the format's plugin alone (ImageInput::open would try
+// every plugin on a file its own plugin refuses), from the bytes at data
+// when data is not null, and fills header.
+void* open_any_input(const char* name, const void* data, std::size_t size, const char* format,
+                     OiioImageHeader* header, char* error, std::size_t error_size) {
   try {
+    auto input = std::make_unique<Input>();
     // Colours as stored: OpenImageIO would otherwise premultiply them by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    // The format's plugin alone: ImageInput::open would try every plugin
-    // on a file its own plugin refuses.
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, false, &config);
-    if (!input) {
+    input->image = OIIO::ImageInput::create(format, false, &config);
+    if (!input->image) {
       copy_message(error_of<OIIO::ImageInput>(nullptr), error, error_size);
       return nullptr;
     }
+    if (data != nullptr) {
+      input->memory = std::make_unique<OIIO::Filesystem::IOMemReader>(data, size);
+      if (!input->image->set_ioproxy(input->memory.get())) {
+        copy_message(std::string("the ") + format + " reader cannot read from memory", error, error_size);
+        return nullptr;
+      }
+    }
     OIIO::ImageSpec spec;
     StderrCapture printed;
-    if (!input->open(path, spec, config)) {
-      copy_message(with_printed(error_of(input.get()), printed.finish()), error, error_size);
+    if (!input->image->open(name, spec, config)) {
+      copy_message(with_printed(error_of(input->image.get()), printed.finish()), error, error_size);
       return nullptr;
     }
     header->width = spec.width;
@@ -151,9 +168,19 @@ void* open_input(const char* path, const char* format, OiioImageHeader* header, 
   }
 }
 
+void* open_input(const char* path, const char* format, OiioImageHeader* header, char* error,
+                 std::size_t error_size) {
+  return open_any_input(path, nullptr, 0, format, header, error, error_size);
+}
+
+void* open_memory_input(const char* name, const void* data, std::size_t size, const char* format,
+                        OiioImageHeader* header, char* error, std::size_t error_size) {
+  return open_any_input(name, data, size, format, header, error, error_size);
+}
+
 int read_pixels(void* handle, int channel_count, int as_float, void* pixels, std::ptrdiff_t pixel_stride, char* error,
                 std::size_t error_size) {
-  auto* input = static_cast<OIIO::ImageInput*>(handle);
+  OIIO::ImageInput* input = static_cast<Input*>(handle)->image.get();
   try {
     const OIIO::TypeDesc type = as_float ? OIIO::TypeFloat : OIIO::TypeDesc::UINT16;
     StderrCapture printed;
@@ -169,11 +196,11 @@ int read_pixels(void* handle, int channel_count, int as_float, void* pixels, std
 }
 
 void close_input(void* handle) {
-  std::unique_ptr<OIIO::ImageInput> input(static_cast<OIIO::ImageInput*>(handle));
-  input->close();
+  std::unique_ptr<Input> input(static_cast<Input*>(handle));
+  input->image->close();
 }
 
-constexpr OiioModuleApi kApi{kOiioModuleVersion, write_image, open_input, read_pixels, close_input};
+constexpr OiioModuleApi kApi{kOiioModuleVersion, write_image, open_input, read_pixels, close_input, open_memory_input};
 
 }  // namespace
 

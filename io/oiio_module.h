@@ -16,7 +16,7 @@
 namespace quiver {
 
 // Bumped whenever OiioModuleApi changes, so a stale module is refused.
-inline constexpr int kOiioModuleVersion = 2;
+inline constexpr int kOiioModuleVersion = 3;
 
 // The exported symbol's name and file name of the module.
 inline constexpr const char* kOiioModuleEntry = "quiver_oiio_module_api";
@@ -55,6 +55,11 @@ struct OiioModuleApi {
 
   // Closes the file and frees the handle.
   void (*close_input)(void* input);
+
+  // As open_input, for the size bytes of an image file at data (which must
+  // outlive the handle); name labels messages.
+  void* (*open_memory_input)(const char* name, const void* data, std::size_t size, const char* format,
+                             OiioImageHeader* header, char* error, std::size_t error_size);
 };
 
 }  // namespace quiver

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -25,9 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const fs::path& path, std::string_view message) {
-  throw ParseError::whole_file(path.string(), message);
-}
+// name: the file's path, or what holds the image ("mesh.glb (embedded image)").
+[[noreturn]] void fail(std::string_view name, std::string_view message) { throw ParseError::whole_file(name, message); }
 
 constexpr std::size_t kUint16Levels = 65'536;
 
@@ -61,7 +61,7 @@ void replicate_grey(std::vector<float>& rgb) {
   for (std::size_t i = 0; i < rgb.size(); i += 3) rgb[i + 1] = rgb[i + 2] = rgb[i];
 }
 
-void check_finite_texels(const fs::path& path, const TextureImage& image) {
+void check_finite_texels(std::string_view path, const TextureImage& image) {
   for (std::size_t i = 0; i < image.rgb.size(); ++i) {
     if (!std::isfinite(image.rgb[i])) {
       const std::size_t texel = i / 3;
@@ -72,52 +72,36 @@ void check_finite_texels(const fs::path& path, const TextureImage& image) {
   }
 }
 
-// The OpenImageIO format of the file's first bytes; a file they name no
+// The OpenImageIO format of an image's first bytes; an image they name no
 // texture format of is refused before any decoder sees it.
-std::string_view format_from_signature(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open it");
-  std::string head(kImageSignatureBytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const std::optional<std::string_view> format = image_format_of(head, path.extension().string());
+std::string_view format_from_signature(std::string_view name, std::string_view head, std::string_view extension) {
+  const std::optional<std::string_view> format = image_format_of(head, extension);
   if (!format) {
     const std::string found = head.empty() ? "an empty file" : "first bytes " + quoted_token(head.substr(0, 8));
-    fail(path, joined({"not an image: expected a ", kTextureFormatNames, " file, found ", found}));
+    fail(name, joined({"not an image: expected a ", kTextureFormatNames, " file, found ", found}));
   }
   return *format;
 }
 
-}  // namespace
-
-TextureImage read_texture_image(const fs::path& path) {
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) fail(path, "cannot open: no such file");
-  if (fs::is_directory(status)) fail(path, "cannot open: it is a directory");
-  // A FIFO, socket or device could block or never end.
-  if (!fs::is_regular_file(status)) fail(path, "cannot open: not a regular file");
-  const std::string_view format = format_from_signature(path);
-
-  const OiioModuleApi* oiio = nullptr;
+const OiioModuleApi& oiio_or_fail(std::string_view name) {
   try {
-    oiio = &oiio_module();
+    return oiio_module();
   } catch (const std::runtime_error& error) {
-    fail(path, error.what());
+    fail(name, error.what());
   }
-  char error_text[1024] = "";
-  OiioImageHeader header{};
-  const std::string format_name(format);
-  void* opened = oiio->open_input(path.c_str(), format_name.c_str(), &header, error_text, sizeof error_text);
-  if (opened == nullptr) fail(path, joined({"cannot decode it as ", format, " (", error_text, ")"}));
-  const std::unique_ptr<void, void (*)(void*)> input(opened, oiio->close_input);
+}
 
-  // Bounds first: nothing is sized from the header before this.
+// The texels of an image opened with the module (header filled), bounds
+// checked before anything is sized from the header.
+TextureImage decode_opened(std::string_view name, const OiioModuleApi& oiio, void* opened,
+                           const OiioImageHeader& header) {
+  const std::unique_ptr<void, void (*)(void*)> input(opened, oiio.close_input);
+  char error_text[1024] = "";
   const std::int64_t w = header.width, h = header.height;
-  if (w < 1 || h < 1 || header.channels < 1) fail(path, "the image is empty");
-  if (header.depth != 1) fail(path, "volume images (depth " + std::to_string(header.depth) + ") are not textures");
+  if (w < 1 || h < 1 || header.channels < 1) fail(name, "the image is empty");
+  if (header.depth != 1) fail(name, "volume images (depth " + std::to_string(header.depth) + ") are not textures");
   if (w > kMaxTextureSide || h > kMaxTextureSide || w * h > kMaxTexturePixels) {
-    fail(path, std::to_string(w) + " x " + std::to_string(h) + " texels exceeds " + texture_size_limit_text());
+    fail(name, std::to_string(w) + " x " + std::to_string(h) + " texels exceeds " + texture_size_limit_text());
   }
 
   TextureImage image;
@@ -129,18 +113,18 @@ TextureImage read_texture_image(const fs::path& path) {
 
   if (header.is_float) {
     // Linear floats straight into the RGB array; grey lands in the first slot.
-    if (!oiio->read_pixels(input.get(), channels, 1, image.rgb.data(), 3 * sizeof(float), error_text,
-                           sizeof error_text)) {
-      fail(path, "cannot read the pixels (" + std::string(error_text) + ")");
+    if (!oiio.read_pixels(input.get(), channels, 1, image.rgb.data(), 3 * sizeof(float), error_text,
+                          sizeof error_text)) {
+      fail(name, "cannot read the pixels (" + std::string(error_text) + ")");
     }
     if (channels == 1) replicate_grey(image.rgb);
-    check_finite_texels(path, image);
+    check_finite_texels(name, image);
   } else {
     // Integer codes widened to 16 bits (exact), then decoded per code.
     std::vector<std::uint16_t> codes(texels * std::size_t(channels));
-    if (!oiio->read_pixels(input.get(), channels, 0, codes.data(), channels * std::ptrdiff_t(sizeof(std::uint16_t)),
-                           error_text, sizeof error_text)) {
-      fail(path, "cannot read the pixels (" + std::string(error_text) + ")");
+    if (!oiio.read_pixels(input.get(), channels, 0, codes.data(), channels * std::ptrdiff_t(sizeof(std::uint16_t)),
+                          error_text, sizeof error_text)) {
+      fail(name, "cannot read the pixels (" + std::string(error_text) + ")");
     }
     const bool linear = names_linear_space(header.color_space);
     const std::vector<float>& srgb = srgb_uint16_table();
@@ -154,12 +138,52 @@ TextureImage read_texture_image(const fs::path& path) {
   return image;
 }
 
+}  // namespace
+
+TextureImage read_texture_image(const fs::path& path) {
+  const std::string name = path.string();
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) fail(name, "cannot open: no such file");
+  if (fs::is_directory(status)) fail(name, "cannot open: it is a directory");
+  // A FIFO, socket or device could block or never end.
+  if (!fs::is_regular_file(status)) fail(name, "cannot open: not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(name, "cannot open it");
+  std::string head(kImageSignatureBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::string format(format_from_signature(name, head, path.extension().string()));
+
+  const OiioModuleApi& oiio = oiio_or_fail(name);
+  char error_text[1024] = "";
+  OiioImageHeader header{};
+  void* opened = oiio.open_input(path.c_str(), format.c_str(), &header, error_text, sizeof error_text);
+  if (opened == nullptr) fail(name, joined({"cannot decode it as ", format, " (", error_text, ")"}));
+  return decode_opened(name, oiio, opened, header);
+}
+
+TextureImage decode_texture_image(std::span<const std::uint8_t> bytes, std::string_view name) {
+  const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const std::string format(format_from_signature(name, all.substr(0, kImageSignatureBytes), ""));
+  const OiioModuleApi& oiio = oiio_or_fail(name);
+  char error_text[1024] = "";
+  OiioImageHeader header{};
+  const std::string label(name);
+  void* opened = oiio.open_memory_input(label.c_str(), bytes.data(), bytes.size(), format.c_str(), &header,
+                                        error_text, sizeof error_text);
+  if (opened == nullptr) fail(name, joined({"cannot decode it as ", format, " (", error_text, ")"}));
+  return decode_opened(name, oiio, opened, header);
+}
+
 void read_texture_images(SceneDesc& scene) {
   for (TextureDesc& t : scene.textures) {
-    if (t.kind != TextureDesc::Kind::image || t.path.empty() || !t.rgb.empty()) continue;
+    if (t.kind != TextureDesc::Kind::image || !t.rgb.empty() || (t.path.empty() && t.encoded.empty())) continue;
     TextureImage image;
     try {
-      image = read_texture_image(t.path);
+      image = t.encoded.empty() ? read_texture_image(t.path)
+                                : decode_texture_image(t.encoded, t.named_at.file + " (embedded image)");
+      std::vector<std::uint8_t>().swap(t.encoded);  // the texels replace the file's bytes
     } catch (const ParseError& error) {
       if (t.named_at.line == 0) throw;
       throw ParseError::in_named_file(t.named_at, "image texture", error);

@@ -3,7 +3,10 @@
 // before the scene is built, so that the layers above io/ read no file.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string_view>
 
 #include "scene/scene_desc.h"
 #include "scene/texture.h"
@@ -20,8 +23,13 @@ namespace quiver {
 // non-finite texels.
 TextureImage read_texture_image(const std::filesystem::path& path);
 
-// Reads the file of every image texture that names one and has no pixels
-// yet into its width, height and rgb. Throws as read_texture_image, at the
+// As read_texture_image, for the bytes of an image file held in memory (a
+// glTF's embedded image); name labels the errors.
+TextureImage decode_texture_image(std::span<const std::uint8_t> bytes, std::string_view name);
+
+// Reads the file of every image texture that names one, or decodes its
+// encoded bytes, when it has no pixels yet, into its width, height and rgb
+// (the encoded bytes are then released). Throws as read_texture_image, at the
 // texture's named_at when it has one (ParseError::in_named_file).
 void read_texture_images(SceneDesc& scene);
 

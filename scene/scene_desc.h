@@ -66,6 +66,9 @@ struct TextureDesc {
   // In-memory image (used when path is empty): linear RGB, row 0 at v = 1.
   int width = 0, height = 0;
   std::vector<float> rgb;
+  // An image file's bytes held in memory (a glTF's embedded image), decoded
+  // into width, height and rgb like a file when the scene is loaded.
+  std::vector<std::uint8_t> encoded;
 };
 
 // Whitted material: I = ka*Ia + sum f_i*I_i*(kd*(N.L) + ks*(N.H)^shininess)

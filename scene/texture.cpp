@@ -15,6 +15,7 @@ TextureImage image_from_memory(const TextureDesc& desc) {
   if (desc.rgb.empty() && !desc.path.empty()) {
     throw std::invalid_argument("texture: the image '" + desc.path + "' was not read");
   }
+  if (desc.rgb.empty() && !desc.encoded.empty()) throw std::invalid_argument("texture: an embedded image was not decoded");
   const std::int64_t w = desc.width, h = desc.height;
   if (w < 1 || h < 1 || w > kMaxTextureSide || h > kMaxTextureSide || w * h > kMaxTexturePixels) {
     throw std::invalid_argument("texture: in-memory image of " + std::to_string(w) + " x " + std::to_string(h) +

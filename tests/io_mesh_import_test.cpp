@@ -19,6 +19,7 @@
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
+#include "io/texture_image.h"
 #include "tests/support/temporary_directory.h"
 
 namespace quiver {
@@ -174,6 +175,23 @@ TEST(MeshImport, GltfGetsItsNodeTransformAndBaseColourAndStaysFacetedWithoutNorm
   EXPECT_FALSE(m.two_sided);  // glTF's doubleSided defaults to false
 }
 
+// A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes).
+std::string glb(std::string json, std::string binary, std::uint32_t stated_length_extra = 0) {
+  while (json.size() % 4 != 0) json += ' ';
+  while (binary.size() % 4 != 0) binary += '\0';
+  std::string bytes = "glTF";
+  put<std::uint32_t>(bytes, 2);
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + binary.size()) +
+                                stated_length_extra);
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(json.size()));
+  put<std::uint32_t>(bytes, 0x4E4F534A);
+  bytes += json;
+  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(binary.size()));
+  put<std::uint32_t>(bytes, 0x004E4942);
+  bytes += binary;
+  return bytes;
+}
+
 // A .glb of triangle.gltf's JSON with its buffer in the binary chunk.
 std::string glb_of_triangle(std::uint32_t stated_length_extra = 0) {
   std::ifstream in(kMeshes / "triangle.gltf");
@@ -194,19 +212,7 @@ std::string glb_of_triangle(std::uint32_t stated_length_extra = 0) {
   }
   json.erase(uri, end + 1 - uri);
   json.erase(json.rfind(',', uri), uri - json.rfind(',', uri));  // the comma before "uri"
-  while (json.size() % 4 != 0) json += ' ';
-  while (binary.size() % 4 != 0) binary += '\0';
-  std::string bytes = "glTF";
-  put<std::uint32_t>(bytes, 2);
-  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + binary.size()) +
-                                stated_length_extra);
-  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(json.size()));
-  put<std::uint32_t>(bytes, 0x4E4F534A);
-  bytes += json;
-  put<std::uint32_t>(bytes, static_cast<std::uint32_t>(binary.size()));
-  put<std::uint32_t>(bytes, 0x004E4942);
-  bytes += binary;
-  return bytes;
+  return glb(json, binary, stated_length_extra);
 }
 
 TEST(MeshImport, GlbReadsAsItsGltf) {
@@ -216,6 +222,83 @@ TEST(MeshImport, GlbReadsAsItsGltf) {
   expect_same_triangles(read_imported_mesh(kMeshes / "triangle.gltf"), read_imported_mesh(path), 0.f);
   write_file(path, glb_of_triangle(4));
   EXPECT_NE(import_error(path).find(": byte 8: expected the GLB length "), std::string::npos) << import_error(path);
+}
+
+// A GLB of the unit square in z = 0 (two triangles, uvs as glTF writes
+// them: (0, 0) at the image's top left, here the square's corner (0, 1)),
+// whose base colour texture is `image`, stored as most GLB files store it:
+// in the binary chunk (bufferView 3).
+std::string textured_glb(const std::string& image) {
+  std::string binary;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(binary, v);  // 48 bytes
+  for (float v : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(binary, v);                      // 32 bytes
+  for (std::uint16_t i : {0, 1, 2, 0, 2, 3}) put(binary, i);                                   // 12 bytes
+  const std::string image_offset = std::to_string(binary.size());
+  binary += image;
+  const std::string json =
+      R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+ "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true}],
+ "textures": [{"source": 0}], "images": [{"bufferView": 3, "mimeType": "image/png"}],
+ "buffers": [{"byteLength": )" +
+      std::to_string(binary.size()) + R"(}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                 {"buffer": 0, "byteOffset": 80, "byteLength": 12},
+                 {"buffer": 0, "byteOffset": )" +
+      image_offset + R"(, "byteLength": )" + std::to_string(image.size()) + R"(}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+               {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+               {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  return glb(json, binary);
+}
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(MeshImport, AGlbsEmbeddedTextureIsDecodedLikeTheSameImageFile) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path checker = kObj / "tex" / "checker.png";
+  const fs::path path = temporary.path() / "textured.glb";
+  write_file(path, textured_glb(file_bytes(checker)));
+  const SceneDesc scene = load_scene(path);
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  const TextureDesc& texture = scene.textures[0];
+  const TextureImage expected = read_texture_image(checker);
+  EXPECT_EQ(texture.width, expected.width);
+  EXPECT_EQ(texture.height, expected.height);
+  EXPECT_EQ(texture.rgb, expected.rgb);
+  EXPECT_TRUE(texture.encoded.empty());  // released once decoded
+  const MaterialDesc& m = scene.materials.at(scene.triangles[0].material);
+  EXPECT_EQ(m.texture, std::optional<std::size_t>{0});
+  EXPECT_TRUE(m.two_sided);
+  // glTF's uv (0, 0) is the image's top left; quiver's v = 1 is its top row.
+  for (const SceneTriangle& t : scene.triangles) {
+    ASSERT_TRUE(t.triangle.uvs.has_value());
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ((*t.triangle.uvs)[k][0], t.triangle.p[k].x);
+      EXPECT_EQ((*t.triangle.uvs)[k][1], t.triangle.p[k].y);
+    }
+  }
+  EXPECT_TRUE(scene.warnings.empty());
+
+  // The same image as a data URI in a .gltf (tests/data/mesh/textured.gltf).
+  const SceneDesc from_uri = load_scene(kMeshes / "textured.gltf");
+  ASSERT_EQ(from_uri.textures.size(), 1u);
+  EXPECT_EQ(from_uri.textures[0].rgb, expected.rgb);
+  expect_same_triangles(scene, from_uri, 0.f);
+
+  // Bytes that are no image: the error names the mesh and the embedded image.
+  write_file(path, textured_glb("not an image at all"));
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind(path.string() + " (embedded image): not an image", 0), 0u)
+        << error.what();
+  }
 }
 
 TEST(MeshImport, PointsAndLinesAreAWarningOrUnderStrictAnError) {
