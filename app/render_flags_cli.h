@@ -39,8 +39,8 @@ struct RawRenderFlags {
 inline void add_strict_flag(CLI::App& command, bool& strict) {
   command.add_flag("--strict", strict,
                    "Refuse what the mesh readers otherwise forgive with a warning (a missing mtllib file or "
-                   "map_Kd image, a usemtl of an undefined material, a trailing comment in OBJ; a missing or "
-                   "embedded glTF texture; points and lines in PLY, glTF or STL)");
+                   "map_Kd image, a usemtl of an undefined material, a trailing comment in OBJ; a missing glTF "
+                   "texture file or one embedded as raw texels; points and lines in PLY, glTF or STL)");
 }
 
 // --crease-angle, the same for render, info and trace; the caller copies
