@@ -9,10 +9,12 @@
 
 #include <assimp/Importer.hpp>
 #include <cstring>
+#include <deque>
 #include <exception>
 #include <memory>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/module_message.h"
@@ -26,7 +28,9 @@ static_assert(sizeof(aiVector3D) == 3 * sizeof(float), "quiver reads Assimp's ve
 // What one import owns: Assimp's scene and the arrays made from it.
 struct Import {
   Assimp::Importer importer;
-  std::vector<std::vector<std::uint32_t>> indices;
+  // Each part's arrays (a deque: adding one moves none).
+  std::deque<std::vector<std::uint32_t>> indices;
+  std::deque<std::vector<float>> floats;
   std::vector<ImportedPart> parts;
   std::vector<ImportedMaterial> materials;
 };
@@ -59,58 +63,125 @@ ImportedMaterial material_of(const aiScene& scene, const aiMaterial& m) {
   return out;
 }
 
-// The scene's triangle meshes as parts; other primitives (after
-// aiProcess_SortByPType a mesh holds one kind) are counted and left out.
-void collect(const aiScene& scene, Import& import, ImportedMesh& mesh) {
-  mesh = {};
-  for (unsigned i = 0; i < scene.mNumMaterials; ++i) import.materials.push_back(material_of(scene, *scene.mMaterials[i]));
-  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
-    const aiMesh& m = *scene.mMeshes[i];
-    // The flags beside the kinds (aiPrimitiveType_NGONEncodingFlag) do not matter.
-    constexpr unsigned kOthers = aiPrimitiveType_POINT | aiPrimitiveType_LINE | aiPrimitiveType_POLYGON;
-    if ((m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0 || (m.mPrimitiveTypes & kOthers) != 0) {
-      mesh.dropped_points_and_lines += m.mNumFaces;
-      continue;
-    }
-    std::vector<std::uint32_t>& indices = import.indices.emplace_back();
-    indices.reserve(std::size_t{3} * m.mNumFaces);
-    for (unsigned f = 0; f < m.mNumFaces; ++f) {
-      const aiFace& face = m.mFaces[f];
-      indices.insert(indices.end(), face.mIndices, face.mIndices + 3);  // triangulated: 3 each
-    }
-    ImportedPart part{};
-    part.vertex_count = m.mNumVertices;
-    part.positions = &m.mVertices[0].x;
-    part.normals = m.mNormals != nullptr ? &m.mNormals[0].x : nullptr;
-    if (m.mTextureCoords[0] != nullptr) {
-      part.uvs = &m.mTextureCoords[0][0].x;
-      part.uv_stride = 3;
-    }
-    part.triangle_count = m.mNumFaces;
-    part.indices = indices.data();
-    part.material = m.mMaterialIndex < scene.mNumMaterials ? m.mMaterialIndex : 0;
-    import.parts.push_back(part);
+// Whether a mesh holds triangles only (after aiProcess_SortByPType a mesh
+// holds one kind; the flags beside the kinds, such as
+// aiPrimitiveType_NGONEncodingFlag, do not matter).
+bool holds_triangles(const aiMesh& m) {
+  constexpr unsigned kOthers = aiPrimitiveType_POINT | aiPrimitiveType_LINE | aiPrimitiveType_POLYGON;
+  return (m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0 && (m.mPrimitiveTypes & kOthers) == 0;
+}
+
+// Every node with its world transform (the product of its ancestors'),
+// walked without recursion: a file's nesting depth is not bounded.
+template <class Visit>
+void for_each_node(const aiScene& scene, Visit visit) {
+  std::vector<std::pair<const aiNode*, aiMatrix4x4>> pending{{scene.mRootNode, aiMatrix4x4()}};
+  while (!pending.empty()) {
+    const auto [node, parent] = pending.back();
+    pending.pop_back();
+    if (node == nullptr) continue;
+    const aiMatrix4x4 world = parent * node->mTransformation;
+    visit(*node, world);
+    for (unsigned i = 0; i < node->mNumChildren; ++i) pending.emplace_back(node->mChildren[i], world);
   }
+}
+
+// One mesh placed by a node: positions by the world transform, normals by
+// its inverse transpose (renormalised), the winding reversed where the
+// transform mirrors (glTF: a negative determinant turns the front faces
+// clockwise), so that each triangle's front stays the file's.
+void add_part(const aiScene& scene, const aiMesh& m, const aiMatrix4x4& world, Import& import) {
+  std::vector<float>& positions = import.floats.emplace_back();
+  positions.reserve(std::size_t{3} * m.mNumVertices);
+  for (unsigned v = 0; v < m.mNumVertices; ++v) {
+    const aiVector3D p = world * m.mVertices[v];
+    positions.insert(positions.end(), {p.x, p.y, p.z});
+  }
+  const aiMatrix3x3 linear(world);
+  const bool mirrors = linear.Determinant() < 0.f;
+  const float* normals = nullptr;
+  if (m.mNormals != nullptr) {
+    aiMatrix3x3 normal_matrix = linear;
+    normal_matrix.Inverse().Transpose();
+    std::vector<float>& out = import.floats.emplace_back();
+    out.reserve(std::size_t{3} * m.mNumVertices);
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      aiVector3D n = normal_matrix * m.mNormals[v];
+      const float length = n.Length();
+      if (length > 0.f) n /= length;
+      out.insert(out.end(), {n.x, n.y, n.z});
+    }
+    normals = out.data();
+  }
+  std::vector<std::uint32_t>& indices = import.indices.emplace_back();
+  indices.reserve(std::size_t{3} * m.mNumFaces);
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    const unsigned* corner = m.mFaces[f].mIndices;  // triangulated: 3 each
+    indices.insert(indices.end(), {corner[0], corner[mirrors ? 2 : 1], corner[mirrors ? 1 : 2]});
+  }
+  ImportedPart part{};
+  part.vertex_count = m.mNumVertices;
+  part.positions = positions.data();
+  part.normals = normals;
+  if (m.mTextureCoords[0] != nullptr) {
+    part.uvs = &m.mTextureCoords[0][0].x;
+    part.uv_stride = 3;
+  }
+  part.triangle_count = m.mNumFaces;
+  part.indices = indices.data();
+  part.material = m.mMaterialIndex < scene.mNumMaterials ? m.mMaterialIndex : 0;
+  import.parts.push_back(part);
+}
+
+// The scene's triangle meshes, one part per node that places one; other
+// primitives are counted and left out. False, with nothing copied, when
+// the placed meshes hold more than max_triangles (a small file can place
+// one mesh many times).
+bool collect(const aiScene& scene, std::size_t max_triangles, Import& import, ImportedMesh& mesh) {
+  mesh = {};
+  std::size_t triangles = 0;
+  for_each_node(scene, [&](const aiNode& node, const aiMatrix4x4&) {
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
+      if (holds_triangles(m)) triangles += m.mNumFaces;
+    }
+  });
+  if (triangles > max_triangles) return false;
+  for (unsigned i = 0; i < scene.mNumMaterials; ++i) import.materials.push_back(material_of(scene, *scene.mMaterials[i]));
+  for_each_node(scene, [&](const aiNode& node, const aiMatrix4x4& world) {
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
+      if (holds_triangles(m)) {
+        add_part(scene, m, world, import);
+      } else {
+        mesh.dropped_points_and_lines += m.mNumFaces;
+      }
+    }
+  });
   if (import.materials.empty()) import.materials.push_back(ImportedMaterial{});
   mesh.part_count = import.parts.size();
   mesh.parts = import.parts.data();
   mesh.material_count = import.materials.size();
   mesh.materials = import.materials.data();
+  return true;
 }
 
-void* import_mesh(const char* path, const void* data, std::size_t size, const char* hint, ImportedMesh* mesh,
-                  char* error, std::size_t error_size) {
+void* import_mesh(const char* path, const void* data, std::size_t size, const char* hint, std::size_t max_triangles,
+                  ImportedMesh* mesh, char* error, std::size_t error_size) {
   try {
     auto import = std::make_unique<Import>();
-    constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices |
-                                aiProcess_ValidateDataStructure;
+    constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* scene = data != nullptr ? import->importer.ReadFileFromMemory(data, size, kSteps, hint)
                                            : import->importer.ReadFile(path, kSteps);
     if (scene == nullptr) {
       copy_message(import->importer.GetErrorString(), error, error_size);
       return nullptr;
     }
-    collect(*scene, *import, *mesh);
+    if (!collect(*scene, max_triangles, *import, *mesh)) {
+      copy_message("more than " + std::to_string(max_triangles) + " triangles once its nodes place its meshes", error,
+                   error_size);
+      return nullptr;
+    }
     return import.release();
   } catch (const std::bad_alloc&) {
     copy_message("out of memory", error, error_size);

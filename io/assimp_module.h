@@ -14,7 +14,7 @@
 namespace quiver {
 
 // Bumped whenever AssimpModuleApi or the structs below change.
-inline constexpr int kAssimpModuleVersion = 2;
+inline constexpr int kAssimpModuleVersion = 3;
 
 inline constexpr const char* kAssimpModuleEntry = "quiver_assimp_module_api";
 inline constexpr const char* kAssimpModuleFileName = "quiver_assimp.so";
@@ -32,8 +32,8 @@ struct ImportedMaterial {
   int embedded_raw;
 };
 
-// One mesh of the file, in world space (the file's node transforms applied),
-// triangles only. The arrays live as long as the import's handle.
+// One mesh of the file as one node places it, in world space, triangles
+// only. The arrays live as long as the import's handle.
 struct ImportedPart {
   std::size_t vertex_count;
   const float* positions;  // 3 floats per vertex
@@ -56,14 +56,17 @@ struct ImportedMesh {
 struct AssimpModuleApi {
   int version;  // kAssimpModuleVersion
 
-  // Imports a mesh with Assimp (polygons triangulated, node transforms
-  // applied, points and lines counted apart, normals only as the file gives
-  // them) and fills mesh: from the size bytes at data, of the format named
-  // by the extension `hint` ("ply"), when data is not null; else from the
-  // file at path (whose format may name others beside it). Returns a handle
-  // that owns mesh's arrays, for free_import, or null with a message.
-  void* (*import_mesh)(const char* path, const void* data, std::size_t size, const char* hint, ImportedMesh* mesh,
-                       char* error, std::size_t error_size);
+  // Imports a mesh with Assimp (polygons triangulated, each mesh placed by
+  // every node that names it, the winding reversed under a mirroring
+  // transform, points and lines counted apart, normals only as the file
+  // gives them) and fills mesh: from the size bytes at data, of the format
+  // named by the extension `hint` ("ply"), when data is not null; else from
+  // the file at path (whose format may name others beside it). Returns a
+  // handle that owns mesh's arrays, for free_import, or null with a message,
+  // also when the placed meshes hold more than max_triangles (checked before
+  // they are copied).
+  void* (*import_mesh)(const char* path, const void* data, std::size_t size, const char* hint,
+                       std::size_t max_triangles, ImportedMesh* mesh, char* error, std::size_t error_size);
 
   // Frees the import and its arrays.
   void (*free_import)(void* handle);

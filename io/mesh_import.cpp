@@ -233,7 +233,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   ImportedMesh mesh{};
   char error[1024] = {};
   ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),
-                                       extension.c_str() + 1, &mesh, error, sizeof error),
+                                       extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, joined({"Assimp: ", error}));
   return scene_from(mesh, *format, file, directory, crease_angle_degrees, strict, triangle_budget);

@@ -4,8 +4,8 @@
 // (io/mesh_file_check.h), so memory stays bounded by the file's size and
 // the errors name file:line:column or the byte; Assimp's own errors read
 // "file: Assimp: message". The result is a SceneDesc of triangles in world
-// space (the file's node transforms applied; points and lines dropped with
-// a warning). Normals as the file gives them; PLY faces without normals and
+// space (each mesh placed by every node that names it, the winding kept
+// front-facing under a mirror; points and lines dropped with a warning). Normals as the file gives them; PLY faces without normals and
 // every STL face (whose normals are per facet) get smooth normals with the
 // crease angle, over vertices welded by exact position; a glTF mesh without
 // normals stays faceted, as its specification asks. Materials: glTF's base

@@ -175,6 +175,54 @@ TEST(MeshImport, GltfGetsItsNodeTransformAndBaseColourAndStaysFacetedWithoutNorm
   EXPECT_FALSE(m.two_sided);  // glTF's doubleSided defaults to false
 }
 
+// triangle.gltf with its nodes replaced by `nodes` (JSON), all placing mesh 0.
+std::string triangle_gltf_with_nodes(const std::string& nodes, const std::string& scene_nodes) {
+  std::ifstream in(kMeshes / "triangle.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t from = json.find("\"scene\": 0");
+  const std::size_t to = json.find("\"meshes\"");
+  return json.substr(0, from) + "\"scene\": 0, \"scenes\": [{\"nodes\": " + scene_nodes + "}], \"nodes\": " + nodes +
+         ",\n " + json.substr(to);
+}
+
+// Each node that names a mesh places it; a mirroring node keeps the file's
+// front faces at the front (glTF: its winding turns clockwise).
+TEST(MeshImport, GltfNodesPlaceTheirMeshesAndAMirrorKeepsTheFront) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path path = temporary.path() / "nodes.gltf";
+  // The second node mirrors x and is a child of a node moved along z.
+  write_file(path, triangle_gltf_with_nodes(R"([{"mesh": 0}, {"translation": [0, 0, 5], "children": [2]},
+      {"mesh": 0, "scale": [-1, 1, 1]}])",
+                                            "[0, 1]"));
+  const SceneDesc scene = read_imported_mesh(path);
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  for (const SceneTriangle& t : scene.triangles) {
+    const Vec3<float>& a = t.triangle.p[0];
+    const Vec3<float>& b = t.triangle.p[1];
+    const Vec3<float>& c = t.triangle.p[2];
+    // The front (counter-clockwise) faces +z in both, as in the file.
+    const float nz = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    EXPECT_GT(nz, 0.f);
+  }
+  const bool mirrored_first = scene.triangles[0].triangle.p[0].z == 5.f;
+  const TriangleDesc& mirrored = scene.triangles[mirrored_first ? 0 : 1].triangle;
+  const TriangleDesc& plain = scene.triangles[mirrored_first ? 1 : 0].triangle;
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(plain.p[k].z, 0.f);
+    EXPECT_EQ(mirrored.p[k].z, 5.f);
+    EXPECT_LE(mirrored.p[k].x, 0.f);
+  }
+  // Placements count against the triangle bound before they are copied.
+  try {
+    read_imported_mesh(path, kDefaultCreaseAngleDegrees, false, 1);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_NE(std::string(error.what()).find(": Assimp: more than 1 triangles once its nodes place its meshes"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 // A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes).
 std::string glb(std::string json, std::string binary, std::uint32_t stated_length_extra = 0) {
   while (json.size() % 4 != 0) json += ' ';
