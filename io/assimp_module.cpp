@@ -7,6 +7,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <cstring>
 #include <deque>
@@ -18,12 +19,27 @@
 #include <vector>
 
 #include "io/module_message.h"
+#include "io/uri_path.h"
 
 namespace quiver {
 
 namespace {
 
 static_assert(sizeof(aiVector3D) == 3 * sizeof(float), "quiver reads Assimp's vectors as float triples");
+
+// The file system as Assimp's default, except that a name that does not
+// exist as written is looked for percent-decoded (io/uri_path.h): glTF
+// writes "my%20mesh.bin" for "my mesh.bin".
+class UriDecodingIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override {
+    return DefaultIOSystem::Exists(file) || DefaultIOSystem::Exists(percent_decoded(file).c_str());
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (DefaultIOSystem::Exists(file)) return DefaultIOSystem::Open(file, mode);
+    return DefaultIOSystem::Open(percent_decoded(file).c_str(), mode);
+  }
+};
 
 // What one import owns: Assimp's scene and the arrays made from it.
 struct Import {
@@ -170,6 +186,7 @@ void* import_mesh(const char* path, const void* data, std::size_t size, const ch
                   ImportedMesh* mesh, char* error, std::size_t error_size) {
   try {
     auto import = std::make_unique<Import>();
+    import->importer.SetIOHandler(new UriDecodingIOSystem);  // the importer owns it
     constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     const aiScene* scene = data != nullptr ? import->importer.ReadFileFromMemory(data, size, kSteps, hint)
                                            : import->importer.ReadFile(path, kSteps);

@@ -13,6 +13,7 @@
 
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
+#include "io/uri_path.h"
 
 namespace quiver {
 
@@ -351,8 +352,9 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
       available = data_uri_bytes(text);
       holder = "its data URI";
     } else {
-      const fs::path path = (directory / fs::path(text)).lexically_normal();
+      fs::path path = (directory / fs::path(text)).lexically_normal();
       std::error_code error;
+      if (!fs::is_regular_file(path, error)) path = (directory / fs::path(percent_decoded(text))).lexically_normal();
       if (!fs::is_regular_file(path, error)) {
         throw ParseError::whole_file(
             file, "expected " + name + "'s file " + quoted_token(text) + " beside it, found no such file");

@@ -18,6 +18,7 @@
 #include "io/parse_error.h"
 #include "io/reader_warnings.h"
 #include "io/text_file.h"
+#include "io/uri_path.h"
 
 namespace quiver {
 
@@ -108,8 +109,9 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
       warnings.warn("embedded texture", whole_file, "a base colour texture as an image file",
                     "an image embedded as raw texels", "the base colour alone");
     } else if (!texture.empty()) {
-      const fs::path path = (directory / fs::path(texture)).lexically_normal();
+      fs::path path = (directory / fs::path(texture)).lexically_normal();
       std::error_code error;
+      if (!fs::is_regular_file(path, error)) path = (directory / fs::path(percent_decoded(texture))).lexically_normal();
       if (fs::is_regular_file(path, error)) {
         TextureDesc image;
         image.kind = TextureDesc::Kind::image;

@@ -349,6 +349,43 @@ TEST(MeshImport, AGlbsEmbeddedTextureIsDecodedLikeTheSameImageFile) {
   }
 }
 
+// glTF writes file names as URIs: "my%20buffer.bin" names "my buffer.bin".
+TEST(MeshImport, GltfBufferAndImageUrisArePercentDecoded) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path& dir = temporary.path();
+  std::ifstream in(kMeshes / "textured.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The buffer and the image out of their data URIs into files whose names have a space.
+  const auto move_out = [&](const std::string& data_prefix, const std::string& name) {
+    const std::size_t start = json.find(data_prefix);
+    ASSERT_NE(start, std::string::npos) << data_prefix;
+    const std::size_t end = json.find('"', start);
+    const std::string payload = json.substr(start + data_prefix.size(), end - start - data_prefix.size());
+    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string bytes;
+    std::uint32_t bits = 0;
+    int count = 0;
+    for (char c : payload) {
+      if (c == '=') break;
+      bits = (bits << 6) | static_cast<std::uint32_t>(alphabet.find(c));
+      if ((count += 6) >= 8) bytes += static_cast<char>((bits >> (count -= 8)) & 0xff);
+    }
+    write_file(dir / name, bytes);
+    std::string encoded = name;
+    encoded.replace(encoded.find(' '), 1, "%20");
+    json.replace(start, end - start, encoded);
+  };
+  move_out("data:application/octet-stream;base64,", "square buffer.bin");
+  move_out("data:image/png;base64,", "square image.png");
+  write_file(dir / "square.gltf", json);
+  const SceneDesc scene = load_scene(dir / "square.gltf");
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0].path, (dir / "square image.png").string());
+  EXPECT_EQ(scene.textures[0].rgb, read_texture_image(kObj / "tex" / "checker.png").rgb);
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
 TEST(MeshImport, PointsAndLinesAreAWarningOrUnderStrictAnError) {
   const testing::TemporaryDirectory temporary("quiver_mesh_test");
   std::ifstream in(kMeshes / "triangle.gltf");

@@ -1,0 +1,34 @@
+// glTF names its buffer and image files by URI (RFC 3986), so a space is
+// written %20; Assimp 5.2 opens the text as written. Both quiver's checks
+// and the Assimp module look for the file as written first, then
+// percent-decoded.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace quiver {
+
+// `uri` with every %XY (two hexadecimal digits) replaced by that byte; a
+// '%' not followed by two hexadecimal digits stays as it is.
+inline std::string percent_decoded(std::string_view uri) {
+  const auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string decoded;
+  decoded.reserve(uri.size());
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      decoded += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      decoded += uri[i];
+    }
+  }
+  return decoded;
+}
+
+}  // namespace quiver
