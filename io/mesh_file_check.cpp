@@ -96,7 +96,7 @@ struct PlyHeader {
   std::size_t lines = 0;        // of the header
 };
 
-PlyHeader read_ply_header(std::string_view bytes, std::string_view file) {
+PlyHeader read_ply_header(std::string_view bytes, std::string_view file, ReaderWarnings& warnings) {
   PlyHeader header;
   bool have_format = false;
   std::size_t offset = 0;
@@ -171,7 +171,9 @@ PlyHeader read_ply_header(std::string_view bytes, std::string_view file) {
       property.name = words[next + 1].text;
       header.elements.back().properties.push_back(property);
     } else {
-      fail(0, "a PLY header line (format, comment, element, property or end_header)");
+      warnings.warn("ply header line", {std::string(file), number, words[0].column},
+                    "a PLY header line (format, comment, element, property or end_header)",
+                    quoted_token(words[0].text), "the line is skipped");
     }
   }
 }
@@ -330,10 +332,15 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
   }
   const auto buffers = document.find("buffers");
   if (buffers == document.end()) return;
-  if (!buffers->is_array()) throw ParseError::whole_file(file, "expected \"buffers\" to be an array");
-  for (std::size_t i = 0; i < buffers->size(); ++i) {
-    const nlohmann::json& buffer = (*buffers)[i];
-    const std::string name = "buffers[" + std::to_string(i) + "]";
+  // glTF 2.0 lists its buffers; glTF 1.0 names them (an object).
+  if (!buffers->is_array() && !buffers->is_object()) {
+    throw ParseError::whole_file(file, "expected \"buffers\" to be an array (or, in glTF 1.0, an object)");
+  }
+  std::size_t index = 0;
+  for (auto entry = buffers->begin(); entry != buffers->end(); ++entry, ++index) {
+    const nlohmann::json& buffer = *entry;
+    const std::string name =
+        buffers->is_array() ? "buffers[" + std::to_string(index) + "]" : "buffers." + entry.key();
     const auto length = buffer.is_object() ? buffer.find("byteLength") : buffer.end();
     if (length == buffer.end() || !length->is_number_unsigned()) {
       throw ParseError::whole_file(file, "expected " + name + " to have a whole-number byteLength");
@@ -378,8 +385,8 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
 
 }  // namespace
 
-MeshFileCounts check_ply(std::string_view bytes, std::string_view file) {
-  const PlyHeader header = read_ply_header(bytes, file);
+MeshFileCounts check_ply(std::string_view bytes, std::string_view file, ReaderWarnings& warnings) {
+  const PlyHeader header = read_ply_header(bytes, file, warnings);
   MeshFileCounts counts;
   const std::size_t data_bytes = bytes.size() - header.data_offset;
   for (const PlyElement& element : header.elements) {

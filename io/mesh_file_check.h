@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <string_view>
 
+#include "io/reader_warnings.h"
+
 namespace quiver {
 
 // What the file's header declares, for the caller's bounds.
@@ -22,7 +24,10 @@ struct MeshFileCounts {
 };
 
 // `bytes` is the whole file, `file` its name in messages. Throws ParseError.
-MeshFileCounts check_ply(std::string_view bytes, std::string_view file);
+// A PLY header line that is none of PLY's (Blender 2.4 wrote "Created by
+// ..." without "comment") is a warning in `warnings` and skipped, as
+// Assimp skips it; strict, an error.
+MeshFileCounts check_ply(std::string_view bytes, std::string_view file, ReaderWarnings& warnings);
 MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
 // URI are looked for relative to `directory`, and their sizes added up with

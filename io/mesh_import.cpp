@@ -129,8 +129,7 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
 }
 
 SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
-                     double crease_angle_degrees, bool strict, std::size_t triangle_budget) {
-  ReaderWarnings warnings(strict);
+                     double crease_angle_degrees, ReaderWarnings& warnings, std::size_t triangle_budget) {
   SceneDesc scene;
   add_materials(mesh, format, file, directory, warnings, scene);
   if (mesh.dropped_points_and_lines > 0) {
@@ -139,7 +138,12 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   }
   std::size_t triangles = 0;
   for (std::size_t i = 0; i < mesh.part_count; ++i) triangles += mesh.parts[i].triangle_count;
-  if (triangles == 0) throw ParseError::whole_file(file, "expected at least one triangle, found none");
+  if (triangles == 0) {
+    const std::size_t others = mesh.dropped_points_and_lines;
+    throw ParseError::whole_file(file, others == 0 ? std::string("expected at least one triangle, found none")
+                                                   : joined({"expected at least one triangle, found only ",
+                                                             std::to_string(others), " points and lines"}));
+  }
   if (triangles > triangle_budget) {
     throw ParseError::whole_file(file, joined({"expected at most ", std::to_string(triangle_budget),
                                                " triangles in the scene, found ", std::to_string(triangles)}));
@@ -208,9 +212,10 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
 
   const std::string bytes = read_text_file(path, kMaxImportedMeshBytes, "a mesh");
   const fs::path directory = path.parent_path();
+  ReaderWarnings warnings(strict);
   switch (*format) {
     case MeshFormat::ply:
-      check_ply(bytes, file);
+      check_ply(bytes, file, warnings);
       break;
     case MeshFormat::stl:
       check_stl(bytes, file);
@@ -238,7 +243,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                                        extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, joined({"Assimp: ", error}));
-  return scene_from(mesh, *format, file, directory, crease_angle_degrees, strict, triangle_budget);
+  return scene_from(mesh, *format, file, directory, crease_angle_degrees, warnings, triangle_budget);
 }
 
 }  // namespace quiver

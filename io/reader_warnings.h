@@ -1,8 +1,9 @@
 // What a forgiving reader lets pass (a missing material library or texture,
 // an undefined material, a trailing comment): one line per finding for the
 // user, "file:line:column: warning: expected X, found Y; what happens
-// instead"; in strict mode the same finding is the ParseError it would
-// otherwise have been. Each finding is reported once by its key (a file
+// instead" ("file: warning: ..." for the file as a whole, line 0); in
+// strict mode the same finding is the ParseError it would otherwise have
+// been. Each finding is reported once by its key (a file
 // name, a material name), the repeats counted.
 #pragma once
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -400,9 +402,15 @@ TEST(MeshImport, PointsAndLinesAreAWarningOrUnderStrictAnError) {
   const SceneDesc scene = read_imported_mesh(path);
   EXPECT_EQ(scene.triangles.size(), 1u);
   ASSERT_EQ(scene.warnings.size(), 1u);
-  EXPECT_NE(scene.warnings[0].find("warning: expected triangles, found 3 points and lines"), std::string::npos)
+  // About the file as a whole: its name alone, no line and column.
+  EXPECT_EQ(scene.warnings[0].rfind(path.string() + ": warning: expected triangles, found 3 points and lines", 0), 0u)
       << scene.warnings[0];
-  EXPECT_THROW(read_imported_mesh(path, kDefaultCreaseAngleDegrees, true), ParseError);
+  try {
+    read_imported_mesh(path, kDefaultCreaseAngleDegrees, true);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), path.string() + ": expected triangles, found 3 points and lines");
+  }
 }
 
 // Counts that would make an importer allocate more than the file holds are
@@ -520,6 +528,92 @@ TEST(MeshAppend, APlyMeshIsPlacedAndCountedLikeAnObj) {
   EXPECT_EQ(from_ply.triangles[0].triangle.p[0].x, 5.f);
   EXPECT_EQ(from_ply.source_files, std::vector<std::string>{(kMeshes / "roof.ply").string()});
   EXPECT_THROW(append_mesh(kMeshes / "roof.txt", shifted, std::nullopt, from_ply), std::invalid_argument);
+}
+
+// Assimp's public test models (Debian's assimp-testmodels): Khronos glTF
+// samples, Blender and 3ds Max exports, and files broken on purpose.
+fs::path public_models() {
+  const char* env = std::getenv("QUIVER_ASSIMP_MODELS_DIR");
+  return env != nullptr && *env != '\0' ? fs::path(env) : fs::path(QUIVER_ASSIMP_MODELS_DIR);
+}
+
+// Every PLY, glTF and STL file there either loads or is one ParseError
+// naming it; never another exception.
+TEST(MeshImportPublicModels, EveryFileLoadsOrIsAnErrorNamingIt) {
+  const fs::path root = public_models();
+  if (!fs::is_directory(root)) {
+    GTEST_SKIP() << root << " not found: apt-get install assimp-testmodels, or set QUIVER_ASSIMP_MODELS_DIR";
+  }
+  std::size_t loaded = 0, refused = 0;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
+    const std::string extension = entry.path().extension().string();
+    std::string lower;
+    for (char c : extension) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!entry.is_regular_file() || !is_imported_mesh_extension(lower)) continue;
+    try {
+      const SceneDesc scene = load_scene(entry.path());
+      EXPECT_FALSE(scene.triangles.empty()) << entry.path();
+      ++loaded;
+    } catch (const ParseError& error) {
+      EXPECT_EQ(std::string(error.what()).rfind(entry.path().string(), 0), 0u) << error.what();
+      ++refused;
+    }
+  }
+  // Debian 12's assimp-testmodels 5.2.5: 70 such files.
+  EXPECT_GE(loaded, 40u);
+  EXPECT_GE(refused, 10u);
+}
+
+TEST(MeshImportPublicModels, ReadAsTheirFormatsDescribeThem) {
+  const fs::path root = public_models();
+  if (!fs::is_directory(root)) {
+    GTEST_SKIP() << root << " not found: apt-get install assimp-testmodels, or set QUIVER_ASSIMP_MODELS_DIR";
+  }
+  // The Khronos textured box as .glb (image in the binary chunk), .gltf
+  // with a .bin and a .png beside it, and .gltf with data URIs: the same
+  // 12 triangles and the same texels.
+  const SceneDesc binary = load_scene(root / "glTF2" / "BoxTextured-glTF-Binary" / "BoxTextured.glb");
+  const SceneDesc beside = load_scene(root / "glTF2" / "BoxTextured-glTF" / "BoxTextured.gltf");
+  const SceneDesc embedded = load_scene(root / "glTF2" / "BoxTextured-glTF-Embedded" / "BoxTextured.gltf");
+  ASSERT_EQ(binary.triangles.size(), 12u);
+  ASSERT_EQ(binary.textures.size(), 1u);
+  EXPECT_FALSE(binary.textures[0].rgb.empty());
+  for (const SceneDesc* other : {&beside, &embedded}) {
+    expect_same_triangles(binary, *other, 0.f);
+    ASSERT_EQ(other->textures.size(), 1u);
+    EXPECT_EQ(other->textures[0].rgb, binary.textures[0].rgb);
+  }
+  EXPECT_FALSE(beside.textures[0].path.empty());  // CesiumLogoFlat.png beside it
+  EXPECT_TRUE(embedded.textures[0].path.empty());
+
+  // The same spider as ASCII and binary STL.
+  const SceneDesc ascii_spider = read_imported_mesh(root / "STL" / "Spider_ascii.stl");
+  const SceneDesc binary_spider = read_imported_mesh(root / "STL" / "Spider_binary.stl");
+  EXPECT_GT(ascii_spider.triangles.size(), 1000u);
+  EXPECT_EQ(ascii_spider.triangles.size(), binary_spider.triangles.size());
+
+  // Blender 2.47's PLY header line without "comment": a warning, read as Assimp reads it.
+  const SceneDesc wuson = read_imported_mesh(root / "PLY" / "Wuson.ply");
+  EXPECT_FALSE(wuson.triangles.empty());
+  ASSERT_EQ(wuson.warnings.size(), 1u);
+  EXPECT_NE(wuson.warnings[0].find("Wuson.ply:3:1: warning: expected a PLY header line"), std::string::npos)
+      << wuson.warnings[0];
+  EXPECT_THROW(read_imported_mesh(root / "PLY" / "Wuson.ply", kDefaultCreaseAngleDegrees, true), ParseError);
+
+  // Broken on purpose, each refused where it is broken.
+  const std::pair<fs::path, std::string> broken[] = {
+      {root / "PLY" / "pond.0.ply", ": byte 2171788: expected the data of element 'vertex'"},  // 69 bytes short
+      {root / "glTF2" / "BoxWithInfinites-glTF-Binary" / "BoxWithInfinites.glb", ": expected finite vertex positions"},
+      {root / "glTF2" / "MissingBin" / "BoxTextured.gltf", ": expected buffers[0]'s file 'BoxTextured0.bin'"},
+      {root / "glTF2" / "RecursiveNodes" / "RecursiveNodes.gltf", ": Assimp: "},
+      {root / "glTF" / "BoxTextured-glTF-Binary" / "BoxTextured.glb", ": byte 4: expected GLB version 2, found 1"},
+  };
+  for (const auto& [path, message] : broken) {
+    const std::string what = import_error(path);
+    EXPECT_EQ(what.rfind(path.string() + message, 0), 0u) << what;
+  }
+  // glTF 1.0 names its buffers (an object): read too.
+  EXPECT_FALSE(load_scene(root / "glTF" / "CesiumMilkTruck" / "CesiumMilkTruck.gltf").triangles.empty());
 }
 
 TEST(MeshImport, TheSceneLoaderReadsEveryFormatByExtension) {

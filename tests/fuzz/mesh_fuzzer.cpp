@@ -38,7 +38,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     switch (kind) {
       case 0: {
-        const quiver::MeshFileCounts counts = quiver::check_ply(bytes, name);
+        quiver::ReaderWarnings warnings(false);
+        const quiver::MeshFileCounts counts = quiver::check_ply(bytes, name, warnings);
         check(counts.vertices <= quiver::kMaxObjVertices && counts.triangles <= quiver::kMaxObjTriangles);
         break;
       }
