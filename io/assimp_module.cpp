@@ -64,8 +64,13 @@ ImportedMaterial material_of(const aiScene& scene, const aiMaterial& m) {
   int two_sided = 0;
   if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == aiReturn_SUCCESS) out.two_sided = two_sided != 0 ? 1 : 0;
   aiString texture;
-  if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == aiReturn_SUCCESS ||
-      m.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == aiReturn_SUCCESS) {
+  aiTextureMapMode modes[3] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+  const auto colour_texture = [&](aiTextureType type) {
+    return m.GetTexture(type, 0, &texture, nullptr, nullptr, nullptr, nullptr, modes) == aiReturn_SUCCESS;
+  };
+  if (colour_texture(aiTextureType_BASE_COLOR) || colour_texture(aiTextureType_DIFFUSE)) {
+    out.wrap_u = static_cast<int>(modes[0]);
+    out.wrap_v = static_cast<int>(modes[1]);
     copy_message(std::string_view(texture.data, texture.length), out.texture, sizeof out.texture);
     if (const aiTexture* embedded = scene.GetEmbeddedTexture(texture.C_Str())) {
       if (embedded->mHeight == 0) {  // a compressed file of mWidth bytes

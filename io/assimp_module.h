@@ -14,7 +14,7 @@
 namespace quiver {
 
 // Bumped whenever AssimpModuleApi or the structs below change.
-inline constexpr int kAssimpModuleVersion = 3;
+inline constexpr int kAssimpModuleVersion = 4;
 
 inline constexpr const char* kAssimpModuleEntry = "quiver_assimp_module_api";
 inline constexpr const char* kAssimpModuleFileName = "quiver_assimp.so";
@@ -25,6 +25,7 @@ struct ImportedMaterial {
   int has_color;        // 0: the file names no colour
   int two_sided;        // glTF doubleSided; 1 when the format has no such flag
   char texture[1024];   // the colour texture's path as written ("" none, "*N" embedded), cut to fit
+  int wrap_u, wrap_v;   // its aiTextureMapMode per axis: 0 wrap, 1 clamp, 2 mirror, 3 decal (glTF's sampler)
   // An embedded colour texture's image file (PNG, JPEG, ...) bytes, or null;
   // embedded_raw is 1 for one embedded as raw texels instead.
   const unsigned char* embedded;

@@ -76,6 +76,17 @@ Vec3<float> vector_at(const float* data, std::size_t stride, std::size_t index) 
 
 bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// An Assimp texture map mode as quiver's wrap (decal, outside the image
+// transparent, as clamp).
+WrapMode wrap_of(int mode) {
+  switch (mode) {
+    case 1: return WrapMode::clamp;
+    case 2: return WrapMode::mirror;
+    case 3: return WrapMode::clamp;
+    default: return WrapMode::repeat;
+  }
+}
+
 // glTF materials into the scene (PLY and STL: one default material).
 void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
                    ReaderWarnings& warnings, SceneDesc& scene) {
@@ -97,14 +108,22 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
     if (m.has_color) material.color = {m.color[0], m.color[1], m.color[2]};
     material.two_sided = m.two_sided != 0;
     const std::string_view texture(m.texture, ::strnlen(m.texture, sizeof m.texture));
+    // One wrap for both axes (TextureDesc's); the u axis's where they differ.
+    const WrapMode wrap = wrap_of(m.wrap_u);
+    if (!texture.empty() && wrap_of(m.wrap_v) != wrap) {
+      warnings.warn("texture wrap", whole_file, "a texture sampler that wraps both axes alike",
+                    "different wrapS and wrapT", "wrapS is used for both");
+    }
+    const std::string wrap_key = " wrap " + std::to_string(int(wrap));
     if (m.embedded != nullptr) {
       // Decoded with the scene's other images (io/texture_image.h).
       TextureDesc image;
       image.kind = TextureDesc::Kind::image;
       image.encoded.assign(m.embedded, m.embedded + m.embedded_size);
       image.named_at = whole_file;
-      material.texture = add_texture("embedded " + std::to_string(reinterpret_cast<std::uintptr_t>(m.embedded)),
-                                     std::move(image));
+      image.wrap = wrap;
+      material.texture = add_texture(
+          "embedded " + std::to_string(reinterpret_cast<std::uintptr_t>(m.embedded)) + wrap_key, std::move(image));
     } else if (m.embedded_raw != 0 || (!texture.empty() && texture[0] == '*')) {
       warnings.warn("embedded texture", whole_file, "a base colour texture as an image file",
                     "an image embedded as raw texels", "the base colour alone");
@@ -117,7 +136,8 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
         image.kind = TextureDesc::Kind::image;
         image.path = path.string();
         image.named_at = whole_file;
-        material.texture = add_texture("file " + image.path, std::move(image));
+        image.wrap = wrap;
+        material.texture = add_texture("file " + image.path + wrap_key, std::move(image));
       } else {
         warnings.warn(joined({"texture ", path.string()}), whole_file,
                       joined({"an image file that exists (looked for '", path.string(), "')"}),

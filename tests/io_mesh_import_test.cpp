@@ -278,7 +278,7 @@ TEST(MeshImport, GlbReadsAsItsGltf) {
 // them: (0, 0) at the image's top left, here the square's corner (0, 1)),
 // whose base colour texture is `image`, stored as most GLB files store it:
 // in the binary chunk (bufferView 3).
-std::string textured_glb(const std::string& image) {
+std::string textured_glb(const std::string& image, const std::string& sampler = "") {
   std::string binary;
   for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(binary, v);  // 48 bytes
   for (float v : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(binary, v);                      // 32 bytes
@@ -289,7 +289,9 @@ std::string textured_glb(const std::string& image) {
       R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true}],
- "textures": [{"source": 0}], "images": [{"bufferView": 3, "mimeType": "image/png"}],
+ "textures": [{"source": 0)" + std::string(sampler.empty() ? "" : R"(, "sampler": 0)") +
+      R"(}], "images": [{"bufferView": 3, "mimeType": "image/png"}],)" +
+      (sampler.empty() ? std::string() : R"( "samplers": [)" + sampler + "],") + R"(
  "buffers": [{"byteLength": )" +
       std::to_string(binary.size()) + R"(}],
  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
@@ -321,6 +323,7 @@ TEST(MeshImport, AGlbsEmbeddedTextureIsDecodedLikeTheSameImageFile) {
   EXPECT_EQ(texture.height, expected.height);
   EXPECT_EQ(texture.rgb, expected.rgb);
   EXPECT_TRUE(texture.encoded.empty());  // released once decoded
+  EXPECT_EQ(texture.wrap, WrapMode::repeat);  // glTF's default sampler
   const MaterialDesc& m = scene.materials.at(scene.triangles[0].material);
   EXPECT_EQ(m.texture, std::optional<std::size_t>{0});
   EXPECT_TRUE(m.two_sided);
@@ -339,6 +342,18 @@ TEST(MeshImport, AGlbsEmbeddedTextureIsDecodedLikeTheSameImageFile) {
   ASSERT_EQ(from_uri.textures.size(), 1u);
   EXPECT_EQ(from_uri.textures[0].rgb, expected.rgb);
   expect_same_triangles(scene, from_uri, 0.f);
+
+  // The sampler's wrap (33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT); one wrap for both axes.
+  write_file(path, textured_glb(file_bytes(checker), R"({"wrapS": 33071, "wrapT": 33071})"));
+  EXPECT_EQ(load_scene(path).textures.at(0).wrap, WrapMode::clamp);
+  write_file(path, textured_glb(file_bytes(checker), R"({"wrapS": 33648, "wrapT": 33648})"));
+  EXPECT_EQ(load_scene(path).textures.at(0).wrap, WrapMode::mirror);
+  write_file(path, textured_glb(file_bytes(checker), R"({"wrapS": 33071, "wrapT": 10497})"));
+  const SceneDesc mixed = load_scene(path);
+  EXPECT_EQ(mixed.textures.at(0).wrap, WrapMode::clamp);
+  ASSERT_EQ(mixed.warnings.size(), 1u);
+  EXPECT_NE(mixed.warnings[0].find("found different wrapS and wrapT; wrapS is used for both"), std::string::npos)
+      << mixed.warnings[0];
 
   // Bytes that are no image: the error names the mesh and the embedded image.
   write_file(path, textured_glb("not an image at all"));
