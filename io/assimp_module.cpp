@@ -63,6 +63,9 @@ ImportedMaterial material_of(const aiScene& scene, const aiMaterial& m) {
   }
   int two_sided = 0;
   if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == aiReturn_SUCCESS) out.two_sided = two_sided != 0 ? 1 : 0;
+  float value = 0.f;
+  if (m.Get(AI_MATKEY_TRANSMISSION_FACTOR, value) == aiReturn_SUCCESS) out.transmission = value;
+  if (m.Get(AI_MATKEY_REFRACTI, value) == aiReturn_SUCCESS) out.ior = value;
   aiString texture;
   aiTextureMapMode modes[3] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
   const auto colour_texture = [&](aiTextureType type) {

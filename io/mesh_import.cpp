@@ -1,5 +1,6 @@
 #include "io/mesh_import.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -107,6 +108,16 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
     MaterialDesc material;
     if (m.has_color) material.color = {m.color[0], m.color[1], m.color[2]};
     material.two_sided = m.two_sided != 0;
+    // KHR_materials_transmission and _ior: the transmitted share refracts
+    // (Whitted's kt) instead of scattering diffusely; such a surface is seen
+    // from inside too, so two-sided (as NFF's transmissive surfaces).
+    if (std::isfinite(m.transmission) && m.transmission > 0.f) {
+      const float transmission = std::min(m.transmission, 1.f);
+      material.kt = transmission;
+      material.kd *= 1.f - transmission;
+      material.two_sided = true;
+    }
+    if (std::isfinite(m.ior) && m.ior >= 1.f) material.ior = m.ior;
     const std::string_view texture(m.texture, ::strnlen(m.texture, sizeof m.texture));
     // One wrap for both axes (TextureDesc's); the u axis's where they differ.
     const WrapMode wrap = wrap_of(m.wrap_u);

@@ -11,8 +11,8 @@
 // normals stays faceted, as its specification asks. Materials: glTF's base
 // colour, its texture (a file beside the mesh, or an image embedded in the
 // GLB or a data URI, kept encoded in TextureDesc::encoded for
-// io/texture_image.h) and doubleSided; PLY and STL faces get the default
-// material. The format rules and bounds are in io/README.md.
+// io/texture_image.h), doubleSided, and KHR_materials_transmission and
+// _ior as refraction; PLY and STL faces get the default material. The format rules and bounds are in io/README.md.
 #pragma once
 
 #include <cstddef>

@@ -225,6 +225,31 @@ TEST(MeshImport, GltfNodesPlaceTheirMeshesAndAMirrorKeepsTheFront) {
   }
 }
 
+// glTF's glass (KHR_materials_transmission, KHR_materials_ior) refracts.
+TEST(MeshImport, GltfTransmissionAndIorBecomeRefraction) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  std::ifstream in(kMeshes / "triangle.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = json.find("\"pbrMetallicRoughness\"");
+  ASSERT_NE(at, std::string::npos);
+  json.insert(at, R"("extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.75},
+                   "KHR_materials_ior": {"ior": 1.45}}, )");
+  json.insert(json.find('{') + 1, R"( "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_ior"],)");
+  const fs::path path = temporary.path() / "glass.gltf";
+  write_file(path, json);
+  const SceneDesc scene = read_imported_mesh(path);
+  const MaterialDesc& glass = scene.materials.at(scene.triangles.at(0).material);
+  EXPECT_EQ(glass.kt, 0.75f);
+  EXPECT_EQ(glass.ior, 1.45f);
+  EXPECT_EQ(glass.kd, MaterialDesc{}.kd * 0.25f);
+  EXPECT_TRUE(glass.two_sided);
+  // Without the extensions: an opaque diffuse surface, as before.
+  const MaterialDesc& plain = read_imported_mesh(kMeshes / "triangle.gltf").materials.at(0);
+  EXPECT_EQ(plain.kt, 0.f);
+  EXPECT_EQ(plain.ior, MaterialDesc{}.ior);
+  EXPECT_EQ(plain.kd, MaterialDesc{}.kd);
+}
+
 // A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes).
 std::string glb(std::string json, std::string binary, std::uint32_t stated_length_extra = 0) {
   while (json.size() % 4 != 0) json += ' ';
