@@ -187,8 +187,7 @@ int run_trace(const TraceArgs& args) {
 void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
   trace.add_option("scene", args.scene,
                    "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). A scene without a camera "
-                   "(a mesh) gets the default "
-                   "view framing it, as in 'quiver render'")
+                   "(a mesh) gets the default view framing it, as in 'quiver render'")
       ->required()
       ->type_name("SCENE");
   raw.width_option = trace.add_option("--width", raw.width,
@@ -238,7 +237,9 @@ int main(int argc, char** argv) {
   CLI::App* info = app.add_subcommand(
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
               "camera, lights, materials, textures, memory (bytes) per structure, load and build times (ms)");
-  info->add_option("scene", info_scene, "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl")->required()->type_name("SCENE");
+  info->add_option("scene", info_scene, "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl")
+      ->required()
+      ->type_name("SCENE");
   double info_crease_angle = 0.0;
   CLI::Option* info_crease_angle_option = quiver::cli::add_crease_angle_flag(*info, info_crease_angle);
   quiver::SceneLoadOptions info_load_options;

@@ -48,8 +48,9 @@ inline void add_strict_flag(CLI::App& command, bool& strict) {
 inline CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
   return command
       .add_option("--crease-angle", degrees,
-                  "Smooth normals for OBJ, PLY and STL meshes without normals (STL's facet normals count as none): faces meeting at a vertex at an angle up to this "
-                  "many degrees, 0..180, are shaded smooth there (angle-weighted); sharper edges stay hard; 0: "
+                  "Smooth normals for OBJ, PLY and STL meshes without normals (STL's facet normals count as "
+                  "none): faces meeting at a vertex at an angle up to this many degrees, 0..180, are shaded "
+                  "smooth there (angle-weighted); sharper edges stay hard; 0: "
                   "faceted. Meshes with normals keep theirs. Default: a TOML mesh's crease_angle, else " +
                       std::to_string(int(quiver::kDefaultCreaseAngleDegrees)))
       ->type_name("DEGREES");
@@ -87,8 +88,8 @@ inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
 inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("scene", args.scene,
                     "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). Absent: the built-in "
-                    "scene. A scene without a camera (a mesh) gets a default view framing it (and, if it has no lights, a white point light "
-                    "above and to the right of that view)")
+                    "scene. A scene without a camera (a mesh) gets a default view framing it (and, if it has no "
+                    "lights, a white point light above and to the right of that view)")
       ->type_name("SCENE");
   render.add_option("-o,--output", args.output,
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "

@@ -211,8 +211,8 @@ def simd_rows(options, cpu, notes):
                 label = f"{name}, --preset spd, {size[1]}x{size[3]}"
             else:
                 scene = None
-                flags = ["--aa", "none"] + (["--width", "64", "--height", "48"] if options.quick else [])
-                label = "built-in scene, --aa none" + (", 64x48" if options.quick else ", 640x480")
+                flags = ["--width", "64", "--height", "48"] if options.quick else []
+                label = "built-in scene" + (", 64x48" if options.quick else ", 640x480")
             times = {"auto": [], "scalar": []}
             units = {}
             for r in range(options.runs):

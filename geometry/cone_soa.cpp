@@ -6,9 +6,6 @@
 namespace quiver {
 
 namespace {
-bool finite(const Vec3<float>& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 // Squares neither overflow nor underflow to zero.
 bool square_safe(float x) {
   const float sq = x * x;
@@ -22,7 +19,7 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
                               &soa.az,     &soa.height,  &soa.radius0, &soa.slope, &soa.facing};
   for (AlignedFloats* c : columns) c->reserve(padded_size(cones.size()));
   for (const ConeDesc& c : cones) {
-    if (!finite(c.base) || !finite(c.apex) || !std::isfinite(c.base_radius) || !std::isfinite(c.apex_radius)) {
+    if (!all_finite(c.base) || !all_finite(c.apex) || !std::isfinite(c.base_radius) || !std::isfinite(c.apex_radius)) {
       ++report.dropped_non_finite;
       continue;
     }

@@ -4,17 +4,11 @@
 
 namespace quiver {
 
-namespace {
-bool finite(const Vec3<float>& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-}  // namespace
-
 PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
   PlaneSoA soa;
   for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(planes.size()));
   for (const PlaneDesc& p : planes) {
-    if (!finite(p.point) || !finite(p.normal)) {
+    if (!all_finite(p.point) || !all_finite(p.normal)) {
       ++report.dropped_non_finite;
       continue;
     }

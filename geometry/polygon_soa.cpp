@@ -14,7 +14,6 @@ using Vec3d = Vec3<double>;
 
 Vec3d to_double(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
 
-bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool same(const Vec3<float>& a, const Vec3<float>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 enum class Verdict { ok, non_finite, degenerate };
@@ -42,7 +41,7 @@ std::vector<Vec3<float>> without_consecutive_duplicates(const std::vector<Vec3<f
 Verdict clean(const PolygonDesc& desc, CleanPolygon& result) {
   if (desc.vertices.size() > kMaxPolygonVertices) return Verdict::degenerate;
   for (const Vec3<float>& v : desc.vertices) {
-    if (!finite(v)) return Verdict::non_finite;
+    if (!all_finite(v)) return Verdict::non_finite;
   }
   result.vertices = without_consecutive_duplicates(desc.vertices);
   const std::vector<Vec3<float>>& vs = result.vertices;

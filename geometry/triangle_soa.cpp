@@ -9,15 +9,13 @@ namespace quiver {
 
 namespace {
 
-bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 bool finite(const TriangleDesc& t) {
   for (const Vec3<float>& p : t.p) {
-    if (!finite(p)) return false;
+    if (!all_finite(p)) return false;
   }
   if (t.normals) {
     for (const Vec3<float>& n : *t.normals) {
-      if (!finite(n)) return false;
+      if (!all_finite(n)) return false;
     }
   }
   if (t.uvs) {
@@ -37,7 +35,7 @@ Shape classify(const TriangleDesc& t) {
   // The kernels' own edges and normal, in float: must be finite and not zero.
   const Vec3<float> e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
   const Vec3<float> ng = cross(e1, e2);
-  if (!finite(e1) || !finite(e2) || !finite(t.p[2] - t.p[1]) || !finite(ng)) return Shape::non_finite;
+  if (!all_finite(e1) || !all_finite(e2) || !all_finite(t.p[2] - t.p[1]) || !all_finite(ng)) return Shape::non_finite;
   if (ng.x == 0.f && ng.y == 0.f && ng.z == 0.f) return Shape::degenerate;
   // Height over the longest edge, in double: 2 area / longest^2.
   const Vec3<double> a = to_double(t.p[0]), b = to_double(t.p[1]), c = to_double(t.p[2]);

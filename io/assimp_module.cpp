@@ -199,21 +199,22 @@ void* import_mesh(const char* path, const void* data, std::size_t size, const ch
     const aiScene* scene = data != nullptr ? import->importer.ReadFileFromMemory(data, size, kSteps, hint)
                                            : import->importer.ReadFile(path, kSteps);
     if (scene == nullptr) {
-      copy_message(import->importer.GetErrorString(), error, error_size);
+      copy_message(std::string("Assimp: ") + import->importer.GetErrorString(), error, error_size);
       return nullptr;
     }
     if (!collect(*scene, max_triangles, *import, *mesh)) {
-      copy_message("more than " + std::to_string(max_triangles) + " triangles once its nodes place its meshes", error,
-                   error_size);
+      copy_message("expected at most " + std::to_string(max_triangles) +
+                       " triangles once the file's nodes place its meshes, found more",
+                   error, error_size);
       return nullptr;
     }
     return import.release();
   } catch (const std::bad_alloc&) {
-    copy_message("out of memory", error, error_size);
+    copy_message("Assimp: out of memory", error, error_size);
   } catch (const std::exception& e) {
-    copy_message(e.what(), error, error_size);
+    copy_message(std::string("Assimp: ") + e.what(), error, error_size);
   } catch (...) {
-    copy_message("unknown error in Assimp", error, error_size);
+    copy_message("Assimp: an unknown error", error, error_size);
   }
   return nullptr;
 }

@@ -4,8 +4,8 @@
 // so a run that reads no such file never maps Assimp. The module exports
 // one function, kAssimpModuleEntry, returning a table of plain functions;
 // no C++ type or exception crosses the boundary. Failure is reported by the
-// return value, with Assimp's message, cut to fit and NUL-terminated, in
-// the caller's error buffer.
+// return value, with a message ("Assimp: ..." for Assimp's own), cut to fit
+// and NUL-terminated, in the caller's error buffer.
 #pragma once
 
 #include <cstddef>

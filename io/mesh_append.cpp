@@ -51,7 +51,7 @@ void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
     for (Vec3<float>& p : t.triangle.p) {
       const glm::dvec4 q = m * glm::dvec4(p.x, p.y, p.z, 1.0);
       p = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) not_finite();
+      if (!all_finite(p)) not_finite();
     }
     if (t.triangle.normals) {
       for (Vec3<float>& n : *t.triangle.normals) {

@@ -303,14 +303,6 @@ std::size_t data_uri_bytes(std::string_view uri) {
   return (payload.size() + padding) / 4 * 3 - padding;
 }
 
-// The 1-based line and column of byte `offset` of text.
-TextPosition position_in(std::string_view text, std::size_t offset) {
-  offset = std::min(offset, text.size());
-  const std::string_view before = text.substr(0, offset);
-  const std::size_t line_start = before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
-  return {static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n')) + 1, offset - line_start + 1};
-}
-
 void check_gltf_json(std::string_view json_text, std::string_view file, const fs::path& directory,
                      std::optional<std::size_t> binary_chunk_bytes, std::size_t total_bytes,
                      std::size_t max_total_bytes) {
@@ -319,7 +311,7 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
     document = nlohmann::json::parse(json_text.begin(), json_text.end());
   } catch (const nlohmann::json::parse_error& error) {
     const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
-    const TextPosition at = position_in(json_text, offset);
+    const TextPosition at = position_at(json_text, offset);
     const std::string_view rest = json_text.substr(std::min(offset, json_text.size()));
     throw ParseError(file, at.line, at.column, "glTF's JSON",
                      rest.empty() ? std::string("end of file") : quoted_token(rest.substr(0, rest.find('\n'))));
@@ -359,9 +351,8 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
       available = data_uri_bytes(text);
       holder = "its data URI";
     } else {
-      fs::path path = (directory / fs::path(text)).lexically_normal();
+      const fs::path path = file_named_by_uri(directory, text);
       std::error_code error;
-      if (!fs::is_regular_file(path, error)) path = (directory / fs::path(percent_decoded(text))).lexically_normal();
       if (!fs::is_regular_file(path, error)) {
         throw ParseError::whole_file(
             file, "expected " + name + "'s file " + quoted_token(text) + " beside it, found no such file");

@@ -70,12 +70,11 @@ class PositionWelder {
   std::vector<Vec3<float>> positions_;
 };
 
-Vec3<float> vector_at(const float* data, std::size_t stride, std::size_t index) {
-  const float* v = data + stride * index;
+// Vertex `index` of an array of float triples.
+Vec3<float> vector_at(const float* data, std::size_t index) {
+  const float* v = data + 3 * index;
   return {v[0], v[1], v[2]};
 }
-
-bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // An Assimp texture map mode as quiver's wrap (decal, outside the image
 // transparent, as clamp).
@@ -139,9 +138,8 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
       warnings.warn("embedded texture", whole_file, "a base colour texture as an image file",
                     "an image embedded as raw texels", "the base colour alone");
     } else if (!texture.empty()) {
-      fs::path path = (directory / fs::path(texture)).lexically_normal();
+      const fs::path path = file_named_by_uri(directory, texture);
       std::error_code error;
-      if (!fs::is_regular_file(path, error)) path = (directory / fs::path(percent_decoded(texture))).lexically_normal();
       if (fs::is_regular_file(path, error)) {
         TextureDesc image;
         image.kind = TextureDesc::Kind::image;
@@ -160,7 +158,7 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
 }
 
 SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
-                     double crease_angle_degrees, ReaderWarnings& warnings, std::size_t triangle_budget) {
+                     double crease_angle_degrees, ReaderWarnings& warnings) {
   SceneDesc scene;
   add_materials(mesh, format, file, directory, warnings, scene);
   if (mesh.dropped_points_and_lines > 0) {
@@ -174,10 +172,6 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
     throw ParseError::whole_file(file, others == 0 ? std::string("expected at least one triangle, found none")
                                                    : joined({"expected at least one triangle, found only ",
                                                              std::to_string(others), " points and lines"}));
-  }
-  if (triangles > triangle_budget) {
-    throw ParseError::whole_file(file, joined({"expected at most ", std::to_string(triangle_budget),
-                                               " triangles in the scene, found ", std::to_string(triangles)}));
   }
   scene.triangles.reserve(triangles);
 
@@ -198,16 +192,16 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
       std::array<std::array<float, 2>, 3> uvs{};
       for (std::size_t k = 0; k < 3; ++k) {
         const std::uint32_t v = part.indices[3 * t + k];
-        triangle.triangle.p[k] = vector_at(part.positions, 3, v);
-        if (!finite(triangle.triangle.p[k])) {
+        triangle.triangle.p[k] = vector_at(part.positions, v);
+        if (!all_finite(triangle.triangle.p[k])) {
           throw ParseError::whole_file(file, joined({"expected finite vertex positions, found one that is not "
                                                      "(mesh ",
                                                      std::to_string(i), ", vertex ", std::to_string(v), ")"}));
         }
-        if (has_normals) normals[k] = vector_at(part.normals, 3, v);
+        if (has_normals) normals[k] = vector_at(part.normals, v);
         if (part.uvs != nullptr) uvs[k] = {part.uvs[part.uv_stride * v], part.uvs[part.uv_stride * v + 1]};
       }
-      if (has_normals && finite(normals[0]) && finite(normals[1]) && finite(normals[2])) {
+      if (has_normals && all_finite(normals[0]) && all_finite(normals[1]) && all_finite(normals[2])) {
         triangle.triangle.normals = normals;
       } else if (smooth_missing) {
         welded.push_back({welder.index_of(triangle.triangle.p[0]), welder.index_of(triangle.triangle.p[1]),
@@ -273,8 +267,8 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),
                                        extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
                       ImportDeleter{api});
-  if (!handle) throw ParseError::whole_file(file, joined({"Assimp: ", error}));
-  return scene_from(mesh, *format, file, directory, crease_angle_degrees, warnings, triangle_budget);
+  if (!handle) throw ParseError::whole_file(file, error);
+  return scene_from(mesh, *format, file, directory, crease_angle_degrees, warnings);
 }
 
 }  // namespace quiver

@@ -62,11 +62,12 @@ std::string quoted_token(std::string_view token) {
   return quoted;
 }
 
-TextPosition end_of_text(std::string_view text) {
-  const std::size_t last_newline = text.rfind('\n');
+TextPosition position_at(std::string_view text, std::size_t offset) {
+  const std::string_view before = text.substr(0, std::min(offset, text.size()));
+  const std::size_t last_newline = before.rfind('\n');
   const std::size_t line_start = last_newline == std::string_view::npos ? 0 : last_newline + 1;
-  const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-  return {lines + 1, text.size() - line_start + 1};
+  const auto lines = static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  return {lines + 1, before.size() - line_start + 1};
 }
 
 std::string joined(std::initializer_list<std::string_view> parts) {

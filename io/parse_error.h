@@ -48,9 +48,12 @@ struct TextPosition {
   std::size_t line, column;
 };
 
-// The position just past the last byte of text whose lines end at '\n':
-// where an error found at the end of a file points.
-TextPosition end_of_text(std::string_view text);
+// The position of byte `offset` of text whose lines end at '\n' (an offset
+// past the end is the end).
+TextPosition position_at(std::string_view text, std::size_t offset);
+// The position just past the last byte: where an error found at the end of
+// a file points.
+inline TextPosition end_of_text(std::string_view text) { return position_at(text, text.size()); }
 
 // The parts of a message, concatenated.
 std::string joined(std::initializer_list<std::string_view> parts);

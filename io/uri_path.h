@@ -4,6 +4,7 @@
 // percent-decoded.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -29,6 +30,15 @@ inline std::string percent_decoded(std::string_view uri) {
     }
   }
   return decoded;
+}
+
+// The file a glTF URI names relative to `directory`: as written when that is
+// a regular file, else percent-decoded (which may not exist either).
+inline std::filesystem::path file_named_by_uri(const std::filesystem::path& directory, std::string_view uri) {
+  const std::filesystem::path as_written = (directory / std::filesystem::path(uri)).lexically_normal();
+  std::error_code error;
+  if (std::filesystem::is_regular_file(as_written, error)) return as_written;
+  return (directory / std::filesystem::path(percent_decoded(uri))).lexically_normal();
 }
 
 }  // namespace quiver

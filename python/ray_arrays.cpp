@@ -21,8 +21,6 @@ Vec3<float> row(const void* array, ArrayFloat type, std::size_t i) {
   return type == ArrayFloat::float32 ? row<float>(array, i) : row<double>(array, i);
 }
 
-bool finite(const Vec3<float>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 // 1 for a ray the queries cannot use, else 0: a coordinate not finite (its
 // exponent bits all ones) or a zero direction (no bit besides the signs
 // set). Integer tests with no branch, so the pass over a batch vectorizes.
@@ -109,9 +107,9 @@ void read_ray_batch(const RayArrays& arrays, std::size_t b, const RayInterval& i
 std::string bad_ray_message(const RayArrays& arrays, std::size_t i) {
   const Vec3<float> o = row(arrays.origins, arrays.type, i), d = row(arrays.directions, arrays.type, i);
   std::ostringstream message;
-  if (!finite(o)) {
+  if (!all_finite(o)) {
     message << "origins[" << i << "] = " << vector_text(o) << " is not finite in float32";
-  } else if (!finite(d)) {
+  } else if (!all_finite(d)) {
     message << "directions[" << i << "] = " << vector_text(d) << " is not finite in float32";
   } else {
     message << "directions[" << i << "] is (0, 0, 0): a ray needs a direction";

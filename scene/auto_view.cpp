@@ -58,6 +58,15 @@ Vec3<double> to_double(const Vec3<float>& v) { return {double(v.x), double(v.y),
 
 Vec3<double> unit(const Vec3<double>& v) { return v * (1.0 / std::sqrt(dot(v, v))); }
 
+// A triangle's corners in double and its normal scaled by twice its area.
+struct TriangleArea {
+  Vec3<double> a, b, c, n;
+  explicit TriangleArea(const SceneTriangle& t)
+      : a(to_double(t.triangle.p[0])), b(to_double(t.triangle.p[1])), c(to_double(t.triangle.p[2])),
+        n(cross(b - a, c - a)) {}
+  double twice_area() const { return std::sqrt(dot(n, n)); }
+};
+
 // The faces' area (in total, and on a flat base facing -axis at the box's
 // lowest side along axis), for the triangles of a mesh.
 double base_area(const SceneDesc& scene, int axis, const Bounds& bounds) {
@@ -65,23 +74,18 @@ double base_area(const SceneDesc& scene, int axis, const Bounds& bounds) {
   const double flat = std::cos(2.0 * std::numbers::pi / 180.0);
   double area = 0.0;
   for (const SceneTriangle& t : scene.triangles) {
-    const Vec3<double> a = to_double(t.triangle.p[0]), b = to_double(t.triangle.p[1]), c = to_double(t.triangle.p[2]);
+    const TriangleArea f(t);
     bool low = true;
-    for (const Vec3<double>& p : {a, b, c}) low = low && p[axis] - bounds.lo[axis] <= tolerance;
-    const Vec3<double> n = cross(b - a, c - a);
-    const double twice_area = std::sqrt(dot(n, n));
-    if (low && twice_area > 0.0 && std::fabs(n[axis]) >= flat * twice_area) area += 0.5 * twice_area;
+    for (const Vec3<double>& p : {f.a, f.b, f.c}) low = low && p[axis] - bounds.lo[axis] <= tolerance;
+    const double twice_area = f.twice_area();
+    if (low && twice_area > 0.0 && std::fabs(f.n[axis]) >= flat * twice_area) area += 0.5 * twice_area;
   }
   return area;
 }
 
 double mesh_area(const SceneDesc& scene) {
   double area = 0.0;
-  for (const SceneTriangle& t : scene.triangles) {
-    const Vec3<double> a = to_double(t.triangle.p[0]);
-    const Vec3<double> n = cross(to_double(t.triangle.p[1]) - a, to_double(t.triangle.p[2]) - a);
-    area += 0.5 * std::sqrt(dot(n, n));
-  }
+  for (const SceneTriangle& t : scene.triangles) area += 0.5 * TriangleArea(t).twice_area();
   return area;
 }
 
@@ -108,10 +112,9 @@ std::pair<double, double> top_lean(const SceneDesc& scene, const Vec3<double>& u
   Vec3<double> centre{0.0, 0.0, 0.0}, top{0.0, 0.0, 0.0};
   double weight = 0.0, top_weight = 0.0;
   for (const SceneTriangle& t : scene.triangles) {
-    const Vec3<double> a = to_double(t.triangle.p[0]), b = to_double(t.triangle.p[1]), c = to_double(t.triangle.p[2]);
-    const Vec3<double> n = cross(b - a, c - a);
-    const double w = std::sqrt(dot(n, n)) / 6.0;
-    for (const Vec3<double>& p : {a, b, c}) {
+    const TriangleArea f(t);
+    const double w = f.twice_area() / 6.0;  // a third of the area to each corner
+    for (const Vec3<double>& p : {f.a, f.b, f.c}) {
       centre = centre + p * w;
       weight += w;
       if (dot(p, up) >= top_from) {

@@ -8,8 +8,6 @@ namespace quiver {
 
 namespace {
 
-bool finite(const Vec3<float>& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
-
 // The in-memory image of a TextureDesc, checked.
 TextureImage image_from_memory(const TextureDesc& desc) {
   if (desc.rgb.empty() && !desc.path.empty()) {
@@ -79,7 +77,7 @@ Texture build_texture(const TextureDesc& desc) {
   if (!std::isfinite(desc.scale) || desc.scale <= 0.f) {
     throw std::invalid_argument("texture: checker scale must be finite and positive, is " + std::to_string(desc.scale));
   }
-  if (!finite(desc.color_a) || !finite(desc.color_b)) {
+  if (!all_finite(desc.color_a) || !all_finite(desc.color_b)) {
     throw std::invalid_argument("texture: checker colours must be finite");
   }
   return texture;

@@ -5,6 +5,7 @@
 // operations (select, length, normalize, ...) are in simd/lanes.h.
 #pragma once
 
+#include <cmath>
 #include <type_traits>
 
 #include "simd/kernel_units.h"
@@ -59,6 +60,11 @@ inline F dot(const Vec3<F>& a, const Vec3<F>& b) {
 template <class F>
 inline Vec3<F> cross(const Vec3<F>& a, const Vec3<F>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// Every component finite (plain numbers: float, double).
+template <class F, class = std::enable_if_t<std::is_floating_point_v<F>>>
+inline bool all_finite(const Vec3<F>& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 }  // namespace QUIVER_UNIT_NAMESPACE

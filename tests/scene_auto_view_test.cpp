@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -8,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "io/obj_reader.h"
 #include "scene/auto_view.h"
 
 namespace quiver {
@@ -196,6 +199,28 @@ TEST(AutoView, AMeshIsSeenFromTheSideItsTopLeansTo) {
   add_square(small, {0.f, 0.f, 0.f}, 0, 2, 1.f, 2);
   add_square(small, {0.f, 2.f, -0.75f}, 0, 2, 0.25f, 1);
   EXPECT_EQ(choose_default_view(small).front.z, 1.0);
+}
+
+// The shipped meshes (../shared/meshes): spot, the cow and the bunny face
+// where their heads are (checked by eye on renders), so their default views
+// show their faces; the teapot keeps the default front.
+TEST(AutoView, TheSharedMeshesAreSeenFromTheirHeadsSide) {
+  const char* env = std::getenv("QUIVER_SHARED_DIR");
+  const std::filesystem::path meshes =
+      std::filesystem::path(env != nullptr && *env != '\0' ? env : QUIVER_SHARED_DIR) / "meshes";
+  if (!std::filesystem::is_directory(meshes)) {
+    GTEST_SKIP() << "no " << meshes << ": set QUIVER_SHARED_DIR to the folder holding meshes/";
+  }
+  const std::pair<const char*, Vec3<double>> expected[] = {{"spot.obj", {0.0, 0.0, -1.0}},
+                                                           {"cow.obj", {1.0, 0.0, 0.0}},
+                                                           {"stanford-bunny.obj", {-1.0, 0.0, 0.0}},
+                                                           {"teapot.obj", {0.0, 0.0, 1.0}}};
+  for (const auto& [name, front] : expected) {
+    const DefaultView view = choose_default_view(read_obj_scene(meshes / name));
+    EXPECT_EQ(view.up.y, 1.0) << name << ": " << view.up_reason;
+    EXPECT_EQ(view.front.x, front.x) << name << ": " << view.front_reason;
+    EXPECT_EQ(view.front.z, front.z) << name << ": " << view.front_reason;
+  }
 }
 
 TEST(AutoView, AMeshOnAFlatBaseAtItsLowestZStandsOnIt) {
