@@ -84,7 +84,12 @@ void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
     }
   }
   scene.warnings.insert(scene.warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
-  scene.triangles.reserve(scene.triangles.size() + mesh.triangles.size());
+  // Room grown geometrically: an exact reserve per mesh copied every earlier
+  // mesh's triangles again (quadratic in a scene's [[meshes]] entries).
+  const std::size_t needed = scene.triangles.size() + mesh.triangles.size();
+  if (needed > scene.triangles.capacity()) {
+    scene.triangles.reserve(std::max(needed, 2 * scene.triangles.capacity()));
+  }
   for (SceneTriangle& t : mesh.triangles) {
     t.material = material_override ? *material_override : t.material + material_base;
     scene.triangles.push_back(std::move(t));
