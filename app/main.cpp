@@ -252,7 +252,9 @@ int main(int argc, char** argv) {
       "Time the closest hits of the primary rays alone (one through each pixel centre, as --aa none; no shading, no "
       "secondary rays) and print one JSON line: mrays_per_s (median over the repeats), hits (rays that hit), t_sum "
       "(their hit distances added in double), rays, ms_median, threads, simd, lanes, build_ms, width, height, "
-      "repeat, primitives, acceleration_bytes (the BVH's). Rays are generated before timing; hits and t_sum are "
+      "repeat, primitives (an instanced mesh counted once), acceleration_bytes (the BVHs'), memory_bytes (the "
+      "stored primitives and their tables), instances, instance_table_bytes (with the top-level BVH). Rays are "
+      "generated before timing; hits and t_sum are "
       "the same for every --threads and --simd");
   add_trace_flags(*trace, trace_args, raw_trace);
 

@@ -127,6 +127,18 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
     out << "  polygons read with vertex normals: " << patches << ", built as " << patch_triangles
         << " of the triangles kept\n";
   }
+  if (!desc.instances.empty()) {
+    std::size_t placed = 0;
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) placed += scene.meshes[scene.instances.mesh[i]].triangle_count();
+    const BuildReport& m = scene.counts.mesh_triangles;
+    out << "instances       " << scene.counts.instances << " placed (of " << desc.instances.size() << " read) of "
+        << desc.meshes.size() << " mesh" << (desc.meshes.size() == 1 ? "" : "es") << ", stored once: " << m.kept
+        << " triangles kept (" << m.dropped_non_finite << " non-finite, " << m.dropped_degenerate
+        << " degenerate dropped), " << placed << " placed\n";
+    for (std::size_t k = 0; k < desc.meshes.size(); ++k) {
+      out << "  mesh " << k << ": " << desc.meshes[k].name << ", " << scene.meshes[k].triangle_count() << " triangles\n";
+    }
+  }
   out << "bounds          " << vec(scene.bounds_min) << " to " << vec(scene.bounds_max) << " (planes excluded)\n";
 }
 
@@ -223,8 +235,14 @@ void write_memory(std::ostream& out, const Scene& scene) {
   }
   std::size_t texture_bytes = 0;
   for (const Texture& t : scene.textures) texture_bytes += bytes_of(t.image.rgb);
-  out << "  " << padded("textures", 12, false) << texture_bytes << "\n"
-      << "  " << padded("total", 12, false) << scene.memory_bytes() << "\n";
+  out << "  " << padded("textures", 12, false) << texture_bytes << "\n";
+  if (!scene.meshes.empty()) {
+    std::size_t mesh_bytes = 0;
+    for (const InstancedMesh& m : scene.meshes) mesh_bytes += m.memory_bytes() - m.bvh.memory_bytes();
+    out << "  " << padded("instanced meshes (stores, once each)", 38, false) << mesh_bytes << "\n"
+        << "  " << padded("instance table", 38, false) << scene.instances.memory_bytes() << "\n";
+  }
+  out << "  " << padded("total", 12, false) << scene.memory_bytes() << "\n";
 }
 
 // Per bounded kind: the BVH's width, nodes, depth and bytes.
@@ -232,16 +250,18 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
   out << "acceleration (a BVH per bounded kind of " << SceneBuildOptions{}.bvh_min_primitives
       << " or more primitives, over both layers; planes and smaller kinds are scanned)\n";
   bool any = false;
-  const std::pair<const char*, const Bvh*> trees[] = {{"sphere", &scene.sphere_bvh},
-                                                      {"triangle", &scene.triangle_bvh},
-                                                      {"polygon", &scene.polygon_bvh},
-                                                      {"cone", &scene.cone_bvh}};
-  for (const auto& [name, bvh] : trees) {
-    if (bvh->empty()) continue;
+  const auto write_tree = [&](const std::string& name, const Bvh& bvh) {
+    if (bvh.empty()) return;
     any = true;
-    out << "  " << padded(name, 22, false) << bvh->width << "-wide, " << bvh->node_count << " nodes, depth "
-        << bvh->depth << ", " << bvh->memory_bytes() << " bytes\n";
-  }
+    out << "  " << padded(name, 22, false) << bvh.width << "-wide, " << bvh.node_count << " nodes, depth "
+        << bvh.depth << ", " << bvh.memory_bytes() << " bytes\n";
+  };
+  write_tree("sphere", scene.sphere_bvh);
+  write_tree("triangle", scene.triangle_bvh);
+  write_tree("polygon", scene.polygon_bvh);
+  write_tree("cone", scene.cone_bvh);
+  for (std::size_t k = 0; k < scene.meshes.size(); ++k) write_tree("instanced mesh " + std::to_string(k), scene.meshes[k].bvh);
+  write_tree("instances (top level)", scene.instance_bvh);
   if (!any) out << "  none\n";
   out << "  " << padded("total", 12, false) << scene.acceleration_bytes() << "\n";
 }

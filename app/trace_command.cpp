@@ -128,6 +128,9 @@ std::string trace_json_line(const PrimaryTraceResult& result, const Scene& scene
   line["repeat"] = result.ms.size();
   line["primitives"] = scene.primitive_count();
   line["acceleration_bytes"] = scene.acceleration_bytes();
+  line["memory_bytes"] = scene.memory_bytes();
+  line["instances"] = scene.instances.size();
+  line["instance_table_bytes"] = scene.instances.memory_bytes() + scene.instance_bvh.memory_bytes();
   return line.dump();
 }
 

@@ -56,6 +56,7 @@ SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere) : unit_
     triangle_bvh_ = triangle_bvh_streams<U>(TriangleMethod::watertight);
     polygon_bvh_ = polygon_bvh_streams<U>(PolygonMethod::crossing);
     cone_bvh_ = cone_bvh_streams<U>(ConeMethod::quadric);
+    instance_bvh_ = instance_bvh_streams<U>();
   });
 }
 
@@ -95,12 +96,8 @@ struct KindQuery {
     if (bvh.empty()) {
       if (has(layers, false)) scan_store(opaque);
       if (has(layers, true)) scan_store(transmissive);
-    } else if (opaque.count > 0 && transmissive.count > 0) {
-      through_tree(BvhStores<S, 2>{{&opaque, &transmissive}, static_cast<unsigned>(layers)});
-    } else if (has(layers, false)) {
-      through_tree(opaque);
-    } else if (has(layers, true)) {
-      through_tree(transmissive);
+    } else {
+      with_tested_stores(opaque, transmissive, static_cast<unsigned>(layers), through_tree);
     }
   }
 };
@@ -123,6 +120,10 @@ void SceneIntersector::for_each_bounded_kind(const Scene& scene, Fn fn) const {
   fn(kind_query(o.cones, t.cones, scene.cone_bvh, cones_, cone_bvh_));
 }
 
+InstanceLeaves SceneIntersector::instance_leaves(const Scene& scene, Layers layers) const {
+  return {&scene.instances, scene.meshes.data(), &triangle_bvh_, static_cast<unsigned>(layers), traversal_};
+}
+
 void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& hits, Layers layers) const {
   if (rays.count == 0) return;
   for_each_tested_plane_store(scene, layers,
@@ -132,6 +133,9 @@ void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& h
         layers, [&](const auto& stores) { kind.tree.closest_hits(rays, stores, kind.bvh, hits, traversal_); },
         [&](const auto& store) { kind.scan.closest_packets(rays, store, hits); });
   });
+  if (!scene.instance_bvh.empty()) {
+    instance_bvh_.closest_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, hits, traversal_);
+  }
 }
 
 void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const {
@@ -143,6 +147,9 @@ void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, Occlusio
         layers, [&](const auto& stores) { kind.tree.any_hits(rays, stores, kind.bvh, result, traversal_); },
         [&](const auto& store) { kind.scan.occluded_packets(rays, store, result); });
   });
+  if (!scene.instance_bvh.empty()) {
+    instance_bvh_.any_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, result, traversal_);
+  }
 }
 
 }  // namespace quiver

@@ -8,10 +8,13 @@
 // a sphere's centre (it gives no wrong answer on clear rays through 31.6
 // radii, bench/ACCURACY.md "Choosing per scene"), else the robust one. HitSoA
 // carries the closest t, so the stores compose; every path reports the
-// smallest (t, id), so the order does not matter.
+// smallest (t, id), so the order does not matter. Instances go through
+// their top-level BVH (geometry/instance_leaves.h) into their meshes'
+// triangle BVHs, with the same triangle method.
 #pragma once
 
 #include "geometry/cone_streams.h"
+#include "geometry/instance_streams.h"
 #include "geometry/plane_streams.h"
 #include "geometry/polygon_streams.h"
 #include "geometry/sphere_streams.h"
@@ -60,6 +63,7 @@ class SceneIntersector {
   // Calls fn with each bounded kind's stores, BVH and streams.
   template <class Fn>
   void for_each_bounded_kind(const Scene& scene, Fn fn) const;
+  InstanceLeaves instance_leaves(const Scene& scene, Layers layers) const;
 
   KernelUnit unit_;
   SphereMethod sphere_method_;
@@ -68,6 +72,7 @@ class SceneIntersector {
   BvhStreams<TriangleSoA> triangle_bvh_;
   BvhStreams<PolygonSoA> polygon_bvh_;
   BvhStreams<ConeSoA> cone_bvh_;
+  BvhStreams<InstanceLeaves> instance_bvh_;
   KernelStreams<SphereSoA> spheres_;
   KernelStreams<PlaneSoA> planes_;
   KernelStreams<TriangleSoA> triangles_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "integrator/texture.h"
@@ -63,12 +64,31 @@ void barycentric_change(const Vec3<float>& e1, const Vec3<float>& e2, const Vec3
   db2 = (aa * db - ab * da) / det;
 }
 
+// The rounding error of an instance's hit beyond the world ray's: the ray
+// carried in (W o and W d, each a 3-term sum per row, bounded with the same
+// ulps as hit_point_error), the hit in the instance's coordinates, both
+// taken back by |M|.
+Vec3<float> instance_error(const Scene& scene, std::size_t row, const Ray<float>& ray, float t) {
+  const AffineTransform& to_object = scene.instances.world_to_object[row];
+  const AffineTransform to_object_abs = absolute(to_object);
+  const Vec3<float> origin = apply_point(to_object, ray.origin);
+  const Vec3<float> direction = apply_vector(to_object, ray.direction);
+  const Vec3<float> abs_origin{std::fabs(ray.origin.x), std::fabs(ray.origin.y), std::fabs(ray.origin.z)};
+  const Vec3<float> abs_direction{std::fabs(ray.direction.x), std::fabs(ray.direction.y), std::fabs(ray.direction.z)};
+  const float e = kOffsetErrorUlps * std::numeric_limits<float>::epsilon();
+  const Vec3<float> carried = apply_point(to_object_abs, abs_origin) + apply_vector(to_object_abs, abs_direction) * t;
+  const Vec3<float> in_object = hit_point_error(origin, direction, t) + carried * e;
+  return apply_vector(absolute(scene.instances.object_to_world[row]), in_object);
+}
+
 }  // namespace
 
 SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit,
                              const PointDifferentials* footprint) {
   SurfaceDetail s;
   s.ref = scene.locate(hit.id);
+  const bool instanced = s.ref.instance >= 0;
+  const std::size_t row = instanced ? std::size_t(s.ref.instance) : 0;
   const GeometryLayer& g = scene.layer(s.ref.transmissive);
   const std::uint32_t i = s.ref.local;
   s.smooth = false;
@@ -78,11 +98,17 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   s.material = &scene.materials[s.material_index];
   // Texture coordinates only for textured materials (atan2 and asin are dear).
   const bool textured = s.material->texture.has_value();
-  const Vec3<float> position =
+  Vec3<float> position =
       textured || footprint != nullptr ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f);
   // Per film axis (x, y): the point's change and that of (u, v).
-  const Vec3<float> dp[2] = {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
-                             footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)};
+  Vec3<float> dp[2] = {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
+                       footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)};
+  if (instanced) {
+    const AffineTransform& to_object = scene.instances.world_to_object[row];
+    position = apply_point(to_object, position);
+    for (Vec3<float>& d : dp) d = apply_vector(to_object, d);
+    s.instance_error = instance_error(scene, row, ray, hit.t);
+  }
   float du[2] = {0.f, 0.f}, dv[2] = {0.f, 0.f};
   Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
   switch (s.ref.kind) {
@@ -117,7 +143,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
       break;
     }
     case PrimitiveKind::triangle: {
-      const TriangleSoA& tri = g.triangles;
+      const TriangleSoA& tri = scene.triangles_of(s.ref);
       const float w0 = 1.f - hit.u - hit.v;
       double db1[2] = {0.0, 0.0}, db2[2] = {0.0, 0.0};
       if (footprint != nullptr) {
@@ -138,7 +164,11 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
         }
       }
       if (tri.has_normals()) {
-        const Vec3<float> n0 = tri.normal(i, 0), n1 = tri.normal(i, 1), n2 = tri.normal(i, 2);
+        // An instance's normals in world space (not unit: interpolation commutes with the map).
+        const auto world_normal = [&](int k) {
+          return instanced ? apply_normal(scene.instances.world_to_object[row], tri.normal(i, k)) : tri.normal(i, k);
+        };
+        const Vec3<float> n0 = world_normal(0), n1 = world_normal(1), n2 = world_normal(2);
         const Vec3<float> n = n0 * w0 + n1 * hit.u + n2 * hit.v;
         if (dot(n, n) > 0.f) {
           s.smooth = true;
@@ -215,7 +245,9 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
 
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {
   const SurfaceDetail d = surface_detail(scene, ray, hit);
-  return {surface_frame(ray, hit, d.smooth, d.interpolated), d};
+  SurfaceFrame<float> frame = surface_frame(ray, hit, d.smooth, d.interpolated);
+  frame.error = frame.error + d.instance_error;
+  return {frame, d};
 }
 
 }  // namespace quiver

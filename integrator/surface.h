@@ -7,6 +7,9 @@
 //   polygon: a quad's bilinear (u, v) (inverse bilinear mapping in the
 //     polygon's 2D projection); other polygons planar, like planes;
 //   cone: cylindrical (u = angle / 2 pi, v = s / h along the axis).
+// An instance's triangle is shaded in its mesh's coordinates (the point and
+// footprint carried in, so solid textures move with the instance), its
+// normals carried out by the inverse transpose.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +36,11 @@ struct SurfaceDetail {
   // orientation) over it: spheres and interpolated normals; 0 on flat
   // surfaces and, as an approximation, on cones.
   Vec3<float> normal_dx{0.f, 0.f, 0.f}, normal_dy{0.f, 0.f, 0.f};
+  // A bound on the hit point's error beyond what the world ray's o + t d
+  // carries (SurfaceFrame::error): for an instance, the rounding of
+  // carrying the ray into it and of its hit there, mapped back to world
+  // space; 0 elsewhere.
+  Vec3<float> instance_error{0.f, 0.f, 0.f};
 };
 
 // The hit point's change over one sample spacing along film x and y

@@ -133,7 +133,7 @@ void Tracer::resolve_surfaces() {
       resolve_surface_with_footprint(i);
       continue;
     }
-    if (scene_.plain_of_id[std::size_t(id)] != 0) {
+    if (scene_.is_plain(id)) {
       // A plain surface: its material's colour.
       const std::uint32_t material = scene_.material_of_id[std::size_t(id)];
       const Vec3<float>& color = scene_.materials[material].color;
@@ -158,6 +158,7 @@ void Tracer::store_surface(std::size_t i, const SurfaceDetail& d) {
   surfaces_.color_r[i] = d.color.x;
   surfaces_.color_g[i] = d.color.y;
   surfaces_.color_b[i] = d.color.z;
+  if (d.ref.instance >= 0) surfaces_.error.set(i, d.instance_error);
 }
 
 void Tracer::resolve_surface_with_footprint(std::size_t i) {
@@ -188,7 +189,7 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
     occlusion_[s].reset(slot.rays);
     intersector_.occluded(scene_, slot.rays, occlusion_[s], Layers::opaque);
     transmittance_[s].assign(n, Vec3<float>(1.f, 1.f, 1.f));
-    if (scene_.transmissive.primitive_count() > 0) transmit(s);
+    if (scene_.has_transmissive()) transmit(s);
   }
   stats.rays.shadow += total;
   stats.shadow.active += total;

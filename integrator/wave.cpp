@@ -61,6 +61,7 @@ void PathColumns::pad() {
 void SurfaceColumns::resize(std::size_t padded, bool differentials) {
   for (AlignedInts* c : {&material, &smooth}) c->assign(padded, 0);
   for (AlignedFloats* c : {&nx, &ny, &nz, &color_r, &color_g, &color_b}) c->assign(padded, 0.f);
+  error.assign(padded);
   for (Vec3Columns* c : {&point_dx, &point_dy, &normal_dx, &normal_dy}) {
     if (differentials) {
       c->assign(padded);

@@ -192,7 +192,8 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   const SurfaceColumns& columns = *in.surfaces;
   const Mask<F> smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
   const Vec3<F> interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
-  const SurfaceFrame<F> s = surface_frame(ray, hit, smooth, interpolated);
+  SurfaceFrame<F> s = surface_frame(ray, hit, smooth, interpolated);
+  s.error = s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
   const Vec3<F> color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
   const IntLanes<F> material = load_int_lanes<F>(columns.material.data() + first);
   out.counts.hits += std::popcount(lane_bits(hit_mask));

@@ -147,7 +147,7 @@ class TomlSceneReader {
     }
     check_keys(root,
                {"background", "ambient", "camera", "render", "lights", "textures", "materials", "spheres", "planes",
-                "triangles", "polygons", "cylinders", "cones", "meshes"},
+                "triangles", "polygons", "cylinders", "cones", "meshes", "instances"},
                "the top level");
     if (const toml::node* node = root.get("background"))
       scene_.background = color(*node, "background", "the top level");
@@ -165,13 +165,15 @@ class TomlSceneReader {
     for_each_entry(root, "cylinders", unbounded, [this](const toml::table& t) { read_cylinder(t); });
     for_each_entry(root, "cones", unbounded, [this](const toml::table& t) { read_cone(t); });
     for_each_entry(root, "meshes", kMaxTomlMeshes, [this](const toml::table& t) { read_mesh(t); });
+    // Bounded by the node limit: each entry is a table with a file.
+    for_each_entry(root, "instances", unbounded, [this](const toml::table& t) { read_instance(t); });
     // A scene without objects renders nothing: almost always a mistake.
     if (scene_.spheres.empty() && scene_.planes.empty() && scene_.triangles.empty() && scene_.polygons.empty() &&
-        scene_.cones.empty()) {
+        scene_.cones.empty() && scene_.instances.empty()) {
       const TextPosition end = end_of_text(text_);
       throw ParseError(file_, end.line, end.column,
                        "at least one object ([[spheres]], [[planes]], [[triangles]], [[polygons]], [[cylinders]], "
-                       "[[cones]] or [[meshes]])",
+                       "[[cones]], [[meshes]] or [[instances]])",
                        kNoObjectsFound);
     }
     return std::move(scene_);
@@ -704,25 +706,35 @@ class TomlSceneReader {
     return rz * ry * rx;
   }
 
-  void read_mesh(const toml::table& t) {
-    constexpr std::string_view s = "[[meshes]]";
-    check_keys(t, {"file", "material", "translate", "rotate", "scale", "crease_angle"}, s);
+  // What a [[meshes]] or [[instances]] entry says of its mesh: the file,
+  // the material override and the crease angle.
+  struct MeshSource {
+    std::string path;
+    std::optional<std::size_t> material;
+    double crease_angle = kDefaultCreaseAngleDegrees;
+  };
+
+  MeshSource mesh_source(const toml::table& t, std::string_view s) {
+    MeshSource m;
     const toml::node& file_node = required(t, "file", s);
-    const std::string path = existing_file(file_node, "file", s, "a mesh file");
-    if (!is_mesh_extension(lowercase_extension(path))) {
+    m.path = existing_file(file_node, "file", s, "a mesh file");
+    if (!is_mesh_extension(lowercase_extension(m.path))) {
       fail(file_node, expected_for("a mesh file (.obj, .ply, .gltf, .glb or .stl)", "file", s));
     }
-    std::optional<std::size_t> material;
-    if (t.contains("material")) material = material_of(t, s);
-    double crease_angle = kDefaultCreaseAngleDegrees;
+    if (t.contains("material")) m.material = material_of(t, s);
     if (const toml::node* node = t.get("crease_angle")) {
-      crease_angle = number(*node, "crease_angle", s);
-      if (!valid_crease_angle(crease_angle)) {
+      m.crease_angle = number(*node, "crease_angle", s);
+      if (!valid_crease_angle(m.crease_angle)) {
         fail(*node, expected_for("an angle from 0 to 180 degrees", "crease_angle", s));
       }
     }
-    if (crease_angle_override_) crease_angle = *crease_angle_override_;
+    if (crease_angle_override_) m.crease_angle = *crease_angle_override_;
+    return m;
+  }
 
+  // An entry's placement, world = translate + rotate * (scale * p), as a
+  // column-major 4x4 matrix in float.
+  std::array<float, 16> placement(const toml::table& t, std::string_view s) const {
     glm::dvec3 scale(1.0);
     if (const toml::node* node = t.get("scale")) {
       if (node->is_array()) {
@@ -740,19 +752,64 @@ class TomlSceneReader {
       const Vec3<float> v = vec3(*node, "translate", s);
       translate = {v.x, v.y, v.z};
     }
-    // world = translate + rotate * (scale * p)
     const glm::dmat4 m = glm::translate(glm::dmat4(1.0), translate) * rotate * glm::scale(glm::dmat4(1.0), scale);
     std::array<float, 16> columns{};
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) columns[static_cast<std::size_t>(4 * c + r)] = static_cast<float>(m[c][r]);
     }
+    return columns;
+  }
+
+  // Appends the mesh of `source` to the scene under `columns` (the file
+  // named at t's "file").
+  void append_mesh_of(const toml::table& t, const MeshSource& source, const std::array<float, 16>& columns,
+                      std::string_view s) {
     try {
-      append_mesh(path, columns, material, scene_, crease_angle, strict_);
+      append_mesh(source.path, columns, source.material, scene_, source.crease_angle, strict_);
     } catch (const std::invalid_argument&) {
-      fail(t, "a [[meshes]] transform that is not singular once rounded to float");
+      fail(t, joined({"a ", s, " transform that is not singular once rounded to float"}));
     } catch (const ParseError& error) {
-      throw ParseError::in_named_file(named_at(file_node), "mesh", error);
+      throw ParseError::in_named_file(named_at(*t.get("file")), "mesh", error);
     }
+  }
+
+  void read_mesh(const toml::table& t) {
+    constexpr std::string_view s = "[[meshes]]";
+    check_keys(t, {"file", "material", "translate", "rotate", "scale", "crease_angle"}, s);
+    const MeshSource source = mesh_source(t, s);
+    append_mesh_of(t, source, placement(t, s), s);
+  }
+
+  // An [[instances]] entry: its mesh is read once per file, material and
+  // crease angle (SceneDesc::meshes), and placed by the entry's transform.
+  void read_instance(const toml::table& t) {
+    constexpr std::string_view s = "[[instances]]";
+    check_keys(t, {"file", "material", "translate", "rotate", "scale", "crease_angle"}, s);
+    const MeshSource source = mesh_source(t, s);
+    const std::array<float, 16> columns = placement(t, s);
+    AffineTransform object_to_world;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        object_to_world.m[static_cast<std::size_t>(4 * r + c)] = columns[static_cast<std::size_t>(4 * c + r)];
+      }
+    }
+    if (!inverse(object_to_world)) fail(t, joined({"a ", s, " transform that is not singular once rounded to float"}));
+    std::error_code ignored;
+    const fs::path canonical = fs::weakly_canonical(source.path, ignored);
+    const std::string key = joined({canonical.string(), "\n", source.material ? std::to_string(*source.material) : "-",
+                                    "\n", std::to_string(source.crease_angle)});
+    auto [it, added] = instanced_meshes_.try_emplace(key, scene_.meshes.size());
+    if (added) {
+      const std::array<float, 16> identity{1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f};
+      const std::size_t before = scene_.triangles.size();
+      append_mesh_of(t, source, identity, s);
+      SceneMesh mesh{source.path, {}};
+      mesh.triangles.assign(std::make_move_iterator(scene_.triangles.begin() + std::ptrdiff_t(before)),
+                            std::make_move_iterator(scene_.triangles.end()));
+      scene_.triangles.resize(before);
+      scene_.meshes.push_back(std::move(mesh));
+    }
+    scene_.instances.push_back({it->second, object_to_world});
   }
 
   std::string_view text_;
@@ -764,6 +821,8 @@ class TomlSceneReader {
   SceneDesc scene_;
   std::unordered_map<std::string, std::size_t> texture_names_;
   std::unordered_map<std::string, std::size_t> material_names_;
+  // [[instances]] meshes read so far: file, material and crease angle to SceneDesc::meshes index.
+  std::unordered_map<std::string, std::size_t> instanced_meshes_;
   std::optional<std::size_t> default_material_;
 };
 

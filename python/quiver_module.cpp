@@ -112,12 +112,12 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);
-  // One kept buffer (python/output_buffers.h) holds the six columns; each
+  // One kept buffer (python/output_buffers.h) holds the seven columns; each
   // array holds the capsule that gives it back when the last one is freed.
   const auto n = py::ssize_t(rays.count);
   const std::size_t count = rays.count;
   static_assert(sizeof(float) == sizeof(std::int32_t));
-  auto* buffer = new OutputBuffer(acquire_output_buffer(8 * count * sizeof(float)));
+  auto* buffer = new OutputBuffer(acquire_output_buffer(9 * count * sizeof(float)));
   const py::capsule owner(buffer, [](void* p) {
     auto* kept = static_cast<OutputBuffer*>(p);
     release_output_buffer(*kept);
@@ -127,8 +127,10 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
   auto* ints = reinterpret_cast<std::int32_t*>(floats + 6 * count);
   py::array_t<float> t({n}, floats, owner), u({n}, floats + count, owner), v({n}, floats + 2 * count, owner);
   py::array_t<float> normal({n, py::ssize_t(3)}, floats + 3 * count, owner);
-  py::array_t<std::int32_t> primitive({n}, ints, owner), kind({n}, ints + count, owner);
-  const HitColumns out{floats, ints, ints + count, floats + count, floats + 2 * count, floats + 3 * count};
+  py::array_t<std::int32_t> primitive({n}, ints, owner), kind({n}, ints + count, owner),
+      instance({n}, ints + 2 * count, owner);
+  const HitColumns out{floats, ints, ints + count, floats + count, floats + 2 * count, floats + 3 * count,
+                       ints + 2 * count};
   {
     py::gil_scoped_release release;
     intersect_rays(scene, rays, interval, query, out);
@@ -137,6 +139,7 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
   result["t"] = t;
   result["primitive"] = primitive;
   result["kind"] = kind;
+  result["instance"] = instance;
   result["u"] = u;
   result["v"] = v;
   result["normal"] = normal;
@@ -321,7 +324,7 @@ PYBIND11_MODULE(quiver, m) {
            })
       .def("intersect", &intersect_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
-           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, u, v, normal")
+           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, instance, u, v, normal")
       .def("occluded", &occluded_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");

@@ -42,15 +42,24 @@ void intersect_rays(const PythonScene& scene, const RayArrays& rays, const RayIn
       float* normal = out.normal + 3 * k;
       if (hits.id[i] == kNoHit) {
         out.t[k] = std::numeric_limits<float>::infinity();
-        out.primitive[k] = out.kind[k] = -1;
+        out.primitive[k] = out.kind[k] = out.instance[k] = -1;
         out.u[k] = out.v[k] = 0.f;
         normal[0] = normal[1] = normal[2] = 0.f;
         continue;
       }
       const Vec3<float> n = normalize(Vec3<float>(hits.ngx[i], hits.ngy[i], hits.ngz[i]));
       out.t[k] = hits.t[i];
-      out.primitive[k] = scene.index_of_id[std::size_t(hits.id[i])];
-      out.kind[k] = scene.kind_of_id[std::size_t(hits.id[i])];
+      const std::size_t id = std::size_t(hits.id[i]);
+      if (id < scene.index_of_id.size()) {
+        out.primitive[k] = scene.index_of_id[id];
+        out.kind[k] = scene.kind_of_id[id];
+        out.instance[k] = -1;
+      } else {  // an instance's triangle: its index in its mesh
+        const PrimitiveRef ref = scene.built.locate(hits.id[i]);
+        out.primitive[k] = static_cast<std::int32_t>(scene.built.origin(ref).index);
+        out.kind[k] = static_cast<std::int32_t>(PrimitiveKind::triangle);
+        out.instance[k] = static_cast<std::int32_t>(scene.built.instances.source[std::size_t(ref.instance)]);
+      }
       out.u[k] = hits.u[i];
       out.v[k] = hits.v[i];
       normal[0] = n.x;

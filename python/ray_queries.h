@@ -31,6 +31,7 @@ struct HitColumns {
   float* u;
   float* v;
   float* normal;
+  std::int32_t* instance;  // the [[instances]] entry hit (its index in the file), -1 off instances
 };
 
 // Closest hits in (tmin, tmax). Throws std::invalid_argument naming the

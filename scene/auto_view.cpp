@@ -45,6 +45,23 @@ Bounds scene_bounds(const SceneDesc& scene) {
     b.add(c.cone.base, r);
     b.add(c.cone.apex, r);
   }
+  // Instances: the corners of their mesh's box, placed.
+  std::vector<Bounds> mesh_bounds(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    for (const SceneTriangle& t : scene.meshes[m].triangles) {
+      for (const Vec3<float>& p : t.triangle.p) mesh_bounds[m].add(p);
+    }
+  }
+  for (const SceneInstance& instance : scene.instances) {
+    if (instance.mesh >= mesh_bounds.size() || mesh_bounds[instance.mesh].empty()) continue;
+    const Bounds& m = mesh_bounds[instance.mesh];
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
+                          static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
+                          static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
+      b.add(apply_point(instance.object_to_world, p));
+    }
+  }
   return b;
 }
 

@@ -86,6 +86,57 @@ void index_stores(const KindInput<Desc>& input, Builder builder, const SceneBuil
   transmissive_origins = kept_origins(transmissive.source, input.transmissive.origins);
 }
 
+// The instanced meshes (each in its two stores, ids from 0, under one BVH
+// whatever the acceleration option: the top level needs one), their
+// origins, and the instances of those left with triangles, ids from
+// first_id on.
+template <class OriginOf, class IsTransmissive>
+void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, OriginOf origin_of,
+                      IsTransmissive is_transmissive, std::int32_t first_id, Scene& scene) {
+  if (desc.instances.empty()) return;
+  scene.meshes.resize(desc.meshes.size());
+  scene.mesh_origins.resize(desc.meshes.size());
+  for (std::size_t m = 0; m < desc.meshes.size(); ++m) {
+    KindInput<TriangleDesc> input;
+    const std::vector<SceneTriangle>& triangles = desc.meshes[m].triangles;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      auto& in = input.layer(is_transmissive(triangles[i].material));
+      in.origins.push_back(origin_of(triangles[i].material, PrimitiveKind::triangle, i));
+      in.descs.push_back(triangles[i].triangle);
+    }
+    InstancedMesh& mesh = scene.meshes[m];
+    std::array<std::vector<PrimitiveOrigin>, 2>& origins = scene.mesh_origins[m].of_store;
+    for (bool t : {false, true}) {
+      build_store(input.layer(t), build_triangles, scene.counts.mesh_triangles, mesh.stores[t ? 1 : 0],
+                  origins[t ? 1 : 0]);
+    }
+    SceneBuildOptions always = options;
+    always.acceleration = Acceleration::bvh;
+    always.bvh_min_primitives = 1;
+    index_stores(input, build_triangles, always, mesh.stores[0], origins[0], mesh.stores[1], origins[1], mesh.bvh);
+    mesh.stores[0].id_base = 0;
+    mesh.stores[1].id_base = static_cast<std::int32_t>(mesh.stores[0].count);
+    for (const TriangleSoA& store : mesh.stores) {
+      for (std::size_t i = 0; i < store.count; ++i) grow(mesh.bounds, primitive_box(store, i));
+    }
+  }
+  std::vector<Placement> placements;
+  placements.reserve(desc.instances.size());
+  for (const SceneInstance& instance : desc.instances) {
+    if (instance.mesh >= desc.meshes.size()) {
+      throw std::invalid_argument("an instance refers to mesh " + std::to_string(instance.mesh) + " of " +
+                                  std::to_string(desc.meshes.size()));
+    }
+    if (scene.meshes[instance.mesh].triangle_count() == 0) continue;
+    placements.push_back({static_cast<std::uint32_t>(instance.mesh), instance.object_to_world});
+  }
+  scene.counts.instances = placements.size();
+  // Leaves of one instance: an instance costs a whole walk, not one test.
+  BvhBuildOptions top = options.bvh;
+  top.max_leaf_size = 1;
+  scene.instance_bvh = build_instances(placements, scene.meshes, first_id, top, scene.instances);
+}
+
 template <class Vec>
 std::size_t bytes_of(const Vec& v) {
   return v.capacity() * sizeof(typename Vec::value_type);
@@ -112,11 +163,25 @@ std::size_t GeometryLayer::memory_bytes() const {
 }
 
 std::size_t Scene::acceleration_bytes() const {
-  return sphere_bvh.memory_bytes() + triangle_bvh.memory_bytes() + polygon_bvh.memory_bytes() +
-         cone_bvh.memory_bytes();
+  std::size_t bytes = sphere_bvh.memory_bytes() + triangle_bvh.memory_bytes() + polygon_bvh.memory_bytes() +
+                      cone_bvh.memory_bytes() + instance_bvh.memory_bytes();
+  for (const InstancedMesh& m : meshes) bytes += m.bvh.memory_bytes();
+  return bytes;
 }
 
 PrimitiveRef Scene::locate(std::int32_t id) const {
+  const std::vector<std::int32_t>& bases = instances.id_base;
+  if (!bases.empty() && id >= bases.front()) {
+    const std::size_t row = std::size_t(std::upper_bound(bases.begin(), bases.end(), id) - bases.begin()) - 1;
+    const TriangleSoA& first = meshes[instances.mesh[row]].stores[0];
+    const std::uint32_t local = static_cast<std::uint32_t>(id - bases[row]);
+    if (local < first.count) return {false, PrimitiveKind::triangle, local, static_cast<std::int32_t>(row)};
+    if (local - first.count < meshes[instances.mesh[row]].stores[1].count) {
+      return {true, PrimitiveKind::triangle, static_cast<std::uint32_t>(local - first.count),
+              static_cast<std::int32_t>(row)};
+    }
+    throw std::out_of_range("no primitive with hit id " + std::to_string(id));
+  }
   for (bool t : {false, true}) {
     const GeometryLayer& g = layer(t);
     const std::pair<std::int32_t, std::size_t> ranges[] = {
@@ -133,7 +198,29 @@ PrimitiveRef Scene::locate(std::int32_t id) const {
   throw std::out_of_range("no primitive with hit id " + std::to_string(id));
 }
 
+const TriangleSoA& Scene::triangles_of(const PrimitiveRef& ref) const {
+  if (ref.instance < 0) return layer(ref.transmissive).triangles;
+  return meshes[instances.mesh[std::size_t(ref.instance)]].stores[ref.transmissive ? 1 : 0];
+}
+
+std::size_t Scene::primitive_count() const {
+  std::size_t count = opaque.primitive_count() + transmissive.primitive_count();
+  for (const InstancedMesh& m : meshes) count += m.triangle_count();
+  return count;
+}
+
+bool Scene::has_transmissive() const {
+  if (transmissive.primitive_count() > 0) return true;
+  for (const InstancedMesh& m : meshes) {
+    if (m.stores[1].count > 0) return true;
+  }
+  return false;
+}
+
 const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
+  if (ref.instance >= 0) {
+    return mesh_origins[instances.mesh[std::size_t(ref.instance)]].of_store[ref.transmissive ? 1 : 0][ref.local];
+  }
   const GeometryLayer& g = layer(ref.transmissive);
   switch (ref.kind) {
     case PrimitiveKind::sphere: return g.sphere_origin[ref.local];
@@ -147,7 +234,9 @@ const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
 
 std::size_t Scene::memory_bytes() const {
   std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes() + bytes_of(material_of_id) +
-                      bytes_of(plain_of_id);
+                      bytes_of(plain_of_id) + instances.memory_bytes();
+  for (const InstancedMesh& m : meshes) bytes += m.memory_bytes() - m.bvh.memory_bytes();
+  for (const MeshOrigins& o : mesh_origins) bytes += bytes_of(o.of_store[0]) + bytes_of(o.of_store[1]);
   for (const Texture& t : textures) {
     bytes += bytes_of(t.image.rgb);
     for (const TextureImage& level : t.coarser) bytes += bytes_of(level.rgb);
@@ -281,6 +370,10 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   Box bounds = empty_box();
   layer_bounds(scene.opaque, bounds);
   layer_bounds(scene.transmissive, bounds);
+  build_instancing(desc, options, origin_of, is_transmissive, next_id, scene);
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    grow(bounds, transformed_box(scene.meshes[scene.instances.mesh[i]].bounds, scene.instances.object_to_world[i]));
+  }
   if (!is_empty(bounds)) {
     scene.bounds_min = bounds.lo;
     scene.bounds_max = bounds.hi;

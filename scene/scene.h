@@ -15,6 +15,7 @@
 
 #include "geometry/bvh.h"
 #include "geometry/cone_soa.h"
+#include "geometry/instances.h"
 #include "geometry/plane_soa.h"
 #include "geometry/polygon_soa.h"
 #include "geometry/sphere_soa.h"
@@ -52,11 +53,20 @@ struct GeometryLayer {
 // store numbers).
 enum class Layers : unsigned { opaque = 1, transmissive = 2, both = 3 };
 
-// A hit id resolved: which layer, which store, which primitive in it.
+// A hit id resolved: which layer, which store, which primitive in it; for
+// a hit on an instance, the instance (its row in Scene::instances) and the
+// primitive in its mesh's store of that layer.
 struct PrimitiveRef {
   bool transmissive;
   PrimitiveKind kind;
   std::uint32_t local;
+  std::int32_t instance = -1;  // -1: not instanced
+};
+
+// Where an instanced mesh's triangles came from, per store (0 opaque, 1
+// transmissive): material, and index in SceneDesc::meshes[m].triangles.
+struct MeshOrigins {
+  std::array<std::vector<PrimitiveOrigin>, 2> of_store;
 };
 
 enum class Acceleration { none, bvh };
@@ -73,6 +83,8 @@ struct SceneBuildOptions {
 
 struct SceneCounts {
   BuildReport spheres, planes, triangles, polygons, cones;
+  BuildReport mesh_triangles;  // of the instanced meshes, each counted once
+  std::size_t instances = 0;   // placed (instances of meshes left empty are dropped)
 };
 
 struct Scene {
@@ -87,19 +99,35 @@ struct Scene {
   // transmissive); empty when the kind is scanned (see SceneBuildOptions).
   Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
   SceneCounts counts;
-  // Per hit id (a store's id_base + index): the primitive's material, and 1
-  // where its surface is plain (no interpolated normals, no texture), so
-  // the material alone says how it looks.
+  // Instancing (geometry/instances.h): the meshes stored once, the
+  // placements and the top-level BVH over them; their hit ids follow every
+  // other store's.
+  std::vector<InstancedMesh> meshes;
+  std::vector<MeshOrigins> mesh_origins;
+  InstanceTable instances;
+  Bvh instance_bvh;
+  // Per hit id of the stores above (a store's id_base + index): the
+  // primitive's material, and 1 where its surface is plain (no interpolated
+  // normals, no texture), so the material alone says how it looks. Instance
+  // hits are never plain (shading needs their transform).
   std::vector<std::uint32_t> material_of_id;
   std::vector<std::uint8_t> plain_of_id;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
 
   PrimitiveRef locate(std::int32_t id) const;
+  bool is_plain(std::int32_t id) const {
+    return std::size_t(id) < plain_of_id.size() && plain_of_id[std::size_t(id)] != 0;
+  }
+  // The triangles a triangle ref's primitive is in (its instance's mesh's, if any).
+  const TriangleSoA& triangles_of(const PrimitiveRef& ref) const;
   const GeometryLayer& layer(bool transmissive_layer) const { return transmissive_layer ? transmissive : opaque; }
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
-  std::size_t primitive_count() const { return opaque.primitive_count() + transmissive.primitive_count(); }
+  // Stored primitives: each instanced mesh counted once.
+  std::size_t primitive_count() const;
+  // Some primitive, instanced or not, lets light through (kt > 0).
+  bool has_transmissive() const;
   std::size_t memory_bytes() const;  // geometry stores, per-id tables and textures
-  std::size_t acceleration_bytes() const;  // BVH nodes
+  std::size_t acceleration_bytes() const;  // BVH nodes (top level and instanced meshes' included)
 };
 
 // Builds the scene; the SceneDesc must have a camera (scene/auto_view.h adds

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/affine_transform.h"
 #include "geometry/primitive_desc.h"
 #include "simd/vec3.h"
 
@@ -119,6 +120,19 @@ struct SceneCone {
   std::size_t material;
 };
 
+// A mesh stored once and placed by instances: its triangles in its own
+// coordinates; `name` says where it came from (for messages).
+struct SceneMesh {
+  std::string name;
+  std::vector<SceneTriangle> triangles;
+};
+
+// One placement of SceneDesc::meshes[mesh]: world = object_to_world(p).
+struct SceneInstance {
+  std::size_t mesh;
+  AffineTransform object_to_world;
+};
+
 struct SceneDesc {
   std::optional<CameraDesc> camera;
   Vec3<float> background{0.f, 0.f, 0.f};
@@ -131,6 +145,8 @@ struct SceneDesc {
   std::vector<SceneTriangle> triangles;
   std::vector<ScenePolygon> polygons;
   std::vector<SceneCone> cones;
+  std::vector<SceneMesh> meshes;
+  std::vector<SceneInstance> instances;
   RenderDesc render;
   // The files the scene was read from, each once, in reading order: the
   // scene file, OBJ meshes and MTL libraries (texture images are in

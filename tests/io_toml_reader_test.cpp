@@ -358,7 +358,7 @@ TEST(TomlReader, NoObjectsIsAnErrorAtTheEndOfTheFile) {
   EXPECT_TRUE(error_at("", 1, 1, "at least one object ([[spheres]], [[planes]]", "found end of file with no objects"));
   EXPECT_TRUE(error_at("[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 0]\n[[lights]]\nposition = [1, 1, 1]\n"
                        "[[materials]]\nname = \"m\" # last",
-                       7, 18, "[[cones]] or [[meshes]])", "found end of file with no objects"));
+                       7, 18, "[[meshes]] or [[instances]])", "found end of file with no objects"));
   for (const char* object : {
            "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n", "[[planes]]\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n",
            "[[triangles]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n",
@@ -470,6 +470,49 @@ TEST(TomlReader, MeshCreaseAngleKeyAndTheCommandLineOverride) {
   EXPECT_TRUE(error_at(mesh + "crease_angle = nan\n", 3, 16, "a finite number (crease_angle in [[meshes]])"));
   EXPECT_TRUE(error_at(mesh + "crease_angle = \"60\"\n", 3, 16, "a number (crease_angle in [[meshes]])"));
   EXPECT_TRUE(error_at(mesh + "crease_angel = 60\n", 3, 1, "a key of [[meshes]]", "'crease_angel'"));
+}
+
+// [[instances]]: one mesh per file, material and crease angle, placed by
+// each entry's transform (row-major object-to-world), not copied.
+TEST(TomlReader, InstancesShareTheirMeshAndKeepTheirTransforms) {
+  const std::string materials = "[[materials]]\nname = \"red\"\ncolor = [1, 0, 0]\n";
+  const SceneDesc scene = parse(materials +
+                                "[[instances]]\nfile = \"../obj/roof.obj\"\ntranslate = [1, 2, 3]\n"
+                                "[[instances]]\nfile = \"../obj/roof.obj\"\nscale = 2\nrotate = [0, 0, 90]\n"
+                                "[[instances]]\nfile = \"../obj/roof.obj\"\nmaterial = \"red\"\n"
+                                "[[instances]]\nfile = \"../obj/roof.obj\"\ncrease_angle = 0\n"
+                                "[[instances]]\nfile = \"../obj/./roof.obj\"\n");
+  ASSERT_EQ(scene.meshes.size(), 3u);  // default; red; faceted (the last names the first's file)
+  ASSERT_EQ(scene.instances.size(), 5u);
+  EXPECT_TRUE(scene.triangles.empty());
+  for (const SceneMesh& m : scene.meshes) EXPECT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(scene.instances[0].mesh, 0u);
+  EXPECT_EQ(scene.instances[1].mesh, 0u);
+  EXPECT_EQ(scene.instances[2].mesh, 1u);
+  EXPECT_EQ(scene.instances[3].mesh, 2u);
+  EXPECT_EQ(scene.instances[4].mesh, 0u);
+  EXPECT_EQ(scene.meshes[1].triangles[0].material, 0u);  // "red"
+  EXPECT_TRUE(scene.meshes[0].triangles[0].triangle.normals.has_value());
+  EXPECT_FALSE(scene.meshes[2].triangles[0].triangle.normals.has_value());
+  const AffineTransform& moved = scene.instances[0].object_to_world;
+  EXPECT_EQ(moved.m, (std::array<float, 12>{1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3}));
+  // scale 2 then 90 degrees about z: x -> 2y, y -> -2x.
+  const Vec3<float> p = apply_point(scene.instances[1].object_to_world, Vec3<float>(1.f, 0.f, 0.f));
+  expect_near(p, 0.f, 2.f, 0.f);
+  // Only instances: still a scene with objects.
+  EXPECT_NO_THROW(parse("[[instances]]\nfile = \"../obj/roof.obj\"\n"));
+}
+
+TEST(TomlReader, InstanceErrorsPointAtTheEntry) {
+  EXPECT_TRUE(error_at("[[instances]]\nfile = \"none.obj\"\n", 2, 8, "the path of a mesh file that exists",
+                       "(file in [[instances]])"));
+  EXPECT_TRUE(error_at("[[instances]]\nfile = \"triangle.obj\"\nscale = [1, 0, 1]\n", 3, 9,
+                       "a non-zero scale (scale in [[instances]])"));
+  EXPECT_TRUE(error_at("[[instances]]\nfile = \"triangle.obj\"\nscale = 1e-40\n", 1, 1,
+                       "a [[instances]] transform that is not singular once rounded to float"));
+  EXPECT_TRUE(error_at("[[instances]]\nfile = \"triangle.obj\"\nmaterial = \"none\"\n", 3, 12, "material"));
+  EXPECT_TRUE(error_at("[[instances]]\nfile = \"triangle.obj\"\ntranslte = [0, 0, 0]\n", 3, 1,
+                       "a key of [[instances]]", "'translte'"));
 }
 
 TEST(TomlReader, FilesMustExist) {

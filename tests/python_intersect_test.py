@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import quiver
-from support.python_support import TINY, shared_file, trace_json
+from support.python_support import DATA, TINY, shared_file, trace_json
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 from trace_totals import trace_totals  # noqa: E402
@@ -99,6 +99,26 @@ def test_triangles_from_arrays_report_barycentrics_and_face_index():
     rebuilt = (1 - u - v)[:, None] * p[:, 0] + u[:, None] * p[:, 1] + v[:, None] * p[:, 2]
     np.testing.assert_allclose(rebuilt, targets, atol=1e-5)
     np.testing.assert_allclose(np.abs(result["normal"][:, 2]), 1.0, rtol=1e-6)
+
+
+def test_instance_hits_name_the_instance_and_the_mesh_triangle(tmp_path):
+    mesh = os.path.abspath(os.path.join(DATA, "obj", "roof.obj"))
+    scene_file = tmp_path / "instances.toml"
+    scene_file.write_text('[[instances]]\nfile = "%s"\n[[instances]]\nfile = "%s"\ntranslate = [5, 0, 0]\n'
+                          % (mesh, mesh))
+    scene = quiver.load(str(scene_file))
+    assert scene.primitive_count == 2  # the roof's two faces, stored once
+    origins = np.array([[0.25, 0.25, 5.0], [5.25, 0.25, 5.0], [-4.75, 0.25, 5.0], [20.0, 0.0, 5.0]])
+    directions = np.tile([0.0, 0.0, -1.0], (4, 1))
+    result = scene.intersect(origins, directions)
+    assert list(result["instance"]) == [0, 1, -1, -1]
+    assert list(result["primitive"]) == [0, 0, -1, -1]  # face 1 of roof.obj (x > 0)
+    assert list(result["kind"][:2]) == [quiver.KINDS.index("triangle")] * 2
+    assert result["t"][0] == result["t"][1]
+    assert list(scene.occluded(origins, directions)) == [True, True, False, False]
+    # Off instances the column is -1 too.
+    spheres = quiver.from_arrays(spheres=np.array([[0.0, 0.0, 0.0, 1.0]]))
+    assert spheres.intersect(origins[:1] * 0 + [0, 0, 5], directions[:1])["instance"][0] == -1
 
 
 def test_misses_are_inf_and_minus_one():

@@ -36,19 +36,29 @@ struct BvhStreams {
   static constexpr int slot(int width) { return width == 2 ? 0 : (width == 4 ? 1 : 2); }
   void closest_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
                     BvhTraversal traversal = BvhTraversal::automatic) const {
-    closest[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, hits, traversal);
+    closest_hits(rays, BvhStores<S, 1>{&prims}, bvh, hits, traversal);
   }
   void any_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, OcclusionSoA& result,
                 BvhTraversal traversal = BvhTraversal::automatic) const {
-    occluded[slot(bvh.width)](rays, BvhStores<S, 1>{&prims}, bvh, result, traversal);
+    any_hits(rays, BvhStores<S, 1>{&prims}, bvh, result, traversal);
   }
-  void closest_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, HitSoA& hits,
+  template <int K>
+  void closest_hits(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, HitSoA& hits,
                     BvhTraversal traversal = BvhTraversal::automatic) const {
-    closest_of_two[slot(bvh.width)](rays, stores, bvh, hits, traversal);
+    if constexpr (K == 1) {
+      closest[slot(bvh.width)](rays, stores, bvh, hits, traversal);
+    } else {
+      closest_of_two[slot(bvh.width)](rays, stores, bvh, hits, traversal);
+    }
   }
-  void any_hits(const RaySoA& rays, BvhStores<S, 2> stores, const Bvh& bvh, OcclusionSoA& result,
+  template <int K>
+  void any_hits(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, OcclusionSoA& result,
                 BvhTraversal traversal = BvhTraversal::automatic) const {
-    occluded_of_two[slot(bvh.width)](rays, stores, bvh, result, traversal);
+    if constexpr (K == 1) {
+      occluded[slot(bvh.width)](rays, stores, bvh, result, traversal);
+    } else {
+      occluded_of_two[slot(bvh.width)](rays, stores, bvh, result, traversal);
+    }
   }
 };
 

@@ -62,6 +62,20 @@ struct BvhStores<S, 2> {
   }
 };
 
+// Calls through_tree(stores) with the stores a query of `tested` (bit s for
+// store s) walks in a tree over `first` (store 0) and `second` (store 1):
+// both (BvhStores<S, 2>) when both have primitives, else the one that has,
+// when tested; not at all when nothing tested has primitives.
+template <class S, class Fn>
+inline void with_tested_stores(const S& first, const S& second, unsigned tested, Fn through_tree) {
+  if (first.count > 0 && second.count > 0) {
+    through_tree(BvhStores<S, 2>{{&first, &second}, tested});
+  } else if (first.count > 0 && (tested & 1u) != 0) {
+    through_tree(BvhStores<S, 1>{&first});
+  } else if (second.count > 0 && (tested & 2u) != 0) {
+    through_tree(BvhStores<S, 1>{&second});
+  }
+}
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
