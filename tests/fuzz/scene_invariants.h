@@ -65,7 +65,7 @@ inline void check_scene(const SceneDesc& scene) {
   for (const ScenePlane& p : scene.planes) {
     check(finite(p.plane.point) && finite(p.plane.normal) && !is_zero(p.plane.normal) && p.material < materials);
   }
-  for (const SceneTriangle& t : scene.triangles) {
+  const auto check_triangle = [&](const SceneTriangle& t) {
     for (const Vec3<float>& p : t.triangle.p) check(finite(p));
     if (t.triangle.normals) {
       for (const Vec3<float>& n : *t.triangle.normals) check(finite(n));
@@ -74,6 +74,15 @@ inline void check_scene(const SceneDesc& scene) {
       for (const auto& uv : *t.triangle.uvs) check(finite(uv[0]) && finite(uv[1]));
     }
     check(t.material < materials);
+  };
+  for (const SceneTriangle& t : scene.triangles) check_triangle(t);
+  for (const SceneMesh& m : scene.meshes) {
+    for (const SceneTriangle& t : m.triangles) check_triangle(t);
+  }
+  for (const SceneInstance& i : scene.instances) {
+    check(i.mesh < scene.meshes.size());
+    for (float x : i.object_to_world.m) check(finite(x));
+    check(inverse(i.object_to_world).has_value());
   }
   for (const ScenePolygon& p : scene.polygons) {
     const std::size_t n = p.polygon.vertices.size();
