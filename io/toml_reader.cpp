@@ -18,6 +18,7 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -803,7 +804,14 @@ class TomlSceneReader {
       const std::array<float, 16> identity{1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f};
       const std::size_t before = scene_.triangles.size();
       append_mesh_of(t, source, identity, s);
-      SceneMesh mesh{source.path, {}};
+      std::string name = source.path;
+      if (const toml::node* material = t.get("material")) name += " with material " + material->value_or(std::string());
+      if (source.crease_angle != kDefaultCreaseAngleDegrees) {
+        std::ostringstream angle;
+        angle << source.crease_angle;
+        name += ", crease angle " + angle.str();
+      }
+      SceneMesh mesh{std::move(name), {}};
       mesh.triangles.assign(std::make_move_iterator(scene_.triangles.begin() + std::ptrdiff_t(before)),
                             std::make_move_iterator(scene_.triangles.end()));
       scene_.triangles.resize(before);

@@ -492,6 +492,8 @@ TEST(TomlReader, InstancesShareTheirMeshAndKeepTheirTransforms) {
   EXPECT_EQ(scene.instances[3].mesh, 2u);
   EXPECT_EQ(scene.instances[4].mesh, 0u);
   EXPECT_EQ(scene.meshes[1].triangles[0].material, 0u);  // "red"
+  EXPECT_NE(scene.meshes[1].name.find("roof.obj with material red"), std::string::npos) << scene.meshes[1].name;
+  EXPECT_NE(scene.meshes[2].name.find("roof.obj, crease angle 0"), std::string::npos) << scene.meshes[2].name;
   EXPECT_TRUE(scene.meshes[0].triangles[0].triangle.normals.has_value());
   EXPECT_FALSE(scene.meshes[2].triangles[0].triangle.normals.has_value());
   const AffineTransform& moved = scene.instances[0].object_to_world;
