@@ -113,8 +113,9 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                     "corners (SPD rule: (W+1)x(H+1) corner rays, pixel = mean of its 4) | "
                                     "refine:THRESHOLD:N (2x2 stratified random rays, a pixel's strata doubled per "
                                     "side while its mean's standard error exceeds THRESHOLD or, after the first "
-                                    "pass, a neighbour's mean differs by more than 4 THRESHOLD; up to NxN, N 2, 4, 8 "
-                                    "or 16). "
+                                    "pass, a neighbour's mean differs by more than 4 THRESHOLD or its first rays, or "
+                                    "its and a neighbour's, met different surfaces (material, nothing, or a 5% depth "
+                                    "jump); up to NxN, N 2, 4, 8 or 16). "
                                     "Default: the scene file's setting, else " +
                                         std::string(quiver::kDefaultAntiAliasing) +
                                         " (the best quality for its cost in bench/ACCURACY.md's study)")

@@ -13,9 +13,13 @@
 //                        whose mean's standard error exceeds T in some
 //                        channel (clamped to [0, 1]), or, after the first
 //                        pass, whose mean differs from a neighbour's by more
-//                        than 4 T, doubles its strata per side (each
-//                        stratum's ray kept, its three sibling sub-strata
-//                        sampled), up to N x N (N a power of two, 2..16).
+//                        than 4 T, or whose first-pass rays, or its and a
+//                        neighbour's, met different surfaces (another
+//                        material, nothing, or a depth jump of 5%), doubles
+//                        its strata per side (each stratum's ray kept, its
+//                        three sibling sub-strata sampled), up to N x N (N a
+//                        power of two, 2..16); later passes go on where the
+//                        error still exceeds T.
 #pragma once
 
 #include <string>
@@ -35,6 +39,8 @@ struct AntiAliasing {
   static constexpr int kMaxRefineSide = 16;
   // refine: a neighbour's mean this many thresholds away refines a pixel.
   static constexpr float kNeighbourContrast = 4.f;
+  // refine: first-pass distances this fraction apart are different surfaces.
+  static constexpr float kDepthJump = 0.05f;
 };
 
 // The programs' default when neither --aa nor the scene names a mode: the

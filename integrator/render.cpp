@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <mutex>
@@ -34,7 +35,25 @@ struct RefinedPixel {
   int count = 0;
   int side = 0;
   std::uint32_t first = 0;  // its strata's start in Worker::strata
+  // What its first-pass samples met: one material (-1: nothing), or mixed;
+  // the nearest and farthest distance (a miss: infinity).
+  std::int32_t material = -1;
+  bool mixed_materials = false;
+  float nearest = std::numeric_limits<float>::infinity(), farthest = 0.f;
 };
+
+// refine: a pixel's samples meet different surfaces: more than one
+// material (nothing counting as one), or distances a depth jump apart.
+bool meets_several_surfaces(const RefinedPixel& p) {
+  return p.mixed_materials || p.farthest > p.nearest * (1.f + AntiAliasing::kDepthJump);
+}
+
+// refine: two pixels' samples meet different surfaces: either meets
+// several, their materials differ, or their distances lie a jump apart.
+bool surfaces_differ(const RefinedPixel& a, const RefinedPixel& b) {
+  return meets_several_surfaces(a) || meets_several_surfaces(b) || a.material != b.material ||
+         std::max(a.nearest, b.nearest) > std::min(a.farthest, b.farthest) * (1.f + AntiAliasing::kDepthJump);
+}
 
 // refine: one stratum of a pixel at the pixel's side, and its sample's
 // offset in the pixel.
@@ -56,6 +75,7 @@ struct Worker {
   std::vector<StratumSample> strata, next_strata;  // refine: per pixel, side^2 strata at a time
   std::vector<std::uint32_t> owner;  // refine: the pixel of each traced sample
   std::vector<std::uint8_t> uncertain;  // refine: per pixel, refined in the next pass
+  std::vector<SampleSurface> sample_surfaces;  // refine's first pass: per traced sample
   Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
       : tracer(scene, intersector, settings) {}
 };
@@ -284,10 +304,20 @@ class TileRenderer {
         for (int i = 0; i < 2; ++i) w.strata.push_back(stratum(pixel_number(x, y), 2, i, j));
       }
     });
-    const auto trace_new = [&] {
-      trace(w);
+    const auto trace_new = [&](bool first_pass) {
+      w.colors.resize(w.samples.size());
+      w.sample_surfaces.resize(first_pass ? w.samples.size() : 0);
+      w.tracer.trace(w.samples, w.colors, w.stats, w.sample_surfaces);
       for (std::size_t k = 0; k < w.samples.size(); ++k) {
         RefinedPixel& px = w.refined[w.owner[k]];
+        if (first_pass) {
+          const SampleSurface& met = w.sample_surfaces[k];
+          const float distance = met.material < 0 ? std::numeric_limits<float>::infinity() : met.distance;
+          if (px.count == 0) px.material = met.material;
+          px.mixed_materials = px.mixed_materials || met.material != px.material;
+          px.nearest = std::min(px.nearest, distance);
+          px.farthest = std::max(px.farthest, distance);
+        }
         const Vec3<float>& c = w.colors[k];
         px.sum = px.sum + c;
         const Vec3<double> clamped{std::clamp(double(c.x), 0.0, 1.0), std::clamp(double(c.y), 0.0, 1.0),
@@ -307,7 +337,7 @@ class TileRenderer {
         w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
       }
     });
-    trace_new();
+    trace_new(true);
     const float threshold = settings_.aa.threshold;
     const auto mean_clamped = [](const RefinedPixel& px) { return px.clamped_sum * (1.0 / px.count); };
     const auto too_uncertain = [&](const RefinedPixel& px) {
@@ -316,19 +346,22 @@ class TileRenderer {
       const double largest = largest_channel(variance);
       return largest > 0.0 && largest / px.count > double(threshold) * double(threshold);
     };
-    // The first pass's verdict: the pixel's own error, or a neighbour's mean.
+    // The first pass's verdict: the pixel's own error, its samples meeting
+    // different surfaces, or a neighbour's mean or surfaces.
     std::vector<std::uint8_t>& refine = w.uncertain;
     refine.assign(w.refined.size(), 0);
     for (int y = tile.y0; y < y1; ++y) {
       for (int x = tile.x0; x < x1; ++x) {
         const RefinedPixel& px = w.refined[local(x, y)];
-        bool more = too_uncertain(px);
+        bool more = too_uncertain(px) || meets_several_surfaces(px);
         const Vec3<double> mean = mean_clamped(px);
         const auto differs = [&](int nx, int ny) {
           if (nx < ex0 || nx >= ex1 || ny < ey0 || ny >= ey1) return false;
-          const Vec3<double> d = mean - mean_clamped(w.refined[local(nx, ny)]);
+          const RefinedPixel& neighbour = w.refined[local(nx, ny)];
+          const Vec3<double> d = mean - mean_clamped(neighbour);
           const double contrast = largest_channel(Vec3<double>{std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
-          return contrast > double(AntiAliasing::kNeighbourContrast) * double(threshold);
+          return contrast > double(AntiAliasing::kNeighbourContrast) * double(threshold) ||
+                 surfaces_differ(px, neighbour);
         };
         more = more || differs(x - 1, y) || differs(x + 1, y) || differs(x, y - 1) || differs(x, y + 1);
         refine[local(x, y)] = more;
@@ -374,7 +407,7 @@ class TileRenderer {
       });
       std::swap(w.strata, w.next_strata);
       if (!any) break;
-      trace_new();
+      trace_new(false);
       for (std::size_t k = 0; k < w.refined.size(); ++k) {
         refine[k] = refine[k] && w.refined[k].side == 2 * side && too_uncertain(w.refined[k]);
       }

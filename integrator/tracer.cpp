@@ -39,7 +39,8 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
       occlusion_(slots_.size()),
       transmittance_(slots_.size()) {}
 
-void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats) {
+void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats,
+                   std::span<SampleSurface> surfaces) {
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
   rays_.clear();
   paths_.clear();
@@ -77,6 +78,15 @@ void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>>
     next_differentials_.clear();
     for (ShadowSlot& slot : slots_) slot.clear();
     resolve_surfaces();
+    if (depth == 0 && !surfaces.empty()) {
+      for (std::size_t i = 0; i < rays_.count; ++i) {
+        const Ray<float> ray = rays_.get(i);
+        surfaces[std::size_t(paths_.sample[i])] =
+            hits_.id[i] == kNoHit ? SampleSurface{}
+                                  : SampleSurface{surfaces_.material[i],
+                                                  hits_.t[i] * std::sqrt(dot(ray.direction, ray.direction))};
+      }
+    }
     shaded_.slots = &slots_;
     shaded_.next_rays = &next_rays_;
     shaded_.next_paths = &next_paths_;

@@ -72,12 +72,22 @@ struct FirstHit {
   std::int32_t id;
 };
 
+// What a camera sample's ray met first: the material (-1: nothing) and the
+// distance along the ray in units of its direction's length times that
+// length (the distance for any direction), for refine's edge test.
+struct SampleSurface {
+  std::int32_t material = -1;
+  float distance = 0.f;
+};
+
 class Tracer {
  public:
   Tracer(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings);
 
   // colors[i] = the radiance of samples[i]; adds its rays and lanes to stats.
-  void trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats);
+  // With `surfaces` (as long as samples), also what each sample met first.
+  void trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats,
+             std::span<SampleSurface> surfaces = {});
 
   // The first hit of each ray (unit directions).
   void first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out);

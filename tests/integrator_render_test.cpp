@@ -348,14 +348,34 @@ TEST(Render, UnpackingATileOfTheWrongSizeThrows) {
 }
 
 // refine: 2 x 2 rays in every pixel; more only where a pixel's own samples
-// or its neighbours disagree, at most N x N.
+// or its neighbours disagree, in colour or in the surfaces they meet, at
+// most N x N.
 TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
-  const Scene scene = build_scene(default_scene(), {});
-  RenderSettings settings = small_settings(40, 30, "refine:1e9:8");
+  RenderSettings settings = small_settings(40, 30, "refine:1e9:8");  // colour never uncertain
   settings.isa = best_supported_isa();
   settings.tile_size = 64;  // one tile: no apron outside the image
   const std::uint64_t pixels = 40u * 30u;
-  EXPECT_EQ(render(scene, settings).stats.rays.primary, 4 * pixels);
+  // One wall filling the view, seen head on: one surface, no depth jump.
+  SceneDesc wall;
+  wall.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f, 0.f, 40, 30};
+  wall.lights.push_back({});
+  wall.materials.push_back({});
+  wall.planes.push_back({{{0.f, 0.f, 0.f}, {0.f, 0.f, 1.f}}, 0});
+  EXPECT_EQ(render(build_scene(wall, {}), settings).stats.rays.primary, 4 * pixels);
+  // A ball of the same material before it: only the pixels at its rim
+  // (and their neighbours) meet a depth jump, and take more rays.
+  wall.spheres.push_back({{{0.f, 0.f, 2.f}, 0.4f}, 0});
+  const std::uint64_t with_ball = render(build_scene(wall, {}), settings).stats.rays.primary;
+  EXPECT_GT(with_ball, 4 * pixels);
+  EXPECT_LT(with_ball, 4 * pixels + 60 * 200);  // the rim and its neighbours: under 200 pixels
+  // Another material at nearly the same depth (0.02% nearer) counts as another surface too.
+  wall.spheres.clear();
+  wall.materials.push_back({});
+  TriangleDesc patch;
+  patch.p = {Vec3<float>(-0.3f, -0.3f, 1e-3f), Vec3<float>(0.3f, -0.3f, 1e-3f), Vec3<float>(0.f, 0.3f, 1e-3f)};
+  wall.triangles.push_back({patch, 1});
+  EXPECT_GT(render(build_scene(wall, {}), settings).stats.rays.primary, 4 * pixels);
+  const Scene scene = build_scene(default_scene(), {});
   settings.aa = parse_anti_aliasing("refine:0.02:8");
   const std::uint64_t some = render(scene, settings).stats.rays.primary;
   settings.aa = parse_anti_aliasing("refine:0:8");
