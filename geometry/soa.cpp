@@ -48,6 +48,11 @@ void RaySoA::push(const Ray<float>& ray) {
   ++count;
 }
 
+void RaySoA::resize(std::size_t n) {
+  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->resize(padded_size(n));
+  count = n;
+}
+
 Ray<float> RaySoA::get(std::size_t i) const {
   return {{ox[i], oy[i], oz[i]}, {dx[i], dy[i], dz[i]}, tmin[i], tmax[i]};
 }

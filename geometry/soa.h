@@ -60,9 +60,11 @@ struct RaySoA {
   explicit RaySoA(std::size_t n);
   void set(std::size_t i, const Ray<float>& ray);
   Ray<float> get(std::size_t i) const;
-  // Building a stream in place, keeping capacity: clear(), push()..., pad().
+  // Building a stream in place, keeping capacity: clear(), push()..., pad(),
+  // or resize(n), set() of rays [0, n), pad().
   void clear();
   void push(const Ray<float>& ray);
+  void resize(std::size_t n);
   // Call after the last set(): copies the last ray into the padding lanes.
   void pad();
 

@@ -25,9 +25,8 @@ Vec3<double> Camera::film_point(double x, double y) const {
 }
 
 Ray<float> Camera::ray(double x, double y) const {
-  const Vec3<double> film = film_point(x, y);
-  const Vec3<double> d = frame_.direction(film.x, film.y);
-  return {{float(frame_.eye.x), float(frame_.eye.y), float(frame_.eye.z)},
+  const Vec3<double> d = unit_direction(*this, x, y);
+  return {eye(),
           {float(d.x), float(d.y), float(d.z)},
           0.f,
           std::numeric_limits<float>::infinity()};

@@ -7,6 +7,10 @@
 // (i + 0.5, j + 0.5); x grows right, y grows down.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
 #include "scene/camera_frame.h"
 #include "scene/scene_desc.h"
 #include "simd/ray.h"
@@ -21,6 +25,8 @@ class Camera {
   // The unit-direction primary ray through film point (x, y), t in (0, inf).
   Ray<float> ray(double x, double y) const;
 
+  Vec3<float> eye() const { return {float(frame_.eye.x), float(frame_.eye.y), float(frame_.eye.z)}; }
+
   // The change of that ray's unit direction when (x, y) moves by `spacing`
   // pixels along x and along y (a pinhole's origin does not change):
   // dD = (dd - D (D.dd)) / |d| for d the unnormalised direction.
@@ -31,6 +37,8 @@ class Camera {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  const CameraFrame& frame() const { return frame_; }
+  double pixel_size() const { return pixel_size_; }
 
  private:
   // Film point (x, y) on the tangent plane at unit distance: (sx, sy, 0).
@@ -39,6 +47,54 @@ class Camera {
   int width_, height_;
   CameraFrame frame_;
   double pixel_size_;  // tangent-plane size of one pixel at unit distance
+};
+
+inline namespace QUIVER_UNIT_NAMESPACE {
+
+// The camera's unit direction through film point (x, y), in double: D is
+// double (one point, the reference: Camera::ray) or a batch of doubles
+// (integrator/camera_rays.h), one formula for both.
+template <class D>
+Vec3<D> unit_direction(const Camera& camera, const D& x, const D& y) {
+  using std::sqrt;
+  const CameraFrame& f = camera.frame();
+  const D size(camera.pixel_size());
+  // The film point on the tangent plane at unit distance.
+  const D sx = (x - D(0.5 * camera.width())) * size;
+  const D sy = (D(0.5 * camera.height()) - y) * size;
+  // forward + sx right + sy up, over its length.
+  const Vec3<D> d{D(f.forward.x) + D(f.right.x) * sx + D(f.up.x) * sy,
+                  D(f.forward.y) + D(f.right.y) * sx + D(f.up.y) * sy,
+                  D(f.forward.z) + D(f.right.z) * sx + D(f.up.z) * sy};
+  const D length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return {d.x / length, d.y / length, d.z / length};
+}
+
+}  // namespace QUIVER_UNIT_NAMESPACE
+
+// Camera samples to trace, in columns: their film points and, when rays
+// carry differentials, the cell each one's texture footprint covers (its
+// centre and side, in pixels; the side is the spacing of the samples).
+struct FilmSamples {
+  std::vector<double> x, y;
+  bool footprints = false;  // the cells below are kept
+  std::vector<double> cell_x, cell_y, spacing;
+
+  // Empties the batch, keeping capacity; with_footprints: keep the cells.
+  void clear(bool with_footprints) {
+    footprints = with_footprints;
+    for (std::vector<double>* c : {&x, &y, &cell_x, &cell_y, &spacing}) c->clear();
+  }
+  // A sample at film (px, py) in a cell of side `side` centred at (cx, cy).
+  void push(double px, double py, double cx, double cy, double side) {
+    x.push_back(px);
+    y.push_back(py);
+    if (!footprints) return;
+    cell_x.push_back(cx);
+    cell_y.push_back(cy);
+    spacing.push_back(side);
+  }
+  std::size_t size() const { return x.size(); }
 };
 
 }  // namespace quiver

@@ -66,7 +66,7 @@ struct StratumSample {
 struct Worker {
   Tracer tracer;
   TraceStats stats;
-  std::vector<CameraSample> samples;
+  FilmSamples film;  // the batch being traced
   std::vector<Vec3<float>> colors;
   std::vector<Ray<float>> centre_rays;
   std::vector<FirstHit> first;
@@ -99,28 +99,22 @@ class TileRenderer {
   }
 
  private:
-  // The camera sample at film point (x, y); when rays carry differentials,
-  // its differentials over `spacing` pixels (the distance to the
-  // neighbouring samples: a pixel over the rays per side).
-  CameraSample sample_at(double x, double y, double spacing) const { return sample_in_cell(x, y, x, y, spacing); }
+  // Starts a batch of camera samples; cells are kept when rays carry differentials.
+  void start_batch(Worker& w) const { w.film.clear(differentials_); }
+
+  // The camera sample at film point (x, y), its differentials over `spacing`
+  // pixels (the distance to the neighbouring samples: a pixel over the rays per side).
+  void add_sample(Worker& w, double x, double y, double spacing) const { w.film.push(x, y, x, y, spacing); }
 
   // A sample at film (x, y) in a cell of side spacing centred at (cx, cy):
   // its texture footprints are centred on the cell, so that they tile it.
-  CameraSample sample_in_cell(double x, double y, double cx, double cy, double spacing) const {
-    CameraSample sample{camera_.ray(x, y), sample_key(x, y, settings_.trace.seed)};
-    if (differentials_) {
-      const Camera::DirectionDifferentials d = camera_.direction_differentials(x, y, spacing);
-      sample.direction_dx = d.dx;
-      sample.direction_dy = d.dy;
-      sample.footprint_centre_x = static_cast<float>((cx - x) / spacing);
-      sample.footprint_centre_y = static_cast<float>((cy - y) / spacing);
-    }
-    return sample;
+  void add_sample_in_cell(Worker& w, double x, double y, double cx, double cy, double spacing) const {
+    w.film.push(x, y, cx, cy, spacing);
   }
 
-  void trace(Worker& w) const {
-    w.colors.resize(w.samples.size());
-    w.tracer.trace(w.samples, w.colors, w.stats);
+  void trace(Worker& w, std::span<SampleSurface> surfaces = {}) const {
+    w.colors.resize(w.film.size());
+    w.tracer.trace(camera_, w.film, w.colors, w.stats, surfaces);
   }
 
   void set_pixel(int x, int y, const Vec3<float>& c) const {
@@ -135,7 +129,7 @@ class TileRenderer {
     const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
     const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
     const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
-    w.samples.clear();
+    start_batch(w);
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
       for (int j = 0; j < n * n; ++j) {
@@ -145,7 +139,7 @@ class TileRenderer {
           ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
           oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
         }
-        w.samples.push_back(sample_in_cell(x + ox, y + oy, x + cx, y + cy, 1.0 / n));
+        add_sample_in_cell(w, x + ox, y + oy, x + cx, y + cy, 1.0 / n);
       }
     });
     trace(w);
@@ -164,8 +158,8 @@ class TileRenderer {
   void render_corners(const PixelTile& tile, Worker& w) const {
     const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
     const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
-    w.samples.clear();
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.samples.push_back(sample_at(x, y, 1.0)); });
+    start_batch(w);
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { add_sample(w, x, y, 1.0); });
     trace(w);
     std::size_t k = 0;
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
@@ -193,10 +187,10 @@ class TileRenderer {
       pending.push_back({Y * lw + X, double(size) / scale});
     };
     auto run_batch = [&]() {
-      w.samples.clear();
+      start_batch(w);
       for (const auto& [p, spacing] : pending) {
         const int X = p % lw, Y = p / lw;
-        w.samples.push_back(sample_at(tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, spacing));
+        add_sample(w, tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, spacing);
       }
       trace(w);
       for (std::size_t k = 0; k < pending.size(); ++k) {
@@ -293,7 +287,7 @@ class TileRenderer {
     const auto pixel_number = [&](int x, int y) { return std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x); };
     w.refined.assign(std::size_t(ex1 - ex0) * std::size_t(ey1 - ey0), RefinedPixel{});
     w.strata.clear();
-    w.samples.clear();
+    start_batch(w);
     w.owner.clear();
     // First pass: 2 x 2 strata for every pixel.
     for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
@@ -305,10 +299,9 @@ class TileRenderer {
       }
     });
     const auto trace_new = [&](bool first_pass) {
-      w.colors.resize(w.samples.size());
-      w.sample_surfaces.resize(first_pass ? w.samples.size() : 0);
-      w.tracer.trace(w.samples, w.colors, w.stats, w.sample_surfaces);
-      for (std::size_t k = 0; k < w.samples.size(); ++k) {
+      w.sample_surfaces.resize(first_pass ? w.film.size() : 0);
+      trace(w, w.sample_surfaces);
+      for (std::size_t k = 0; k < w.film.size(); ++k) {
         RefinedPixel& px = w.refined[w.owner[k]];
         if (first_pass) {
           const SampleSurface& met = w.sample_surfaces[k];
@@ -326,14 +319,14 @@ class TileRenderer {
         px.clamped_squares = px.clamped_squares + mul(clamped, clamped);
         ++px.count;
       }
-      w.samples.clear();
+      start_batch(w);
       w.owner.clear();
     };
     for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
       const RefinedPixel& px = w.refined[local(x, y)];
       for (int k = 0; k < 4; ++k) {
         const StratumSample& st = w.strata[px.first + k];
-        w.samples.push_back(sample_in_cell(x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5));
+        add_sample_in_cell(w, x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5);
         w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
       }
     });
@@ -396,8 +389,8 @@ class TileRenderer {
               }
               const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
               w.next_strata.push_back(fresh);
-              w.samples.push_back(sample_in_cell(x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child,
-                                                 1.0 / child));
+              add_sample_in_cell(w, x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child,
+                                 1.0 / child);
               w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
             }
           }
@@ -606,15 +599,13 @@ std::vector<double> FrameRenderer::estimate_costs(std::span<const std::size_t> t
       TraceStats scratch;
       for (std::size_t k = range.begin(); k != range.end(); ++k) {
         const PixelTile& tile = s.tiles.at(tiles[k]);
-        w.samples.clear();
+        w.film.clear(false);
         for (int y = tile.y0 + stride / 2; y < tile.y0 + tile.height; y += stride) {
-          for (int x = tile.x0 + stride / 2; x < tile.x0 + tile.width; x += stride) {
-            w.samples.push_back({s.camera.ray(x + 0.5, y + 0.5), sample_key(x + 0.5, y + 0.5, s.settings.trace.seed)});
-          }
+          for (int x = tile.x0 + stride / 2; x < tile.x0 + tile.width; x += stride) w.film.push(x + 0.5, y + 0.5, 0, 0, 0);
         }
         const std::uint64_t before = scratch.rays.total();
-        w.colors.resize(w.samples.size());
-        w.tracer.trace(w.samples, w.colors, scratch);
+        w.colors.resize(w.film.size());
+        w.tracer.trace(s.camera, w.film, w.colors, scratch);
         costs[k] = double(scratch.rays.total() - before);
       }
     });

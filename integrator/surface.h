@@ -45,7 +45,7 @@ struct SurfaceDetail {
 
 // The hit point's change over one sample spacing along film x and y
 // (integrator/ray_differentials.h), and where the texture footprint is
-// centred, in those spacings from the point (CameraSample).
+// centred, in those spacings from the point (FilmSamples).
 struct PointDifferentials {
   Vec3<float> dx, dy;
   float centre_x = 0.f, centre_y = 0.f;

@@ -35,37 +35,45 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
       materials_(scene.materials),
       shade_wave_(with_kernel_unit(intersector.unit(),
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
+      camera_rays_(with_kernel_unit(intersector.unit(),
+                                    [](auto u) -> CameraRaysFunction { return &camera_rays<decltype(u)::value>; })),
       slots_(light_slot_count(scene)),
       occlusion_(slots_.size()),
       transmittance_(slots_.size()) {}
 
-void Tracer::trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats,
+void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3<float>> colors, TraceStats& stats,
                    std::span<SampleSurface> surfaces) {
+  const std::size_t n = film.size();
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
-  rays_.clear();
-  paths_.clear();
+  camera_rays_(camera, film.x, film.y, rays_);
+  paths_.start_at_camera(n);
+  for (std::size_t i = 0; i < n; ++i) paths_.key[i] = sample_key(film.x[i], film.y[i], settings_.seed);
+  paths_.pad();
   differentials_of_rays_.clear();
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    rays_.push(samples[i].ray);
-    paths_.push(static_cast<std::uint32_t>(i), {1.f, 1.f, 1.f}, samples[i].key);
-    if (differentials_) {
+  if (differentials_) {
+    for (std::size_t i = 0; i < n; ++i) {
       // A pinhole: the origin does not change.
       differentials_of_rays_.origin_dx.push({0.f, 0.f, 0.f});
       differentials_of_rays_.origin_dy.push({0.f, 0.f, 0.f});
-      differentials_of_rays_.direction_dx.push(samples[i].direction_dx);
-      differentials_of_rays_.direction_dy.push(samples[i].direction_dy);
-      differentials_of_rays_.centre_x.push_back(samples[i].footprint_centre_x);
-      differentials_of_rays_.centre_y.push_back(samples[i].footprint_centre_y);
+      Camera::DirectionDifferentials d{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}};
+      float centre_x = 0.f, centre_y = 0.f;
+      if (film.footprints) {
+        d = camera.direction_differentials(film.x[i], film.y[i], film.spacing[i]);
+        centre_x = static_cast<float>((film.cell_x[i] - film.x[i]) / film.spacing[i]);
+        centre_y = static_cast<float>((film.cell_y[i] - film.y[i]) / film.spacing[i]);
+      }
+      differentials_of_rays_.direction_dx.push(d.dx);
+      differentials_of_rays_.direction_dy.push(d.dy);
+      differentials_of_rays_.centre_x.push_back(centre_x);
+      differentials_of_rays_.centre_y.push_back(centre_y);
     }
+    differentials_of_rays_.pad(rays_.count);
   }
-  rays_.pad();
-  paths_.pad();
-  if (differentials_) differentials_of_rays_.pad(rays_.count);
-  stats.rays.primary += samples.size();
+  stats.rays.primary += n;
   WaveLanes& primary = stats.wave(0);
-  primary.active += samples.size();
-  primary.issued_compacted += padded_to(samples.size(), width_);
-  primary.issued_uncompacted += padded_to(samples.size(), width_);
+  primary.active += n;
+  primary.issued_compacted += padded_to(n, width_);
+  primary.issued_uncompacted += padded_to(n, width_);
 
   PhaseClock clock;
   for (int depth = 0; rays_.count > 0; ++depth) {

@@ -1,9 +1,9 @@
 // The Whitted integrator as a masked iterative loop over wavefronts, no
 // recursion and no per-ray virtual calls. For one batch of camera samples:
-//   wave 0 = the primary rays; each wave: closest hits of the whole wave
-//   (packets of the kernel unit's width) -> the scalar pass resolves each
-//   hit's primitive, material, interpolated normal and texture colour ->
-//   the lanes shade the wave (integrator/wave_shading.h): ambient terms,
+//   wave 0 = the primary rays (made in lanes: camera_rays.h); each wave:
+//   closest hits of the whole wave (packets of the kernel unit's width) ->
+//   the scalar pass resolves each hit's primitive, material, interpolated
+//   normal and texture colour -> the lanes shade the wave (integrator/wave_shading.h): ambient terms,
 //   one shadow ray per light sample into that sample slot's stream, and the
 //   reflection and refraction rays appended densely, which compacts them
 //   into full packets for the next wave -> each slot's shadow stream (rays
@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "integrator/camera.h"
+#include "integrator/camera_rays.h"
 #include "integrator/sample_hash.h"
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
@@ -51,18 +53,6 @@ struct TraceSettings {
 // ask for filtering and the scene has a texture to filter.
 bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings);
 
-struct CameraSample {
-  Ray<float> ray;
-  std::uint64_t key;  // identifies the sample for random numbers (see sample_key)
-  // The change of the ray's unit direction over one sample spacing along
-  // film x and y (read only when rays_carry_differentials).
-  Vec3<float> direction_dx{0.f, 0.f, 0.f}, direction_dy{0.f, 0.f, 0.f};
-  // Where texture footprints are centred, in sample spacings from the ray
-  // along film x and y: a jittered sample's stratum centre, so the filter
-  // box covers its stratum; 0 for samples at their cell's centre.
-  float footprint_centre_x = 0.f, footprint_centre_y = 0.f;
-};
-
 // First-hit data for AOVs: distance along the unit ray, shading normal
 // facing the ray, and the primitive's kind and index in the SceneDesc.
 struct FirstHit {
@@ -84,9 +74,13 @@ class Tracer {
  public:
   Tracer(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings);
 
-  // colors[i] = the radiance of samples[i]; adds its rays and lanes to stats.
-  // With `surfaces` (as long as samples), also what each sample met first.
-  void trace(std::span<const CameraSample> samples, std::span<Vec3<float>> colors, TraceStats& stats,
+  // colors[i] = the radiance of the camera's sample at film point i; adds
+  // its rays and lanes to stats. A sample's random numbers come from its key
+  // (sample_key of its film point); with differentials, its rays' change over
+  // its cell's side, its texture footprints centred on the cell (zero and
+  // on the point when the batch keeps no cells). With `surfaces` (as long as
+  // the batch), also what each sample met first.
+  void trace(const Camera& camera, const FilmSamples& film, std::span<Vec3<float>> colors, TraceStats& stats,
              std::span<SampleSurface> surfaces = {});
 
   // The first hit of each ray (unit directions).
@@ -111,6 +105,7 @@ class Tracer {
   bool differentials_;  // rays carry differentials: filter_textures in a scene with textures
   MaterialTable materials_;
   ShadeWaveFunction shade_wave_;
+  CameraRaysFunction camera_rays_;
 
   RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;

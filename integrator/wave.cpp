@@ -52,6 +52,14 @@ void PathColumns::push(std::uint32_t sample_index, const Vec3<float>& weight, st
   ++count;
 }
 
+void PathColumns::start_at_camera(std::size_t n) {
+  sample.resize(n);
+  for (std::size_t i = 0; i < n; ++i) sample[i] = static_cast<std::int32_t>(i);
+  for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) c->assign(n, 1.f);
+  key.resize(n);
+  count = n;
+}
+
 void PathColumns::pad() {
   for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) pad_column(*c, count);
   pad_column(sample, count);

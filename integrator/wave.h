@@ -30,7 +30,7 @@ struct Vec3Columns {
 
 // Per ray, its differentials (integrator/ray_differentials.h): the change
 // of origin and unit direction over one sample spacing along film x and y,
-// and its camera sample's footprint centre (CameraSample).
+// and its camera sample's footprint centre (FilmSamples).
 struct DifferentialColumns {
   Vec3Columns origin_dx, origin_dy, direction_dx, direction_dy;
   AlignedFloats centre_x, centre_y;
@@ -47,7 +47,9 @@ struct PathColumns {
 
   void clear();
   void push(std::uint32_t sample_index, const Vec3<float>& weight, std::uint64_t path_key);
-  void pad();  // after the last push
+  // n camera paths: path i of sample i, weight 1, keys to be written.
+  void start_at_camera(std::size_t n);
+  void pad();  // after the last push or key
 };
 
 // Per ray of a wave; misses hold material 0, no normal and black.

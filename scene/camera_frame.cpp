@@ -19,12 +19,6 @@ Vec3<double> to_double(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
-Vec3<double> CameraFrame::direction(double sx, double sy) const {
-  Vec3<double> d = forward + right * sx + up * sy;
-  normalize_in_place(d);
-  return d;
-}
-
 CameraFrame camera_frame(const CameraDesc& camera) {
   CameraFrame frame;
   frame.eye = to_double(camera.from);

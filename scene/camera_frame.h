@@ -13,9 +13,6 @@ struct CameraFrame {
   Vec3<double> forward;  // unit, toward `at`
   Vec3<double> right;    // unit, forward x up
   Vec3<double> up;       // unit, right x forward
-
-  // The unit direction of forward + sx right + sy up.
-  Vec3<double> direction(double sx, double sy) const;
 };
 
 // Throws std::invalid_argument when `at` equals `from`, or `up` is parallel
