@@ -241,27 +241,43 @@ void Tracer::transmit(std::size_t s) {
   }
   transit_tmin_.assign(slot.rays.count, 0.f);
   while (!transit_index_.empty()) {
-    transit_rays_.clear();
-    for (std::uint32_t k : transit_index_) {
-      Ray<float> r = slot.rays.get(k);
-      r.tmin = transit_tmin_[k];
-      transit_rays_.push(r);
+    // The surviving rays, each from its last crossing on.
+    const std::size_t n = transit_index_.size();
+    transit_rays_.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::uint32_t k = transit_index_[j];
+      transit_rays_.ox[j] = slot.rays.ox[k];
+      transit_rays_.oy[j] = slot.rays.oy[k];
+      transit_rays_.oz[j] = slot.rays.oz[k];
+      transit_rays_.dx[j] = slot.rays.dx[k];
+      transit_rays_.dy[j] = slot.rays.dy[k];
+      transit_rays_.dz[j] = slot.rays.dz[k];
+      transit_rays_.tmin[j] = transit_tmin_[k];
+      transit_rays_.tmax[j] = slot.rays.tmax[k];
     }
     transit_rays_.pad();
     transit_hits_.reset(transit_rays_);
     intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive);
     std::size_t kept = 0;
-    for (std::size_t j = 0; j < transit_index_.size(); ++j) {
+    for (std::size_t j = 0; j < n; ++j) {
       const std::uint32_t k = transit_index_[j];
-      const Hit<float> h = transit_hits_.get(j);
-      if (h.id == kNoHit) continue;
-      const SurfaceDetail d = surface_detail(scene_, transit_rays_.get(j), h);
-      transmittance[k] = mul(transmittance[k], d.color * d.material->kt);
+      const std::int32_t id = transit_hits_.id[j];
+      if (id == kNoHit) continue;
+      // A plain surface's colour is its material's; others need the hit's detail.
+      Vec3<float> filter;
+      if (scene_.is_plain(id)) {
+        const MaterialDesc& material = scene_.materials[scene_.material_of_id[std::size_t(id)]];
+        filter = material.color * material.kt;
+      } else {
+        const SurfaceDetail d = surface_detail(scene_, transit_rays_.get(j), transit_hits_.get(j));
+        filter = d.color * d.material->kt;
+      }
+      transmittance[k] = mul(transmittance[k], filter);
       if (!(max_component(transmittance[k]) > 0.f)) {
         occluded[k] = 1;
         continue;
       }
-      transit_tmin_[k] = h.t;
+      transit_tmin_[k] = transit_hits_.t[j];
       transit_index_[kept++] = k;
     }
     transit_index_.resize(kept);
