@@ -76,6 +76,7 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
   primary.issued_uncompacted += padded_to(n, width_);
 
   PhaseClock clock;
+  bool one_ray_per_sample = true;  // until a ray spawns two
   for (int depth = 0; rays_.count > 0; ++depth) {
     hits_.reset(rays_);
     clock.charge(stats.phases.shading);
@@ -124,7 +125,8 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
     stats.rays.reflection += shaded_.counts.reflection;
     stats.rays.refraction += shaded_.counts.refraction;
     clock.charge(stats.phases.shading);
-    resolve_shadows(colors, shaded_.counts.shadow_uncompacted, stats);
+    resolve_shadows(colors, shaded_.counts.shadow_uncompacted, one_ray_per_sample, stats);
+    one_ray_per_sample = one_ray_per_sample && shaded_.counts.refraction == 0;
     clock.charge(stats.phases.shadows);
     if (next_rays_.count > 0) {
       WaveLanes& next = stats.wave(std::size_t(depth) + 1);
@@ -195,7 +197,8 @@ void Tracer::resolve_surface_with_footprint(std::size_t i) {
   surfaces_.normal_dy.set(i, d.normal_dy);
 }
 
-void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats) {
+void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, bool one_ray_per_sample,
+                             TraceStats& stats) {
   std::size_t total = 0;
   for (std::size_t s = 0; s < slots_.size(); ++s) {
     ShadowSlot& slot = slots_[s];
@@ -213,7 +216,21 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
   stats.shadow.active += total;
   stats.shadow.issued_uncompacted += uncompacted;
   if (total == 0) return;
-  // The light seen, by ray and then slot (each slot's rays are in ray order).
+  // The light seen, by ray and then slot. While every sample has one ray in
+  // the wave (no refraction spawned yet), slot after slot adds to each
+  // sample in that same order.
+  if (one_ray_per_sample) {
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      const ShadowSlot& slot = slots_[s];
+      for (std::size_t k = 0; k < slot.rays.count; ++k) {
+        if (occlusion_[s].occluded[k] != 0) continue;
+        Vec3<float>& out = colors[std::size_t(paths_.sample[std::size_t(slot.point[k])])];
+        out = out + mul(Vec3<float>(slot.light_r[k], slot.light_g[k], slot.light_b[k]), transmittance_[s][k]);
+      }
+    }
+    return;
+  }
+  // Else rays merged from the slots (each slot's rays are in ray order).
   cursor_.assign(slots_.size(), 0);
   for (std::size_t i = 0; i < rays_.count; ++i) {
     for (std::size_t s = 0; s < slots_.size(); ++s) {

@@ -92,8 +92,10 @@ class Tracer {
   void resolve_surfaces();
   void resolve_surface_with_footprint(std::size_t i);
   void store_surface(std::size_t i, const SurfaceDetail& detail);
-  // Traces every slot's shadow stream and adds the light seen to colors.
-  void resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, TraceStats& stats);
+  // Traces every slot's shadow stream and adds the light seen to colors
+  // (one_ray_per_sample: no sample has two rays in the wave).
+  void resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, bool one_ray_per_sample,
+                       TraceStats& stats);
   // Transparent shadows: scales the slot's transmittance by each
   // transmissive surface its unoccluded rays cross.
   void transmit(std::size_t slot);
