@@ -94,6 +94,21 @@ struct FilmSamples {
     cell_y.push_back(cy);
     spacing.push_back(side);
   }
+  // Or, for a batch whose size is known: resize(n), then set() samples [0, n).
+  void resize(std::size_t n) {
+    x.resize(n);
+    y.resize(n);
+    if (!footprints) return;
+    for (std::vector<double>* c : {&cell_x, &cell_y, &spacing}) c->resize(n);
+  }
+  void set(std::size_t i, double px, double py, double cx, double cy, double side) {
+    x[i] = px;
+    y[i] = py;
+    if (!footprints) return;
+    cell_x[i] = cx;
+    cell_y[i] = cy;
+    spacing[i] = side;
+  }
   std::size_t size() const { return x.size(); }
 };
 

@@ -62,11 +62,18 @@ struct StratumSample {
   double x, y;
 };
 
+// grid, jitter: a sub-pixel cell (column i, row j) of N x N and its centre.
+struct SubPixelCell {
+  int i, j;
+  double cx, cy;
+};
+
 // Per-thread state: a tracer and its buffers, reused tile after tile.
 struct Worker {
   Tracer tracer;
   TraceStats stats;
   FilmSamples film;  // the batch being traced
+  std::vector<SubPixelCell> cells;  // grid, jitter: the N x N cells of a pixel
   std::vector<Vec3<float>> colors;
   std::vector<Ray<float>> centre_rays;
   std::vector<FirstHit> first;
@@ -129,17 +136,23 @@ class TileRenderer {
     const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
     const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
     const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
+    // Each sub-pixel cell's column, row and centre, computed once per tile.
+    w.cells.resize(std::size_t(n * n));
+    for (int j = 0; j < n * n; ++j) w.cells[std::size_t(j)] = {j % n, j / n, (j % n + 0.5) / n, (j / n + 0.5) / n};
+    const double spacing = 1.0 / n;
     start_batch(w);
+    w.film.resize(std::size_t(tile.width) * std::size_t(tile.height) * std::size_t(n * n));
+    std::size_t next = 0;
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
       for (int j = 0; j < n * n; ++j) {
-        const double cx = (j % n + 0.5) / n, cy = (j / n + 0.5) / n;
-        double ox = cx, oy = cy;
+        const SubPixelCell& cell = w.cells[std::size_t(j)];
+        double ox = cell.cx, oy = cell.cy;
         if (jitter) {
-          ox = (j % n + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
-          oy = (j / n + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
+          ox = (cell.i + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
+          oy = (cell.j + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
         }
-        add_sample_in_cell(w, x + ox, y + oy, x + cx, y + cy, 1.0 / n);
+        w.film.set(next++, x + ox, y + oy, x + cell.cx, y + cell.cy, spacing);
       }
     });
     trace(w);
@@ -159,7 +172,9 @@ class TileRenderer {
     const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
     const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
     start_batch(w);
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { add_sample(w, x, y, 1.0); });
+    w.film.resize(std::size_t(x1 - tile.x0) * std::size_t(y1 - tile.y0));
+    std::size_t next = 0;
+    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.film.set(next++, x, y, x, y, 1.0); });
     trace(w);
     std::size_t k = 0;
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
