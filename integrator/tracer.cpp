@@ -85,7 +85,7 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
     next_rays_.clear();
     next_paths_.clear();
     next_differentials_.clear();
-    for (ShadowSlot& slot : slots_) slot.clear();
+    for (ShadowSlot& slot : slots_) slot.open(rays_.count);
     resolve_surfaces();
     if (depth == 0 && !surfaces.empty()) {
       for (std::size_t i = 0; i < rays_.count; ++i) {

@@ -95,10 +95,13 @@ MaterialTable::MaterialTable(const std::vector<MaterialDesc>& scene_materials) {
   for (AlignedFloats* c : {&ka, &kd, &ks, &shininess, &kr, &kt, &ior, &two_sided}) pad_column(*c, materials.size());
 }
 
-void ShadowSlot::clear() {
-  rays.clear();
-  point.clear();
-  for (AlignedFloats* c : {&light_r, &light_g, &light_b}) c->clear();
+void ShadowSlot::open(std::size_t capacity) {
+  for (AlignedFloats* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.tmin, &rays.tmax,
+                           &light_r, &light_g, &light_b}) {
+    c->resize(capacity);
+  }
+  point.resize(capacity);
+  rays.count = 0;
 }
 
 namespace {
@@ -111,14 +114,6 @@ void grow_rays(RaySoA& rays, std::size_t size) {
 }
 
 }  // namespace
-
-std::size_t ShadowSlot::grow(std::size_t n) {
-  const std::size_t first = rays.ox.size();
-  grow_rays(rays, first + n);
-  point.resize(first + n);
-  for (AlignedFloats* c : {&light_r, &light_g, &light_b}) c->resize(first + n);
-  return first;
-}
 
 std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, DifferentialColumns* differentials) {
   const std::size_t first = rays.ox.size(), size = first + n;

@@ -81,9 +81,15 @@ struct ShadowSlot {
   AlignedInts point;  // index of the casting ray in its wave
   AlignedFloats light_r, light_g, light_b;
 
-  void clear();
+  // Empties the slot for a wave of at most `capacity` shadow rays (one per
+  // ray of the wave at most): its columns sized once, rays.count 0.
+  void open(std::size_t capacity);
   // n more rays, unset; returns the first one's index.
-  std::size_t grow(std::size_t n);
+  std::size_t grow(std::size_t n) {
+    const std::size_t first = rays.count;
+    rays.count += n;
+    return first;
+  }
 };
 
 // The spawned rays' columns (and their differentials, when given) grown by
