@@ -248,17 +248,53 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
 
 void Tracer::transmit(std::size_t s) {
   // Each transmissive surface crossed scales the light by its kt times its
-  // colour, until none is left.
-  const ShadowSlot& slot = slots_[s];
+  // colour, until none is left. Each crossing is sought along copies of the
+  // rays still lit, from their last crossing on; the first along the slot's
+  // own rays when at most an eighth are occluded (those given the empty
+  // range (0, -1)), sparing the copies: with more, their dead lanes in the
+  // packets cost more than the copies (bench/README.md).
+  ShadowSlot& slot = slots_[s];
   std::vector<Vec3<float>>& transmittance = transmittance_[s];
   AlignedInts& occluded = occlusion_[s].occluded;
+  // Ray k crossed the surface of hit j of `rays`: false once no light is left.
+  const auto cross = [&](const RaySoA& rays, std::size_t j, std::uint32_t k) {
+    const std::int32_t id = transit_hits_.id[j];
+    // A plain surface's colour is its material's; others need the hit's detail.
+    Vec3<float> filter;
+    if (scene_.is_plain(id)) {
+      const MaterialDesc& material = scene_.materials[scene_.material_of_id[std::size_t(id)]];
+      filter = material.color * material.kt;
+    } else {
+      const SurfaceDetail d = surface_detail(scene_, rays.get(j), transit_hits_.get(j));
+      filter = d.color * d.material->kt;
+    }
+    transmittance[k] = mul(transmittance[k], filter);
+    if (!(max_component(transmittance[k]) > 0.f)) {
+      occluded[k] = 1;
+      return false;
+    }
+    transit_tmin_[k] = transit_hits_.t[j];
+    return true;
+  };
+  const std::size_t count = slot.rays.count;
   transit_index_.clear();
-  for (std::size_t k = 0; k < slot.rays.count; ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     if (occluded[k] == 0) transit_index_.push_back(static_cast<std::uint32_t>(k));
   }
-  transit_tmin_.assign(slot.rays.count, 0.f);
+  transit_tmin_.assign(count, 0.f);
+  if (8 * transit_index_.size() >= 7 * count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (occluded[k] != 0) slot.rays.tmax[k] = -1.f;
+    }
+    transit_hits_.reset(slot.rays);
+    intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive);
+    std::size_t kept = 0;
+    for (const std::uint32_t k : transit_index_) {
+      if (transit_hits_.id[k] != kNoHit && cross(slot.rays, k, k)) transit_index_[kept++] = k;
+    }
+    transit_index_.resize(kept);
+  }
   while (!transit_index_.empty()) {
-    // The surviving rays, each from its last crossing on.
     const std::size_t n = transit_index_.size();
     transit_rays_.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
@@ -278,24 +314,7 @@ void Tracer::transmit(std::size_t s) {
     std::size_t kept = 0;
     for (std::size_t j = 0; j < n; ++j) {
       const std::uint32_t k = transit_index_[j];
-      const std::int32_t id = transit_hits_.id[j];
-      if (id == kNoHit) continue;
-      // A plain surface's colour is its material's; others need the hit's detail.
-      Vec3<float> filter;
-      if (scene_.is_plain(id)) {
-        const MaterialDesc& material = scene_.materials[scene_.material_of_id[std::size_t(id)]];
-        filter = material.color * material.kt;
-      } else {
-        const SurfaceDetail d = surface_detail(scene_, transit_rays_.get(j), transit_hits_.get(j));
-        filter = d.color * d.material->kt;
-      }
-      transmittance[k] = mul(transmittance[k], filter);
-      if (!(max_component(transmittance[k]) > 0.f)) {
-        occluded[k] = 1;
-        continue;
-      }
-      transit_tmin_[k] = transit_hits_.t[j];
-      transit_index_[kept++] = k;
+      if (transit_hits_.id[j] != kNoHit && cross(transit_rays_, j, k)) transit_index_[kept++] = k;
     }
     transit_index_.resize(kept);
   }
