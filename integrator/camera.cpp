@@ -20,10 +20,6 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : width_(width), h
   pixel_size_ = 2.0 * std::tan(half_angle) / double(std::max(span, 1));
 }
 
-Vec3<double> Camera::film_point(double x, double y) const {
-  return {(x - 0.5 * width_) * pixel_size_, (0.5 * height_ - y) * pixel_size_, 0.0};
-}
-
 Ray<float> Camera::ray(double x, double y) const {
   const Vec3<double> d = unit_direction(*this, x, y);
   return {eye(),
@@ -33,8 +29,7 @@ Ray<float> Camera::ray(double x, double y) const {
 }
 
 Camera::DirectionDifferentials Camera::direction_differentials(double x, double y, double spacing) const {
-  const Vec3<double> film = film_point(x, y);
-  const Vec3<double> d = frame_.forward + frame_.right * film.x + frame_.up * film.y;
+  const Vec3<double> d = view_direction(*this, x, y);
   const double length = std::sqrt(dot(d, d));
   const Vec3<double> unit = d / length;
   auto unit_change = [&](const Vec3<double>& change) {

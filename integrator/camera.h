@@ -25,8 +25,6 @@ class Camera {
   // The unit-direction primary ray through film point (x, y), t in (0, inf).
   Ray<float> ray(double x, double y) const;
 
-  Vec3<float> eye() const { return {float(frame_.eye.x), float(frame_.eye.y), float(frame_.eye.z)}; }
-
   // The change of that ray's unit direction when (x, y) moves by `spacing`
   // pixels along x and along y (a pinhole's origin does not change):
   // dD = (dd - D (D.dd)) / |d| for d the unnormalised direction.
@@ -35,15 +33,15 @@ class Camera {
   };
   DirectionDifferentials direction_differentials(double x, double y, double spacing) const;
 
+  // Every primary ray's origin.
+  Vec3<float> eye() const { return {float(frame_.eye.x), float(frame_.eye.y), float(frame_.eye.z)}; }
+
   int width() const { return width_; }
   int height() const { return height_; }
   const CameraFrame& frame() const { return frame_; }
   double pixel_size() const { return pixel_size_; }
 
  private:
-  // Film point (x, y) on the tangent plane at unit distance: (sx, sy, 0).
-  Vec3<double> film_point(double x, double y) const;
-
   int width_, height_;
   CameraFrame frame_;
   double pixel_size_;  // tangent-plane size of one pixel at unit distance
@@ -51,21 +49,26 @@ class Camera {
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
-// The camera's unit direction through film point (x, y), in double: D is
-// double (one point, the reference: Camera::ray) or a batch of doubles
-// (integrator/camera_rays.h), one formula for both.
+// The camera's direction through film point (x, y), in double, before
+// normalising: forward + sx right + sy up for (sx, sy) the film point on the
+// tangent plane at unit distance. D is double (one point, the reference:
+// Camera::ray) or a batch of doubles (integrator/camera_rays.h), one
+// formula for both.
+template <class D>
+Vec3<D> view_direction(const Camera& camera, const D& x, const D& y) {
+  const CameraFrame& f = camera.frame();
+  const D size(camera.pixel_size());
+  const D sx = (x - D(0.5 * camera.width())) * size;
+  const D sy = (D(0.5 * camera.height()) - y) * size;
+  return {D(f.forward.x) + D(f.right.x) * sx + D(f.up.x) * sy, D(f.forward.y) + D(f.right.y) * sx + D(f.up.y) * sy,
+          D(f.forward.z) + D(f.right.z) * sx + D(f.up.z) * sy};
+}
+
+// That direction over its length.
 template <class D>
 Vec3<D> unit_direction(const Camera& camera, const D& x, const D& y) {
   using std::sqrt;
-  const CameraFrame& f = camera.frame();
-  const D size(camera.pixel_size());
-  // The film point on the tangent plane at unit distance.
-  const D sx = (x - D(0.5 * camera.width())) * size;
-  const D sy = (D(0.5 * camera.height()) - y) * size;
-  // forward + sx right + sy up, over its length.
-  const Vec3<D> d{D(f.forward.x) + D(f.right.x) * sx + D(f.up.x) * sy,
-                  D(f.forward.y) + D(f.right.y) * sx + D(f.up.y) * sy,
-                  D(f.forward.z) + D(f.right.z) * sx + D(f.up.z) * sy};
+  const Vec3<D> d = view_direction(camera, x, y);
   const D length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
   return {d.x / length, d.y / length, d.z / length};
 }

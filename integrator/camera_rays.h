@@ -1,5 +1,5 @@
 // Primary rays in lanes: for a batch of film points, the pinhole camera's
-// rays (origin the eye, Camera::unit_direction in double rounded to float,
+// rays (origin the eye, unit_direction of camera.h in double rounded to float,
 // t in (0, inf)), written into a ray stream. integrator/camera_rays.cpp is
 // compiled per kernel unit; its lanes are the unit's doubles (half its
 // float lanes, one for the scalar units, the reference). IEEE +, -, *, /

@@ -62,7 +62,7 @@ struct StratumSample {
   double x, y;
 };
 
-// grid, jitter: a sub-pixel cell (column i, row j) of N x N and its centre.
+// grid, jitter, none: a sub-pixel cell (column i, row j) of N x N and its centre.
 struct SubPixelCell {
   int i, j;
   double cx, cy;
@@ -73,7 +73,6 @@ struct Worker {
   Tracer tracer;
   TraceStats stats;
   FilmSamples film;  // the batch being traced
-  std::vector<SubPixelCell> cells;  // grid, jitter: the N x N cells of a pixel
   std::vector<Vec3<float>> colors;
   std::vector<Ray<float>> centre_rays;
   std::vector<FirstHit> first;
@@ -91,7 +90,15 @@ class TileRenderer {
  public:
   TileRenderer(const Camera& camera, const RenderSettings& settings, Framebuffer& image,
                std::vector<Vec3<float>>* corners, bool differentials)
-      : camera_(camera), settings_(settings), image_(image), corners_(corners), differentials_(differentials) {}
+      : camera_(camera), settings_(settings), image_(image), corners_(corners), differentials_(differentials) {
+    // grid, jitter, none: each sub-pixel cell's column, row and centre, once.
+    const AntiAliasing::Mode mode = settings.aa.mode;
+    if (mode == AntiAliasing::Mode::none || mode == AntiAliasing::Mode::grid || mode == AntiAliasing::Mode::jitter) {
+      cells_per_side_ = mode == AntiAliasing::Mode::none ? 1 : settings.aa.n;
+      const int n = cells_per_side_;
+      for (int j = 0; j < n * n; ++j) cells_.push_back({j % n, j / n, (j % n + 0.5) / n, (j / n + 0.5) / n});
+    }
+  }
 
   void render(const PixelTile& tile, Worker& w) const {
     switch (settings_.aa.mode) {
@@ -109,16 +116,6 @@ class TileRenderer {
   // Starts a batch of camera samples; cells are kept when rays carry differentials.
   void start_batch(Worker& w) const { w.film.clear(differentials_); }
 
-  // The camera sample at film point (x, y), its differentials over `spacing`
-  // pixels (the distance to the neighbouring samples: a pixel over the rays per side).
-  void add_sample(Worker& w, double x, double y, double spacing) const { w.film.push(x, y, x, y, spacing); }
-
-  // A sample at film (x, y) in a cell of side spacing centred at (cx, cy):
-  // its texture footprints are centred on the cell, so that they tile it.
-  void add_sample_in_cell(Worker& w, double x, double y, double cx, double cy, double spacing) const {
-    w.film.push(x, y, cx, cy, spacing);
-  }
-
   void trace(Worker& w, std::span<SampleSurface> surfaces = {}) const {
     w.colors.resize(w.film.size());
     w.tracer.trace(camera_, w.film, w.colors, w.stats, surfaces);
@@ -134,11 +131,8 @@ class TileRenderer {
   // none, grid:N, jitter:N: N x N samples per pixel, averaged.
   void render_supersampled(const PixelTile& tile, Worker& w) const {
     const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
-    const int n = settings_.aa.mode == AntiAliasing::Mode::none ? 1 : settings_.aa.n;
+    const int n = cells_per_side_;
     const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
-    // Each sub-pixel cell's column, row and centre, computed once per tile.
-    w.cells.resize(std::size_t(n * n));
-    for (int j = 0; j < n * n; ++j) w.cells[std::size_t(j)] = {j % n, j / n, (j % n + 0.5) / n, (j / n + 0.5) / n};
     const double spacing = 1.0 / n;
     start_batch(w);
     w.film.resize(std::size_t(tile.width) * std::size_t(tile.height) * std::size_t(n * n));
@@ -146,7 +140,7 @@ class TileRenderer {
     for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
       for (int j = 0; j < n * n; ++j) {
-        const SubPixelCell& cell = w.cells[std::size_t(j)];
+        const SubPixelCell& cell = cells_[std::size_t(j)];
         double ox = cell.cx, oy = cell.cy;
         if (jitter) {
           ox = (cell.i + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
@@ -205,7 +199,8 @@ class TileRenderer {
       start_batch(w);
       for (const auto& [p, spacing] : pending) {
         const int X = p % lw, Y = p / lw;
-        add_sample(w, tile.x0 + double(X) / scale, tile.y0 + double(Y) / scale, spacing);
+        const double x = tile.x0 + double(X) / scale, y = tile.y0 + double(Y) / scale;
+        w.film.push(x, y, x, y, spacing);
       }
       trace(w);
       for (std::size_t k = 0; k < pending.size(); ++k) {
@@ -341,7 +336,7 @@ class TileRenderer {
       const RefinedPixel& px = w.refined[local(x, y)];
       for (int k = 0; k < 4; ++k) {
         const StratumSample& st = w.strata[px.first + k];
-        add_sample_in_cell(w, x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5);
+        w.film.push(x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5);
         w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
       }
     });
@@ -404,8 +399,7 @@ class TileRenderer {
               }
               const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
               w.next_strata.push_back(fresh);
-              add_sample_in_cell(w, x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child,
-                                 1.0 / child);
+              w.film.push(x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child, 1.0 / child);
               w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
             }
           }
@@ -459,6 +453,8 @@ class TileRenderer {
   Framebuffer& image_;
   std::vector<Vec3<float>>* corners_;  // corners mode: (W + 1) x (H + 1) colours
   bool differentials_;                 // rays_carry_differentials (tracer.h)
+  int cells_per_side_ = 1;             // grid, jitter: N; none: 1
+  std::vector<SubPixelCell> cells_;    // grid, jitter, none: a pixel's N x N cells
 };
 
 // The SPD rule, part two: each pixel the mean of its four corners.

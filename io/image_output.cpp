@@ -1,7 +1,8 @@
 // Framebuffer to image file: encode the pixels for the format, write them
 // to a temporary file beside the target, then rename. PNG goes through
-// libpng (zlib level 2) and OpenEXR through the OpenEXR library directly; JPEG, HDR and
-// TIFF through OpenImageIO in the quiver_oiio module, loaded on first use.
+// libpng (zlib level 2) and OpenEXR through the OpenEXR library directly;
+// JPEG, HDR and TIFF through OpenImageIO in the quiver_oiio module, loaded
+// on first use.
 #include "io/image_output.h"
 
 #include "io/file_extension.h"
