@@ -10,7 +10,7 @@ namespace quiver {
 
 namespace {
 
-constexpr std::uint64_t kReportVersion = 1;
+constexpr std::uint64_t kReportVersion = 2;
 
 void put(std::vector<std::uint64_t>& out, const WaveLanes& lanes) {
   out.insert(out.end(), {lanes.active, lanes.issued_compacted, lanes.issued_uncompacted});
@@ -47,6 +47,7 @@ std::vector<std::byte> encode_rank_report(const RankReport& r) {
                                    s.phases.intersection,
                                    s.phases.shading,
                                    s.phases.shadows,
+                                   s.phases.shadow_walks,
                                    s.shading_active,
                                    s.light_sample_active,
                                    s.light_sample_issued};
@@ -59,7 +60,7 @@ std::vector<std::byte> encode_rank_report(const RankReport& r) {
 }
 
 RankReport decode_rank_report(std::span<const std::byte> bytes) {
-  constexpr std::size_t kFixed = 22;
+  constexpr std::size_t kFixed = 23;
   if (bytes.size() % sizeof(std::uint64_t) != 0 || bytes.size() / sizeof(std::uint64_t) < kFixed) {
     throw std::invalid_argument("rank report: wrong size");
   }
@@ -74,12 +75,12 @@ RankReport decode_rank_report(std::span<const std::byte> bytes) {
   r.busy_ms = bits_double(w[5]);
   TraceStats& s = r.stats;
   s.rays = {w[6], w[7], w[8], w[9], w[10]};
-  s.phases = {w[11], w[12], w[13], w[14]};
-  s.shading_active = w[15];
-  s.light_sample_active = w[16];
-  s.light_sample_issued = w[17];
-  s.shadow = {w[18], w[19], w[20]};
-  const std::uint64_t waves = w[21];
+  s.phases = {w[11], w[12], w[13], w[14], w[15]};
+  s.shading_active = w[16];
+  s.light_sample_active = w[17];
+  s.light_sample_issued = w[18];
+  s.shadow = {w[19], w[20], w[21]};
+  const std::uint64_t waves = w[22];
   if (waves > (w.size() - kFixed) / 3 || w.size() != kFixed + 3 * waves) {
     throw std::invalid_argument("rank report: wrong wave count");
   }

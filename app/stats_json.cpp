@@ -120,6 +120,7 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
         {"intersection", phase_ms(stats.phases.intersection)},
         {"shading", phase_ms(stats.phases.shading)},
         {"shadows", phase_ms(stats.phases.shadows)}}},
+      {"traversal_ms", phase_ms(stats.phases.walks())},
       {"mrays_per_s", render_seconds > 0.0 ? json(double(rays.total()) / render_seconds / 1e6) : json(nullptr)},
       {"lane_utilization",
        {{"waves", std::move(waves)},

@@ -31,7 +31,9 @@ struct RenderStatsContext {
 // kernel_unit, sphere_method (algebraic or robust, chosen per scene), lanes, width, height, aa, max_depth, min_weight, seed,
 // aovs; rays {primary, eye_hit, shadow, reflection, refraction, total};
 // phases_ms {camera_and_film, intersection, shading, shadows} (thread
-// time summed over threads, integrator/trace_stats.h);
+// time summed over threads, integrator/trace_stats.h); traversal_ms (the
+// part of intersection and shadows inside the BVH walks and kernels, same
+// thread time);
 // mrays_per_s (total rays / render seconds / 1e6; null for a zero time);
 // lane_utilization {waves: [{depth, active, issued_compacted,
 // issued_uncompacted, utilization_compacted, utilization_uncompacted}],

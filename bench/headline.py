@@ -19,11 +19,15 @@ of rows; every figure is a ratio of times, above 1 when quiver is faster:
                  --aa adaptive:0.3:3 --threads 2 --quiet --stats S.json
            two ratios: whole-process wall time, and POV-Ray's reported
            "Trace Time" over quiver's render phase (render_ms of the stats).
+           Each with its ceiling: the ratio quiver would reach if nothing but
+           its BVH walks took time (the stats' traversal_ms, thread time,
+           over the threads: a lower bound on the walks' wall time).
            Skipped, with a note, when povray is not on the PATH.
   SIMD     quiver's widest unit against --simd scalar, one thread, whole
            renders of balls-s4 and gears-s4 (--preset spd, 512x512) and of
            the built-in scene (its own 640x480), render_ms medians over
-           --runs runs, the two widths interleaved.
+           --runs runs, the two widths interleaved; with its ceiling, the
+           scalar render over the widest unit's walks alone (traversal_ms).
 
 The SPD scenes come from the shared folder: --shared, else
 $QUIVER_SHARED_DIR, else ../shared beside the repository (scenes/spd holds
@@ -164,7 +168,7 @@ def pov_rows(options, cpu, notes):
             if not (pov.exists() and nff.exists()):
                 notes.append(f"POV-Ray row for {name} skipped: {pov} or {nff} is missing.")
                 continue
-            pov_wall, pov_trace, q_wall, q_render, threads = [], [], [], [], set()
+            pov_wall, pov_trace, q_wall, q_render, q_walks, threads = [], [], [], [], [], set()
             for r in range(options.runs):
                 log(f"headline: POV-Ray against quiver, {name}, run {r + 1} of {options.runs}")
                 # POV-Ray writes only below its working directory by default: a relative +O.
@@ -185,9 +189,13 @@ def pov_rows(options, cpu, notes):
                                              "--threads", "2"])
                 q_wall.append(wall)
                 q_render.append(stats["render_ms"] / 1000)
+                q_walks.append(stats["traversal_ms"] / 1000 / stats["threads"])
             else:
-                figure = (f"wall time {ratio(statistics.median(pov_wall), statistics.median(q_wall))}, "
-                          f"trace {ratio(statistics.median(pov_trace), statistics.median(q_render))}")
+                walks = statistics.median(q_walks)
+                figure = (f"wall time {ratio(statistics.median(pov_wall), statistics.median(q_wall))} "
+                          f"(ceiling {ratio(statistics.median(pov_wall), walks)}), "
+                          f"trace {ratio(statistics.median(pov_trace), statistics.median(q_render))} "
+                          f"(ceiling {ratio(statistics.median(pov_trace), walks)})")
                 rows.append(("quiver against POV-Ray 3.7: POV-Ray time / quiver time, 2 threads", cpu, f"{name}, {size}x{size}", figure,
                              f"`povray +A0.3 +AM2 +R3` against `quiver render --aa adaptive:0.3:3`, "
                              f"medians of {options.runs}"))
@@ -214,6 +222,7 @@ def simd_rows(options, cpu, notes):
                 flags = ["--width", "64", "--height", "48"] if options.quick else []
                 label = "built-in scene" + (", 64x48" if options.quick else ", 640x480")
             times = {"auto": [], "scalar": []}
+            widest_walks = []
             units = {}
             for r in range(options.runs):
                 log(f"headline: widest unit against scalar, {label}, run {r + 1} of {options.runs}")
@@ -223,8 +232,11 @@ def simd_rows(options, cpu, notes):
                                              flags + ["--threads", "1", "--simd", simd])
                     times[simd].append(stats["render_ms"])
                     units[simd] = unit_name(stats)
+                    if simd == "auto":
+                        widest_walks.append(stats["traversal_ms"])
             rows.append(("widest unit against `--simd scalar`: scalar time / widest time, 1 thread", cpu, label,
-                         ratio(statistics.median(times["scalar"]), statistics.median(times["auto"])),
+                         f"{ratio(statistics.median(times['scalar']), statistics.median(times['auto']))} "
+                         f"(ceiling {ratio(statistics.median(times['scalar']), statistics.median(widest_walks))})",
                          f"`quiver render --simd auto` and `--simd scalar`, `--threads 1`, render_ms medians of {options.runs}, "
                          f"{units['auto']} against {units['scalar']}"))
     return rows

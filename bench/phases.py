@@ -11,7 +11,9 @@ from the shared folder) and each quiver binary given, runs
 of the stats' phases_ms (camera_and_film, intersection, shading, shadows;
 integrator/trace_stats.h) and of render_ms. It also times the scene's
 primary rays alone (`quiver trace --threads 1 --repeat 5`) and reports the
-render's rays per second as a share of those. Writes
+render's rays per second as a share of those, and the share's ceiling: the
+render's rays over its BVH walks' time alone (the stats' traversal_ms), as a
+share of the same. Writes
 bench/results/phases.json and bench/phases.png (stacked bars of the phases
 per scene and binary), and prints a Markdown table.
 
@@ -74,9 +76,12 @@ def measure(binaries, shared, runs, size):
                 runs_of = samples[label]
                 render_ms = statistics.median(s["render_ms"] for s in runs_of)
                 rays = runs_of[0]["rays"]["total"]
+                walks = [s["traversal_ms"] for s in runs_of if "traversal_ms" in s]
                 results[scene][label] = {
                     "render_ms": render_ms,
                     "phases_ms": {p: statistics.median(s["phases_ms"][p] for s in runs_of) for p in PHASES},
+                    # Builds from before traversal_ms was reported have none.
+                    "traversal_ms": statistics.median(walks) if walks else None,
                     "rays": rays,
                     "render_mrays_per_s": rays / render_ms / 1e3,
                     "trace_mrays_per_s": trace["mrays_per_s"],
@@ -86,14 +91,17 @@ def measure(binaries, shared, runs, size):
 
 
 def table(data):
-    lines = ["| scene | build | render ms | " + " | ".join(PHASES) + " | render Mrays/s | share of trace's |",
-             "| --- | --- | ---: | " + " | ".join("---:" for _ in PHASES) + " | ---: | ---: |"]
+    lines = ["| scene | build | render ms | " + " | ".join(PHASES) + " | render Mrays/s | share of trace's | "
+             "ceiling (walks alone) |",
+             "| --- | --- | ---: | " + " | ".join("---:" for _ in PHASES) + " | ---: | ---: | ---: |"]
     for scene, builds in data["scenes"].items():
         for label, r in builds.items():
             total = sum(r["phases_ms"].values())
             shares = " | ".join(f"{100 * r['phases_ms'][p] / total:.0f}%" for p in PHASES)
+            walks = r.get("traversal_ms")
+            ceiling = f"{100 * r['rays'] / walks / 1e3 / r['trace_mrays_per_s']:.0f}%" if walks else "-"
             lines.append(f"| {scene} | {label} | {r['render_ms']:.0f} | {shares} | {r['render_mrays_per_s']:.1f} | "
-                         f"{100 * r['render_mrays_per_s'] / r['trace_mrays_per_s']:.0f}% |")
+                         f"{100 * r['render_mrays_per_s'] / r['trace_mrays_per_s']:.0f}% | {ceiling} |")
     return "\n".join(lines)
 
 

@@ -30,6 +30,7 @@ void TraceStats::add(const TraceStats& o) {
   phases.intersection += o.phases.intersection;
   phases.shading += o.phases.shading;
   phases.shadows += o.phases.shadows;
+  phases.shadow_walks += o.phases.shadow_walks;
 }
 
 }  // namespace quiver

@@ -32,9 +32,14 @@ struct WaveLanes {
 // intersection: closest hits of the eye and secondary waves; shading:
 // surface points, materials, textures, lights and the rays they spawn;
 // shadows: the shadow waves (any-hit, transparent shadows, adding the light).
+// shadow_walks, a part of shadows: the any-hit and transparent-shadow walks
+// themselves, so intersection + shadow_walks is the time the BVH walks and
+// kernels take, the part of a frame no bookkeeping can save.
 struct PhaseTimes {
   std::uint64_t camera_and_film = 0, intersection = 0, shading = 0, shadows = 0;
+  std::uint64_t shadow_walks = 0;
   std::uint64_t total() const { return camera_and_film + intersection + shading + shadows; }
+  std::uint64_t walks() const { return intersection + shadow_walks; }
 };
 
 // Adds the time since the last call (or construction) to a phase's counter.
@@ -50,6 +55,14 @@ class PhaseClock {
  private:
   std::chrono::steady_clock::time_point last_;
 };
+
+// Runs `work` and adds the time it took to `phase`.
+template <class Work>
+void charge_time_of(std::uint64_t& phase, Work&& work) {
+  PhaseClock clock;
+  work();
+  clock.charge(phase);
+}
 
 struct TraceStats {
   RayCounts rays;

@@ -208,9 +208,10 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
     total += n;
     stats.shadow.issued_compacted += padded_to(n, width_);
     occlusion_[s].reset(slot.rays);
-    intersector_.occluded(scene_, slot.rays, occlusion_[s], Layers::opaque);
+    charge_time_of(stats.phases.shadow_walks,
+                   [&] { intersector_.occluded(scene_, slot.rays, occlusion_[s], Layers::opaque); });
     transmittance_[s].assign(n, Vec3<float>(1.f, 1.f, 1.f));
-    if (scene_.has_transmissive()) transmit(s);
+    if (scene_.has_transmissive()) transmit(s, stats.phases.shadow_walks);
   }
   stats.rays.shadow += total;
   stats.shadow.active += total;
@@ -246,7 +247,7 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
   }
 }
 
-void Tracer::transmit(std::size_t s) {
+void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
   // Each transmissive surface crossed scales the light by its kt times its
   // colour, until none is left. Each crossing is sought along copies of the
   // rays still lit, from their last crossing on; the first along the slot's
@@ -287,7 +288,7 @@ void Tracer::transmit(std::size_t s) {
       if (occluded[k] != 0) slot.rays.tmax[k] = -1.f;
     }
     transit_hits_.reset(slot.rays);
-    intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive);
+    charge_time_of(walk_time, [&] { intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive); });
     std::size_t kept = 0;
     for (const std::uint32_t k : transit_index_) {
       if (transit_hits_.id[k] != kNoHit && cross(slot.rays, k, k)) transit_index_[kept++] = k;
@@ -310,7 +311,8 @@ void Tracer::transmit(std::size_t s) {
     }
     transit_rays_.pad();
     transit_hits_.reset(transit_rays_);
-    intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive);
+    charge_time_of(walk_time,
+                   [&] { intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive); });
     std::size_t kept = 0;
     for (std::size_t j = 0; j < n; ++j) {
       const std::uint32_t k = transit_index_[j];

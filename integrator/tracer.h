@@ -97,8 +97,8 @@ class Tracer {
   void resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, bool one_ray_per_sample,
                        TraceStats& stats);
   // Transparent shadows: scales the slot's transmittance by each
-  // transmissive surface its unoccluded rays cross.
-  void transmit(std::size_t slot);
+  // transmissive surface its unoccluded rays cross; adds the walks' time to walk_time.
+  void transmit(std::size_t slot, std::uint64_t& walk_time);
 
   const Scene& scene_;
   const SceneIntersector& intersector_;

@@ -247,6 +247,10 @@ TEST_F(Cli, StatsJsonHasTheKeysAndConsistentCounts) {
     phase_sum += phases.at(phase).get<double>();
   }
   EXPECT_LE(phase_sum, stats.at("render_ms").get<double>() * stats.at("threads").get<double>() * 1.01 + 0.1);
+  // The walks are the intersection phase and a part of the shadows phase.
+  const double walks = stats.at("traversal_ms").get<double>();
+  EXPECT_GT(walks, phases.at("intersection").get<double>());
+  EXPECT_LE(walks, phases.at("intersection").get<double>() + phases.at("shadows").get<double>());
 }
 
 TEST_F(Cli, PresetSpdTracesEveryPixelCorner) {

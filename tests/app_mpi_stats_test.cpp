@@ -18,7 +18,7 @@ RankReport report(int threads, std::uint64_t tiles, double busy_ms, std::uint64_
   r.render_ms = 100.0;
   r.busy_ms = busy_ms;
   r.stats.rays = {primary, primary / 2, 3 * primary, 7, 5};
-  r.stats.phases = {1, 2, 3, 4};
+  r.stats.phases = {1, 2, 3, 4, 5};
   r.stats.waves = {{10, 16, 24}, {4, 8, 8}};
   r.stats.shadow = {9, 10, 11};
   r.stats.shading_active = 12;
@@ -37,6 +37,7 @@ TEST(MpiStats, ARankReportSurvivesItsBytes) {
   EXPECT_EQ(back.stats.rays.shadow, 3000u);
   EXPECT_EQ(back.stats.rays.primary_hits, 500u);
   EXPECT_EQ(back.stats.phases.shadows, 4u);
+  EXPECT_EQ(back.stats.phases.shadow_walks, 5u);
   ASSERT_EQ(back.stats.waves.size(), 2u);
   EXPECT_EQ(back.stats.waves[1].issued_uncompacted, 8u);
   EXPECT_EQ(back.stats.shadow.issued_uncompacted, 11u);

@@ -114,13 +114,16 @@ TEST(StatsJson, RayCountsAndRate) {
 
 TEST(StatsJson, PhaseTimesInMilliseconds) {
   Example e = example();
-  e.result.stats.phases = {1'500'000, 250'000, 3'000'000, 7};
-  const json phases = render_stats_json(e.result, e.settings, e.context).at("phases_ms");
+  e.result.stats.phases = {1'500'000, 250'000, 3'000'000, 7, 5};
+  const json stats = render_stats_json(e.result, e.settings, e.context);
+  const json& phases = stats.at("phases_ms");
   EXPECT_DOUBLE_EQ(phases.at("camera_and_film").get<double>(), 1.5);
   EXPECT_DOUBLE_EQ(phases.at("intersection").get<double>(), 0.25);
   EXPECT_DOUBLE_EQ(phases.at("shading").get<double>(), 3.0);
   EXPECT_DOUBLE_EQ(phases.at("shadows").get<double>(), 7e-6);
   EXPECT_EQ(phases.size(), 4u);
+  // The walks: all of intersection and the shadow walks' part of shadows.
+  EXPECT_DOUBLE_EQ(stats.at("traversal_ms").get<double>(), 0.250005);
 }
 
 TEST(StatsJson, LaneUtilizationIsActiveOverIssued) {
