@@ -7,6 +7,8 @@
 //   watertight.csv      rays leaked through closed meshes per triangle method;
 //   self_intersection.csv acne fraction per scene scale and offset rule;
 //   anti_aliasing.csv   RMSE against a high-sample reference and render time;
+//   aa_oracle.csv       the fewest rays an adaptive sampler could spend for
+//                       grid:4's RMSE (aa_oracle_study.cpp);
 //   summary.json        the run's settings (units, rays per case, thresholds).
 // Usage: quiver_accuracy [--out DIR] [--quick] [--only SECTION] [--aa-modes MODE,MODE,...]
 #include <algorithm>
@@ -37,7 +39,7 @@ int main(int argc, char** argv) {
       }
     } else {
       std::fprintf(stderr,
-                   "usage: quiver_accuracy [--out DIR] [--quick] [--only kernels|speed|watertight|acne|aa]"
+                   "usage: quiver_accuracy [--out DIR] [--quick] [--only kernels|speed|watertight|acne|aa|aa_oracle]"
                    " [--aa-modes MODE,MODE,...]\n");
       return 2;
     }

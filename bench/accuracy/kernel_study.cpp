@@ -174,6 +174,7 @@ void run_studies(const StudyOptions& options) {
   if (wanted("watertight")) watertight_study(options);
   if (wanted("acne")) acne_study(options);
   if (wanted("aa")) anti_aliasing_study(options);
+  if (wanted("aa_oracle")) aa_oracle_study(options);
 }
 
 }  // namespace quiver::accuracy

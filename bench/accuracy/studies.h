@@ -29,5 +29,6 @@ void speed_study(const StudyOptions& options);          // speed.csv
 void watertight_study(const StudyOptions& options);     // watertight.csv
 void acne_study(const StudyOptions& options);           // self_intersection.csv
 void anti_aliasing_study(const StudyOptions& options);  // anti_aliasing.csv
+void aa_oracle_study(const StudyOptions& options);      // aa_oracle.csv
 
 }  // namespace quiver::accuracy
