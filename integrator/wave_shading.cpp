@@ -62,15 +62,16 @@ void set_ray(RaySoA& rays, std::size_t i, const Vec3Lanes<F>& origin, const Vec3
 template <class F>
 void append_shadow_rays(ShadowSlot& slot, unsigned bits, std::size_t first, const Vec3<F>& origin,
                         const Vec3<F>& direction, float tmax, const Vec3<F>& light) {
-  const Vec3Lanes<F> from(origin), toward(direction), carried(light);
   RaySoA& r = slot.rays;
-  std::size_t i = slot.grow(std::size_t(std::popcount(bits)));
-  for (; bits != 0; bits &= bits - 1, ++i) {
-    const int k = std::countr_zero(bits);
-    set_ray(r, i, from, toward, k, tmax);
-    slot.point[i] = static_cast<std::int32_t>(first + std::size_t(k));
-    set_vec3(slot.light_r, slot.light_g, slot.light_b, i, carried.x, carried.y, carried.z, k);
-  }
+  const std::size_t i = slot.grow(std::size_t(std::popcount(bits)));
+  store_selected_lanes<F, 11, 1>(
+      bits,
+      {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, F(0.f), F(tmax), light.x, light.y,
+       light.z},
+      {r.ox.data() + i, r.oy.data() + i, r.oz.data() + i, r.dx.data() + i, r.dy.data() + i, r.dz.data() + i,
+       r.tmin.data() + i, r.tmax.data() + i, slot.light_r.data() + i, slot.light_g.data() + i,
+       slot.light_b.data() + i},
+      {lane_index<F>() + IntLanes<F>(static_cast<std::int32_t>(first))}, {slot.point.data() + i});
 }
 
 // The light sample's direction from each lane's origin (not unit) and the

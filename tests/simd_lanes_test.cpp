@@ -8,6 +8,8 @@
 #include "simd/isa.h"
 #include "simd/lanes.h"
 #include "simd/vec3.h"
+#include "tests/support/kernel_checks.h"
+#include "tests/support/left_pack_units.h"
 
 namespace quiver {
 namespace {
@@ -51,6 +53,16 @@ TEST(Lanes, MasksDifferIsXorAtWidth1) {
   EXPECT_FALSE(masks_differ(true, true));
   EXPECT_TRUE(masks_differ(true, false));
   EXPECT_FALSE(masks_differ(false, false));
+}
+
+// Left-packing stores at every width: each mask's set lanes land in order,
+// nothing past them is written (the shadow-ray appends rely on both).
+template <class U>
+class LeftPack : public testing::UnitTest<U> {};
+TYPED_TEST_SUITE(LeftPack, testing::KernelUnits);
+
+TYPED_TEST(LeftPack, EveryMaskStoresItsSetLanesInOrderAndNothingElse) {
+  EXPECT_EQ(testing::left_pack_every_mask<TestFixture::kUnit>(), "");
 }
 
 TEST(Isa, ResolveNamesAndRejectsUnknown) {
