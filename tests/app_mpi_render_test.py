@@ -44,8 +44,10 @@ SCENES = {
                          ["--width", "70", "--height", "50", "--preset", "spd"]),
     "thin-adaptive": ([os.path.join(SOURCE, "io/examples/adaptive_aa.toml")], ["--width", "100", "--height", "56"]),
 }
-# A render long enough (a few seconds on two ranks of one thread) to be killed in the middle.
-SLOW = ([], ["--width", "128", "--height", "96", "--aa", "refine:0.005:16", "--threads", "1"])
+# A render long enough to be killed in the middle: about 3 s on one rank of
+# one thread, so the rank left alive cannot finish its tiles in the second
+# mpirun takes to end the job after a rank dies.
+SLOW = ([], ["--width", "256", "--height", "192", "--aa", "refine:0.005:16", "--threads", "1"])
 
 
 def fail(message):

@@ -285,7 +285,9 @@ TEST(Instances, AnyHitAgreesWithClosestHitPerLayer) {
         if (hits.id[i] == kNoHit) continue;
         ++blocked;
         const bool glass = scene.locate(hits.id[i]).transmissive;
-        if (layers != Layers::both) EXPECT_EQ(glass, layers == Layers::transmissive) << "ray " << i;
+        if (layers != Layers::both) {
+          EXPECT_EQ(glass, layers == Layers::transmissive) << "ray " << i;
+        }
       }
       EXPECT_GT(blocked, 0u);
     }
