@@ -557,10 +557,10 @@ template <class F, std::size_t N, std::size_t M>
 inline void store_selected_lanes(unsigned bits, const std::array<F, N>& floats, const std::array<float*, N>& to_float,
                                  const std::array<IntLanes<F>, M>& ints, const std::array<std::int32_t*, M>& to_int) {
   if constexpr (lane_count<F> == 4) {
-    alignas(16) float float_lanes[N][4];
-    alignas(16) std::int32_t int_lanes[M][4];
-    for (std::size_t c = 0; c < N; ++c) floats[c].store_aligned(float_lanes[c]);
-    for (std::size_t c = 0; c < M; ++c) ints[c].store_aligned(int_lanes[c]);
+    alignas(16) std::array<std::array<float, 4>, N> float_lanes;
+    alignas(16) std::array<std::array<std::int32_t, 4>, M> int_lanes;
+    for (std::size_t c = 0; c < N; ++c) floats[c].store_aligned(float_lanes[c].data());
+    for (std::size_t c = 0; c < M; ++c) ints[c].store_aligned(int_lanes[c].data());
     for (std::size_t i = 0; bits != 0; bits &= bits - 1, ++i) {
       const int k = std::countr_zero(bits);
       for (std::size_t c = 0; c < N; ++c) to_float[c][i] = float_lanes[c][k];
