@@ -20,6 +20,9 @@ std::size_t light_slot_count(const Scene& scene) {
   return slots;
 }
 
+// The distance to the hit at t along a ray of any direction length.
+float distance_along(const Ray<float>& ray, float t) { return t * std::sqrt(dot(ray.direction, ray.direction)); }
+
 }  // namespace
 
 bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings) {
@@ -92,8 +95,7 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
         const Ray<float> ray = rays_.get(i);
         surfaces[std::size_t(paths_.sample[i])] =
             hits_.id[i] == kNoHit ? SampleSurface{}
-                                  : SampleSurface{surfaces_.material[i],
-                                                  hits_.t[i] * std::sqrt(dot(ray.direction, ray.direction))};
+                                  : SampleSurface{surfaces_.material[i], distance_along(ray, hits_.t[i])};
       }
     }
     shaded_.slots = &slots_;
@@ -336,7 +338,7 @@ void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> ou
     }
     const SurfacePoint s = surface_at(scene_, rays[i], h);
     const PrimitiveOrigin& o = scene_.origin(s.ref);
-    out[i] = {h.t * std::sqrt(dot(rays[i].direction, rays[i].direction)), s.shading,
+    out[i] = {distance_along(rays[i], h.t), s.shading,
               static_cast<std::int32_t>(o.kind), static_cast<std::int32_t>(o.index)};
   }
 }

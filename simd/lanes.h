@@ -498,11 +498,10 @@ inline Mask<F> first_lanes(std::size_t remaining) {
 // Left-packing stores of a row of columns: the lanes whose bit is set in
 // `bits` (lane_bits), in lane order, to each column's p[0], p[1], ...
 // (popcount(bits) values; nothing else is written, p needs no alignment).
-// AVX-512 packs each column in a register and stores under a mask (a
-// compress straight to memory is microcoded on Zen 4); AVX2 permutes each by
-// a table of the 256 masks' lane orders and stores under a mask; SSE4 sets
-// the lanes aside and copies every column's set ones in one loop over the
-// bits (a loop per column, mispredicting each exit, was 3% slower).
+// AVX-512 packs each column in a register (compress) and stores it under a
+// mask; AVX2 permutes each by a table of the 256 masks' lane orders and
+// stores under a mask; SSE4 sets the lanes aside and copies every column's
+// set ones in one loop over the bits (a loop per column was 3% slower).
 #if XSIMD_WITH_FMA3_AVX2
 // Per 8-bit mask, its set lanes' numbers in order, a nibble each (lowest first).
 inline constexpr std::array<std::uint32_t, 256> kLeftPackOrder = [] {
@@ -549,6 +548,8 @@ inline void store_selected_packed(unsigned bits, const std::array<V, N>& values,
       }
     }
 #endif
+  } else {
+    static_assert(lane_count<F> == 1, "store_selected_packed: no left-pack for this unit's lanes");
   }
 }
 

@@ -1,6 +1,6 @@
 // How few rays any adaptive sampler with jittered strata could spend to
-// reach grid:4's RMSE (issue 29's goal: at most 40% of grid:4's time at
-// equal RMSE). Per scene of anti_aliasing_scenes.h (textures filtered where
+// reach grid:4's RMSE (bench/ACCURACY.md, "What any adaptive sampler could
+// reach"). Per scene of anti_aliasing_scenes.h (textures filtered where
 // the scene has any), each pixel may take jitter:N for N in a ladder of
 // levels (1, 2, 4, 8 rays per side, or refine's 2, 4, 8); an oracle picks
 // every pixel's level, greedily by the largest drop of squared error per
