@@ -52,6 +52,7 @@ CheckedRenderArgs check_render_args(const RenderArgs& args, const char* simd_env
   if (!args.stats.empty()) checked.outputs.push_back({"--stats", args.stats});
   checked.outputs.insert(checked.outputs.end(), extra_outputs.begin(), extra_outputs.end());
   check_render_options(args.options);
+  check_outputs_are_regular_files(checked.outputs);
   checked.isa = choose_isa(args.options.simd, simd_environment);
   const bool has_aovs = args.options.aov && parse_aov_list(*args.options.aov).any();
   check_output_path(checked.output, has_aovs);
@@ -83,7 +84,8 @@ Scene build_scene_timed(const SceneDesc& desc, const SceneBuildOptions& options,
 
 PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked) {
   PreparedRender p;
-  p.desc = load_scene_timed(args.scene, {args.options.crease_angle, args.options.strict}, p.load_ms);
+  p.desc = load_scene_timed(
+      args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, p.load_ms);
   p.inputs = files_read(p.desc, !args.scene.empty());
   check_outputs_spare_inputs(checked.outputs, p.inputs);
   p.plan = plan_render(args.options, p.desc, checked.isa);

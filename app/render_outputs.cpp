@@ -9,13 +9,52 @@ namespace quiver {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The file a write to `path` replaces, spelled one way: absolute, "." and
+// ".." folded, and every symlink of its existing part resolved (the target
+// itself need not exist yet).
+fs::path resolved(const fs::path& path) {
+  std::error_code error;
+  const fs::path absolute = fs::absolute(path, error);
+  if (error) return path.lexically_normal();
+  fs::path result = fs::weakly_canonical(absolute, error);
+  return error ? absolute.lexically_normal() : result;
+}
+
+// What an existing file is, for messages: "a directory", "a FIFO", ...
+const char* kind_of(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::directory: return "a directory";
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    default: return "not a regular file";
+  }
+}
+
+}  // namespace
+
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code error;
   if (fs::equivalent(a, b, error)) return true;  // false, with an error, unless both exist
-  const fs::path resolved_a = fs::weakly_canonical(a, error);
-  if (error) return false;
-  const fs::path resolved_b = fs::weakly_canonical(b, error);
-  return !error && resolved_a == resolved_b;
+  const fs::path resolved_a = resolved(a), resolved_b = resolved(b);
+  if (resolved_a == resolved_b) return true;
+  // One folder reached two ways (a bind mount): the same name in it.
+  return resolved_a.filename() == resolved_b.filename() &&
+         fs::equivalent(resolved_a.parent_path(), resolved_b.parent_path(), error);
+}
+
+void check_outputs_are_regular_files(const std::vector<RoleFile>& outputs) {
+  for (const RoleFile& output : outputs) {
+    std::error_code error;
+    const fs::file_status status = fs::status(output.path, error);
+    if (!fs::exists(status) || fs::is_regular_file(status)) continue;
+    throw UsageError(output.role + " names '" + output.path.string() + "', " + kind_of(status.type()) +
+                     "; outputs are written whole and renamed into place, so each must name a regular file "
+                     "(new or existing)");
+  }
 }
 
 std::vector<RoleFile> files_read(const SceneDesc& desc, bool first_is_scene) {

@@ -78,6 +78,15 @@ void StagedOutputs::stage(const fs::path& target, const Writer& write) {
 }
 
 void StagedOutputs::commit() {
+  // A device, FIFO or socket would be replaced by the rename: refuse before any target changes.
+  for (const Staged& s : staged_) {
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(s.target, error);
+    if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status)) {
+      discard();
+      fail(s.target, "not a regular file; outputs are renamed into place and would replace it");
+    }
+  }
   std::vector<Replaced> replaced;
   replaced.reserve(staged_.size());
   for (std::size_t i = 0; i < staged_.size(); ++i) {

@@ -35,7 +35,9 @@ class StagedOutputs {
   // error propagates; what was staged before stays staged.
   void stage(const std::filesystem::path& target, const Writer& write);
 
-  // Renames every staged temporary over its target. On a failed rename the
+  // Renames every staged temporary over its target. A target that exists
+  // and is neither a regular file nor a symlink (a device, a FIFO, a
+  // socket, a directory) fails the whole commit before any rename. On a failed rename the
   // targets are put back as described above, the remaining temporaries are
   // removed, and std::runtime_error("<path>: cannot replace the file: ...")
   // is thrown.

@@ -5,6 +5,7 @@
 // SIMD width, `quiver trace` (its JSON line, the same hits for every
 // width and thread count, its errors), and OpenImageIO loaded only when a
 // format or texture needs it, with a clear error when its module is missing.
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -337,6 +338,47 @@ TEST_F(Cli, NoOutputMayNameAFileTheRenderReads) {
     EXPECT_NE(r.err.find("the render reads"), std::string::npos) << r.err;
     EXPECT_TRUE(work_files().empty());
     EXPECT_EQ(contents(inputs), before);
+  }
+}
+
+TEST_F(Cli, TwoSpellingsOfOneNewOutputAreAUsageError) {
+  fs::create_directories(work() / "sub");
+  const std::string size[] = {"--width", "8", "--height", "6"};
+  const std::vector<std::vector<std::string>> cases = {
+      {"render", kTiny.string(), "-o", "n.png", "--stats", "./n.png"},
+      {"render", kTiny.string(), "-o", "n.png", "--stats", "sub/../n.png"},
+      {"render", kTiny.string(), "-o", "n.png", "--stats", (work() / "n.png").string()},
+      {"render", kTiny.string(), "-o", "./sub/n.png", "--stats", "sub/n.png"},
+  };
+  for (std::vector<std::string> args : cases) {
+    args.insert(args.end(), std::begin(size), std::end(size));
+    SCOPED_TRACE(args[3] + " and " + args[5]);
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("name the same file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(work() / "n.png"));
+    EXPECT_FALSE(fs::exists(work() / "sub" / "n.png"));
+  }
+}
+
+TEST_F(Cli, AnOutputNamingADeviceOrFifoIsRefusedAndLeftAsItIs) {
+  const fs::path fifo = work() / "pipe.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string size[] = {"--width", "8", "--height", "6"};
+  const std::vector<std::vector<std::string>> cases = {
+      {"render", kTiny.string(), "-o", "pipe.png"},
+      {"render", kTiny.string(), "-o", "out.png", "--stats", "pipe.png"},
+      {"render", kTiny.string(), "-o", "out.png", "--stats", "/dev/null"},
+  };
+  for (std::vector<std::string> args : cases) {
+    args.insert(args.end(), std::begin(size), std::end(size));
+    SCOPED_TRACE(args.back());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("must name a regular file"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    EXPECT_FALSE(fs::exists(work() / "out.png"));
   }
 }
 

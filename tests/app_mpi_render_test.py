@@ -9,7 +9,8 @@
                     only the tiles the checkpoint lacked (stats)
   worker-killed     a worker killed mid-render: the job ends non-zero within
                     seconds, no image; the checkpoint resumes to the same image
-  bad-input         a bad scene, a bad flag and a stale checkpoint under
+  bad-input         a bad scene, a bad flag, a stale checkpoint, a checkpoint
+                    naming an output under another spelling or a FIFO, under
                     -np 2: one error line, the right exit code, no output
 
 Usage: app_mpi_render_test.py QUIVER QUIVER_MPI MPIRUN SOURCE_DIR CASE [ARG]
@@ -18,6 +19,7 @@ Usage: app_mpi_render_test.py QUIVER QUIVER_MPI MPIRUN SOURCE_DIR CASE [ARG]
 import json
 import os
 import signal
+import stat
 import subprocess
 import sys
 import tempfile
@@ -59,8 +61,8 @@ def mpirun(ranks):
     return [MPIRUN, "-np", str(ranks), "--oversubscribe", "--bind-to", "none"]
 
 
-def run(command, timeout=120):
-    done = subprocess.run(command, capture_output=True, text=True, env=ENV, timeout=timeout)
+def run(command, timeout=120, cwd=None):
+    done = subprocess.run(command, capture_output=True, text=True, env=ENV, timeout=timeout, cwd=cwd)
     return done
 
 
@@ -248,6 +250,21 @@ def case_bad_input(work):
     expect_one_error(done, 1, "another render", "a stale checkpoint")
     done = run(mpirun(2) + [QUIVER_MPI, "-o", out, "--checkpoint", os.path.join(work, "none"), "--resume"])
     expect_one_error(done, 1, "nothing to resume", "--resume without a checkpoint")
+    # The checkpoint under a second spelling of an output, or a FIFO: refused, nothing written or removed.
+    tiny = ["--width", "8", "--height", "6"]
+    done = run(mpirun(2) + [QUIVER_MPI, *tiny, "-o", "n1.png", "--checkpoint", "./n1.png"], cwd=work)
+    expect_one_error(done, 2, "name the same file", "a checkpoint naming the image")
+    done = run(mpirun(2) + [QUIVER_MPI, *tiny, "-o", "n2.png", "--stats", "n3.json", "--checkpoint", "./n3.json"],
+               cwd=work)
+    expect_one_error(done, 2, "name the same file", "a checkpoint naming the stats")
+    fifo = os.path.join(work, "pipe.checkpoint")
+    os.mkfifo(fifo)
+    for resume in ([], ["--resume"]):
+        done = run(mpirun(2) + [QUIVER_MPI, *tiny, "-o", "n4.png", "--checkpoint", fifo, *resume], timeout=60)
+        expect_one_error(done, 2, "must name a regular file", "a FIFO checkpoint" + (" resumed" if resume else ""))
+    if not os.path.exists(fifo) or not stat.S_ISFIFO(os.stat(fifo).st_mode):
+        fail("the FIFO checkpoint was replaced or removed")
+    os.remove(fifo)
     if os.path.exists(out):
         fail("an image was written")
     left = sorted(f for f in os.listdir(work) if f not in ("bad.nff", "stale.checkpoint"))
