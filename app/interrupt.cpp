@@ -13,12 +13,14 @@ namespace {
 std::atomic<bool> stop_flag{false};
 std::atomic<int> stop_signal{0};
 std::atomic<InterruptPhase> phase{InterruptPhase::reading};
+std::atomic<int> ending_exit_code{0};
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free &&
                   std::atomic<InterruptPhase>::is_always_lock_free,
               "signal handlers may touch only lock-free atomics");
 
 // Only async-signal-safe calls: atomics, write, _exit.
 void on_signal(int signal) {
+  if (phase.load() == InterruptPhase::ending) ::_exit(ending_exit_code.load());
   if (phase.load() == InterruptPhase::reading) {
     const char* message = signal == SIGINT ? "quiver: interrupted by SIGINT while reading the scene; nothing written\n"
                                            : "quiver: interrupted by SIGTERM while reading the scene; nothing written\n";
@@ -42,6 +44,11 @@ void install_interrupt_handlers() {
 }
 
 void set_interrupt_phase(InterruptPhase next) { phase.store(next); }
+
+void end_quietly_on_signal(int exit_code) {
+  ending_exit_code.store(exit_code);
+  phase.store(InterruptPhase::ending);
+}
 
 const std::atomic<bool>& stop_requested() { return stop_flag; }
 

@@ -11,13 +11,19 @@
 
 namespace quiver {
 
-enum class InterruptPhase { reading, rendering };
+// ending: the outcome is decided and reported (see end_quietly_on_signal).
+enum class InterruptPhase { reading, rendering, ending };
 
 // Installs the handlers (system calls restart after them), the phase being
 // `reading`. Idempotent.
 void install_interrupt_handlers();
 
 void set_interrupt_phase(InterruptPhase phase);
+
+// Enters the `ending` phase: a signal from now on (mpirun ending the job
+// after a rank failed) ends the process at once with exit_code and prints
+// nothing, so the error already reported stays the only line.
+void end_quietly_on_signal(int exit_code);
 
 // Raised by the first SIGINT or SIGTERM while `rendering`.
 const std::atomic<bool>& stop_requested();

@@ -485,6 +485,7 @@ int agree_on(int exit_code, const std::string& message) {
     }
     std::fprintf(stderr, "quiver-mpi: %s\n", text.c_str());
     std::fflush(stderr);
+    end_quietly_on_signal(worst);
   } else if (rank == first) {
     MPI_Send(message.data(), int(message.size()), MPI_BYTE, 0, kTagError, MPI_COMM_WORLD);
   }
