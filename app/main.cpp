@@ -168,7 +168,8 @@ int run_trace(const TraceArgs& args) {
   try {
     double load_ms = 0.0;
     quiver::SceneDesc desc =
-        quiver::load_scene_timed(args.scene, {args.options.crease_angle, args.options.strict}, load_ms);
+        quiver::load_scene_timed(
+        args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms);
     quiver::print_scene_warnings(desc);
     const auto [width, height] = quiver::set_trace_view(args.options, desc);
     double build_ms = 0.0;
@@ -211,6 +212,7 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
                         ->type_name("ISA");
   raw.crease_angle_option = quiver::cli::add_crease_angle_flag(trace, raw.crease_angle);
   quiver::cli::add_strict_flag(trace, args.options.strict);
+  quiver::cli::add_allow_outside_paths_flag(trace, args.options.allow_outside_paths);
   quiver::cli::add_camera_flags(trace, raw.camera);
 }
 
@@ -244,6 +246,7 @@ int main(int argc, char** argv) {
   CLI::Option* info_crease_angle_option = quiver::cli::add_crease_angle_flag(*info, info_crease_angle);
   quiver::SceneLoadOptions info_load_options;
   quiver::cli::add_strict_flag(*info, info_load_options.strict);
+  quiver::cli::add_allow_outside_paths_flag(*info, info_load_options.allow_outside_paths);
 
   TraceArgs trace_args;
   RawTraceFlags raw_trace;

@@ -43,6 +43,14 @@ inline void add_strict_flag(CLI::App& command, bool& strict) {
                    "texture file or one embedded as raw texels; points and lines in PLY, glTF or STL)");
 }
 
+// --allow-outside-paths, the same for render, info and trace.
+inline void add_allow_outside_paths_flag(CLI::App& command, bool& allow) {
+  command.add_flag("--allow-outside-paths", allow,
+                   "Let the scene name files outside its own folder. Default: an OBJ's mtllib and map_Kd, a TOML "
+                   "scene's meshes and images and a glTF's buffers and images must lie in the folder of the scene "
+                   "file given (or below it, symlinks resolved); any other is an error");
+}
+
 // --crease-angle, the same for render, info and trace; the caller copies
 // the value when the option's count() is non-zero.
 inline CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
@@ -169,6 +177,7 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
           ->type_name("FILTER");
   raw.crease_angle_option = add_crease_angle_flag(render, raw.crease_angle);
   add_strict_flag(render, args.options.strict);
+  add_allow_outside_paths_flag(render, args.options.allow_outside_paths);
   add_camera_flags(render, raw.camera);
 }
 

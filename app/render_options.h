@@ -61,6 +61,7 @@ struct RenderOptions {
   std::optional<std::string> texture_filter;  // box (the default) or none
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
   bool strict = false;                 // SceneLoadOptions::strict
+  bool allow_outside_paths = false;    // SceneLoadOptions::allow_outside_paths
   CameraFlags camera;
 };
 

@@ -40,6 +40,7 @@ struct TraceOptions {
   std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
   std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
   bool strict = false;                 // SceneLoadOptions::strict
+  bool allow_outside_paths = false;    // SceneLoadOptions::allow_outside_paths
   CameraFlags camera;
 };
 

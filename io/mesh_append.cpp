@@ -24,7 +24,7 @@ bool is_mesh_extension(std::string_view extension) {
 
 void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
                  std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees,
-                 bool strict) {
+                 bool strict, const PathRule& paths) {
   const std::string extension = lowercase_extension(path);
   if (!is_mesh_extension(extension)) throw std::invalid_argument("append_mesh: not a mesh file name");
   if (material_override && *material_override >= scene.materials.size()) {
@@ -41,8 +41,8 @@ void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
 
   const std::string name = path.string();
   const std::size_t budget = kMaxObjTriangles - std::min(scene.triangles.size(), kMaxObjTriangles);
-  SceneDesc mesh = extension == ".obj" ? read_obj_scene(path, crease_angle_degrees, strict, budget)
-                                       : read_imported_mesh(path, crease_angle_degrees, strict, budget);
+  SceneDesc mesh = extension == ".obj" ? read_obj_scene(path, crease_angle_degrees, strict, budget, paths)
+                                       : read_imported_mesh(path, crease_angle_degrees, strict, budget, paths);
 
   auto not_finite = [&] {
     throw ParseError::whole_file(name, "a vertex is not finite after the mesh transform of the including scene");

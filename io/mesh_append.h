@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "geometry/vertex_normals.h"
+#include "io/path_rule.h"
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -30,9 +31,11 @@ bool is_mesh_extension(std::string_view extension);
 // scene.triangles would exceed kMaxObjTriangles or a transformed vertex is
 // not finite, and std::invalid_argument for a singular or non-finite
 // transform, an override that is not a material index or a path that names
-// no mesh format; `scene` is then unchanged.
+// no mesh format; `scene` is then unchanged. The files the mesh names keep
+// `paths` (io/path_rule.h).
 void append_mesh(const std::filesystem::path& path, const std::array<float, 16>& transform,
                  std::optional<std::size_t> material_override, SceneDesc& scene,
-                 double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false);
+                 double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
+                 const PathRule& paths = {});
 
 }  // namespace quiver

@@ -304,7 +304,7 @@ std::size_t data_uri_bytes(std::string_view uri) {
 }
 
 void check_gltf_json(std::string_view json_text, std::string_view file, const fs::path& directory,
-                     std::optional<std::size_t> binary_chunk_bytes, std::size_t total_bytes,
+                     const PathRule& paths, std::optional<std::size_t> binary_chunk_bytes, std::size_t total_bytes,
                      std::size_t max_total_bytes) {
   nlohmann::json document;
   try {
@@ -352,6 +352,10 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
       holder = "its data URI";
     } else {
       const fs::path path = file_named_by_uri(directory, text);
+      if (!uri_admitted(paths, directory, text)) {
+        throw ParseError::whole_file(
+            file, "expected " + name + "'s file to be " + paths.expected() + ", found " + quoted_token(text));
+      }
       std::error_code error;
       if (!fs::is_regular_file(path, error)) {
         throw ParseError::whole_file(
@@ -431,10 +435,10 @@ MeshFileCounts check_stl(std::string_view bytes, std::string_view file) {
                std::to_string(little_endian_u32(bytes, 80)));
 }
 
-void check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, bool binary,
-                std::size_t max_total_bytes) {
+void check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, const PathRule& paths,
+                bool binary, std::size_t max_total_bytes) {
   if (!binary) {
-    check_gltf_json(bytes, file, directory, std::nullopt, bytes.size(), max_total_bytes);
+    check_gltf_json(bytes, file, directory, paths, std::nullopt, bytes.size(), max_total_bytes);
     return;
   }
   if (bytes.size() < 12 || little_endian_u32(bytes, 0) != kGlbMagic) {
@@ -460,7 +464,7 @@ void check_gltf(std::string_view bytes, std::string_view file, const fs::path& d
     at += 8 + length;
   }
   if (json_text.data() == nullptr) fail_at_byte(file, 12, "a JSON chunk", "end of file");
-  check_gltf_json(json_text, file, directory, binary_chunk_bytes, bytes.size(), max_total_bytes);
+  check_gltf_json(json_text, file, directory, paths, binary_chunk_bytes, bytes.size(), max_total_bytes);
 }
 
 }  // namespace quiver

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "io/path_rule.h"
 #include "io/reader_warnings.h"
 
 namespace quiver {
@@ -30,9 +31,10 @@ struct MeshFileCounts {
 MeshFileCounts check_ply(std::string_view bytes, std::string_view file, ReaderWarnings& warnings);
 MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
-// URI are looked for relative to `directory`, and their sizes added up with
-// the file's against max_total_bytes.
+// URI are looked for relative to `directory` (outside `paths`, an error:
+// io/path_rule.h), and their sizes added up with the file's against
+// max_total_bytes.
 void check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
-                bool binary, std::size_t max_total_bytes);
+                const PathRule& paths, bool binary, std::size_t max_total_bytes);
 
 }  // namespace quiver

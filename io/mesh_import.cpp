@@ -89,7 +89,7 @@ WrapMode wrap_of(int mode) {
 
 // glTF materials into the scene (PLY and STL: one default material).
 void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
-                   ReaderWarnings& warnings, SceneDesc& scene) {
+                   const PathRule& paths, ReaderWarnings& warnings, SceneDesc& scene) {
   if (format != MeshFormat::gltf && format != MeshFormat::glb) {
     scene.materials.assign(1, MaterialDesc{});
     return;
@@ -139,6 +139,10 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
                     "an image embedded as raw texels", "the base colour alone");
     } else if (!texture.empty()) {
       const fs::path path = file_named_by_uri(directory, texture);
+      if (!uri_admitted(paths, directory, texture)) {
+        throw ParseError::whole_file(file, joined({"expected material ", std::to_string(i), "'s image to be ",
+                                                   paths.expected(), ", found ", quoted_token(texture)}));
+      }
       std::error_code error;
       if (fs::is_regular_file(path, error)) {
         TextureDesc image;
@@ -158,9 +162,9 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
 }
 
 SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
-                     double crease_angle_degrees, ReaderWarnings& warnings) {
+                     const PathRule& paths, double crease_angle_degrees, ReaderWarnings& warnings) {
   SceneDesc scene;
-  add_materials(mesh, format, file, directory, warnings, scene);
+  add_materials(mesh, format, file, directory, paths, warnings, scene);
   if (mesh.dropped_points_and_lines > 0) {
     warnings.warn("points and lines", {std::string(file), 0, 0}, "triangles",
                   joined({std::to_string(mesh.dropped_points_and_lines), " points and lines"}), "they are not drawn");
@@ -226,7 +230,7 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
 bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
 
 SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, bool strict,
-                             std::size_t triangle_budget) {
+                             std::size_t triangle_budget, const PathRule& paths) {
   if (!valid_crease_angle(crease_angle_degrees)) {
     throw std::invalid_argument("mesh reader: the crease angle is not in [0, 180] degrees");
   }
@@ -237,6 +241,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
 
   const std::string bytes = read_text_file(path, kMaxImportedMeshBytes, "a mesh");
   const fs::path directory = path.parent_path();
+  const PathRule rule = paths.for_folder(directory);
   ReaderWarnings warnings(strict);
   switch (*format) {
     case MeshFormat::ply:
@@ -246,10 +251,10 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
       check_stl(bytes, file);
       break;
     case MeshFormat::gltf:
-      check_gltf(bytes, file, directory, false, kMaxImportedMeshBytes);
+      check_gltf(bytes, file, directory, rule, false, kMaxImportedMeshBytes);
       break;
     case MeshFormat::glb:
-      check_gltf(bytes, file, directory, true, kMaxImportedMeshBytes);
+      check_gltf(bytes, file, directory, rule, true, kMaxImportedMeshBytes);
       break;
   }
 
@@ -268,7 +273,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                                        extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, error);
-  return scene_from(mesh, *format, file, directory, crease_angle_degrees, warnings);
+  return scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
 }
 
 }  // namespace quiver

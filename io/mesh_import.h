@@ -21,6 +21,7 @@
 
 #include "geometry/vertex_normals.h"
 #include "io/obj_reader.h"
+#include "io/path_rule.h"
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -33,11 +34,12 @@ bool is_imported_mesh_extension(std::string_view extension);
 
 // Reads the mesh at path (its extension names the format). At most
 // triangle_budget triangles (kMaxObjTriangles in all when meshes are
-// appended). Strict: what is otherwise a warning is a ParseError. Throws
+// appended). Strict: what is otherwise a warning is a ParseError. A glTF's
+// buffer and image files outside `paths` are errors (io/path_rule.h). Throws
 // ParseError, also when the Assimp module cannot be loaded, and
 // std::invalid_argument for a crease angle outside [0, 180].
 SceneDesc read_imported_mesh(const std::filesystem::path& path,
                              double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
-                             std::size_t triangle_budget = kMaxObjTriangles);
+                             std::size_t triangle_budget = kMaxObjTriangles, const PathRule& paths = {});
 
 }  // namespace quiver

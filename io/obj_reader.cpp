@@ -278,7 +278,7 @@ using MtlMaterials = std::unordered_map<std::string, MtlMaterial>;
 
 // Reads a texture statement's options and file name; for map_Kd records
 // the texture in `material`.
-void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& directory, MtlMaterial& material,
+void read_texture(LineScanner& scan, std::string_view keyword, const MtlLibrary& library, MtlMaterial& material,
                   ReaderWarnings& warnings) {
   while (!scan.at_end_of_line() && one_of(scan.peek().text, kTextureOnOffOptions)) {
     const Token option = scan.take("a texture option");
@@ -291,7 +291,9 @@ void read_texture(LineScanner& scan, std::string_view keyword, const fs::path& d
   }
   const Token file = scan.take_rest_of_line("a texture file name");
   if (keyword != "map_Kd") return;
-  const fs::path path = (directory / fs::path(file.text)).lexically_normal();
+  const fs::path path = (library.directory / fs::path(file.text)).lexically_normal();
+  const PathRule rule = library.paths.for_folder(library.directory);
+  if (!rule.admits(path)) scan.fail_at(file, rule.expected());
   std::error_code error;
   if (fs::is_regular_file(path, error)) {
     material.texture_path = path.string();
@@ -367,7 +369,7 @@ void read_mtl(const MtlLibrary& library, MtlMaterials& materials, ReaderWarnings
       m.illum = scan.integer("an illumination model from 0 to 10", 0, 10);
       scan.expect_end_of_line("illum");
     } else if (one_of(k, kMtlTextureKeys)) {
-      read_texture(scan, k, library.directory, m, warnings);
+      read_texture(scan, k, library, m, warnings);
     } else {
       scan.skip_rest_of_line();  // not used by quiver
     }
@@ -771,13 +773,16 @@ SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLooku
   return ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
 }
 
-MtlLookup libraries_beside(const fs::path& obj_path) {
+MtlLookup libraries_beside(const fs::path& obj_path, const PathRule& paths) {
   const fs::path directory = obj_path.parent_path();
-  return [directory](std::string_view name) -> std::optional<MtlLibrary> {
+  const PathRule rule = paths.for_folder(directory);
+  return [directory, rule](std::string_view name) -> std::optional<MtlLibrary> {
     const fs::path path = (directory / fs::path(name)).lexically_normal();
+    if (!rule.admits(path)) throw ParseError::whole_file(path.string(), "expected " + rule.expected());
     std::error_code error;
     if (!fs::is_regular_file(path, error)) return std::nullopt;
-    return MtlLibrary{read_text_file(path, kMaxMtlBytes, "an MTL material library"), path.string(), path.parent_path()};
+    return MtlLibrary{read_text_file(path, kMaxMtlBytes, "an MTL material library"), path.string(), path.parent_path(),
+                      rule};
   };
 }
 
@@ -789,9 +794,9 @@ SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, con
 }
 
 SceneDesc read_obj_scene(const fs::path& path, double crease_angle_degrees, bool strict,
-                         std::size_t triangle_budget) {
+                         std::size_t triangle_budget, const PathRule& paths) {
   const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
-  return parse_obj(text, path.string(), libraries_beside(path), triangle_budget, crease_angle_degrees, strict);
+  return parse_obj(text, path.string(), libraries_beside(path, paths), triangle_budget, crease_angle_degrees, strict);
 }
 
 }  // namespace quiver

@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "geometry/vertex_normals.h"
+#include "io/path_rule.h"
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -38,11 +39,13 @@ inline constexpr std::size_t kMaxObjCorners = std::size_t{1} << 26;
 inline constexpr std::size_t kMaxObjFaceVertices = 255;
 
 // An MTL library as the OBJ names it: its text, the name used in error
-// messages, and the folder its texture paths are relative to.
+// messages, the folder its texture paths are relative to, and the rule
+// they must keep (io/path_rule.h; by default the library's folder).
 struct MtlLibrary {
   std::string text;
   std::string file_name;
   std::filesystem::path directory;
+  PathRule paths;
 };
 
 // Finds the library an `mtllib` statement names; nullopt when there is none
@@ -59,11 +62,12 @@ using MtlLookup = std::function<std::optional<MtlLibrary>(std::string_view name)
 // is a ParseError. Faces without `vn` get smooth normals: angle-weighted over the
 // faces that share each `v` index and whose normals lie within
 // crease_angle_degrees of the face's own ([0, 180]; 0 leaves them faceted).
-// Faces with `vn` keep theirs. At most triangle_budget triangles. Throws
+// Faces with `vn` keep theirs. At most triangle_budget triangles. Libraries
+// and images outside `paths` are errors (io/path_rule.h). Throws
 // ParseError, and std::invalid_argument for a crease angle outside [0, 180].
 SceneDesc read_obj_scene(const std::filesystem::path& path,
                          double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
-                         std::size_t triangle_budget = kMaxObjTriangles);
+                         std::size_t triangle_budget = kMaxObjTriangles, const PathRule& paths = {});
 
 // Parses OBJ text; file_name labels error messages; `mtllib` names go
 // through find_library.

@@ -8,6 +8,7 @@
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
+#include "io/path_rule.h"
 #include "io/texture_image.h"
 #include "io/toml_reader.h"
 
@@ -15,15 +16,17 @@ namespace quiver {
 
 SceneDesc load_scene(const std::filesystem::path& path, const SceneLoadOptions& options) {
   const std::string extension = lowercase_extension(path);
+  const PathRule paths = PathRule{options.allow_outside_paths, {}}.for_folder(path.parent_path());
+  const double crease_angle = options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees);
   SceneDesc scene;
   if (extension == ".nff") {
     scene = read_nff(path);
   } else if (extension == ".toml") {
-    scene = read_toml_scene(path, options.crease_angle_degrees, options.strict);
+    scene = read_toml_scene(path, options.crease_angle_degrees, options.strict, paths);
   } else if (extension == ".obj") {
-    scene = read_obj_scene(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees), options.strict);
+    scene = read_obj_scene(path, crease_angle, options.strict, kMaxObjTriangles, paths);
   } else if (is_imported_mesh_extension(extension)) {
-    scene = read_imported_mesh(path, options.crease_angle_degrees.value_or(kDefaultCreaseAngleDegrees), options.strict);
+    scene = read_imported_mesh(path, crease_angle, options.strict, kMaxObjTriangles, paths);
   } else {
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
     throw ParseError::whole_file(

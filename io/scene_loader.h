@@ -19,6 +19,8 @@ struct SceneLoadOptions {
   // Meshes (the scene, or TOML [[meshes]]) read strictly: what is
   // otherwise a warning in SceneDesc::warnings is an error (obj_reader.h).
   bool strict = false;
+  // Files named inside the scene may lie outside its folder (io/path_rule.h).
+  bool allow_outside_paths = false;
 };
 
 // Throws ParseError: from the reader or the texture images, or "file:

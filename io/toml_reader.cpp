@@ -120,13 +120,14 @@ class SourceText {
 class TomlSceneReader {
  public:
   TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir,
-                  std::optional<double> crease_angle_override, bool strict)
+                  std::optional<double> crease_angle_override, bool strict, const PathRule& paths)
       : text_(text),
         source_(text),
         file_(file),
         base_dir_(base_dir),
         crease_angle_override_(crease_angle_override),
-        strict_(strict) {}
+        strict_(strict),
+        paths_(paths.for_folder(base_dir)) {}
 
   SceneDesc read() {
     const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
@@ -362,6 +363,7 @@ class TomlSceneReader {
     const std::string_view written = string(node, key, section);
     if (written.empty()) fail(node, expected_for(joined({"the path of ", kind}), key, section));
     const fs::path path = (base_dir_ / fs::path(written)).lexically_normal();
+    if (!paths_.admits(path)) fail(node, expected_for(paths_.expected(), key, section));
     std::error_code error;
     if (!fs::is_regular_file(path, error)) {
       fail(node, expected_for(joined({"the path of ", kind, " that exists (looked for '", path.string(), "')"}), key,
@@ -766,7 +768,7 @@ class TomlSceneReader {
   void append_mesh_of(const toml::table& t, const MeshSource& source, const std::array<float, 16>& columns,
                       std::string_view s) {
     try {
-      append_mesh(source.path, columns, source.material, scene_, source.crease_angle, strict_);
+      append_mesh(source.path, columns, source.material, scene_, source.crease_angle, strict_, paths_);
     } catch (const std::invalid_argument&) {
       fail(t, joined({"a ", s, " transform that is not singular once rounded to float"}));
     } catch (const ParseError& error) {
@@ -826,6 +828,7 @@ class TomlSceneReader {
   fs::path base_dir_;
   std::optional<double> crease_angle_override_;
   bool strict_;  // the included meshes' readers (obj_reader.h)
+  PathRule paths_;
   SceneDesc scene_;
   std::unordered_map<std::string, std::size_t> texture_names_;
   std::unordered_map<std::string, std::size_t> material_names_;
@@ -837,7 +840,7 @@ class TomlSceneReader {
 }  // namespace
 
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir,
-                           std::optional<double> crease_angle_override, bool strict) {
+                           std::optional<double> crease_angle_override, bool strict, const PathRule& paths) {
   if (crease_angle_override && !valid_crease_angle(*crease_angle_override)) {
     throw std::invalid_argument("TOML reader: the crease angle is not in [0, 180] degrees");
   }
@@ -845,12 +848,13 @@ SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, co
     throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
                                                     " bytes (", kTomlBoundsHint, ")"}));
   }
-  return TomlSceneReader(text, file_name, base_dir, crease_angle_override, strict).read();
+  return TomlSceneReader(text, file_name, base_dir, crease_angle_override, strict, paths).read();
 }
 
-SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override, bool strict) {
+SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override, bool strict,
+                          const PathRule& paths) {
   const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
-  return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override, strict);
+  return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override, strict, paths);
 }
 
 }  // namespace quiver

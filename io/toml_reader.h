@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 
+#include "io/path_rule.h"
 #include "scene/scene_desc.h"
 
 namespace quiver {
@@ -34,13 +35,17 @@ inline constexpr int kMaxRenderDepth = 64;
 // relative to the file's folder. crease_angle_override, when given (in
 // [0, 180]), is every mesh's crease angle, over its `crease_angle` key.
 // `strict` reads the included meshes strictly (obj_reader.h); their
-// warnings are the scene's. Throws ParseError.
+// warnings are the scene's. Every file the scene and its meshes name keeps
+// `paths` (io/path_rule.h; by default the scene's folder and below).
+// Throws ParseError.
 SceneDesc read_toml_scene(const std::filesystem::path& path,
-                          std::optional<double> crease_angle_override = std::nullopt, bool strict = false);
+                          std::optional<double> crease_angle_override = std::nullopt, bool strict = false,
+                          const PathRule& paths = {});
 
 // Parses TOML scene text; file_name labels error messages and relative
 // paths are resolved against base_dir.
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const std::filesystem::path& base_dir,
-                           std::optional<double> crease_angle_override = std::nullopt, bool strict = false);
+                           std::optional<double> crease_angle_override = std::nullopt, bool strict = false,
+                           const PathRule& paths = {});
 
 }  // namespace quiver

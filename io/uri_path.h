@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "io/path_rule.h"
+
 namespace quiver {
 
 // `uri` with every %XY (two hexadecimal digits) replaced by that byte; a
@@ -39,6 +41,13 @@ inline std::filesystem::path file_named_by_uri(const std::filesystem::path& dire
   std::error_code error;
   if (std::filesystem::is_regular_file(as_written, error)) return as_written;
   return (directory / std::filesystem::path(percent_decoded(uri))).lexically_normal();
+}
+
+// Whether `paths` admits the file a URI names, both as written and
+// percent-decoded (Assimp and quiver may open either).
+inline bool uri_admitted(const PathRule& paths, const std::filesystem::path& directory, std::string_view uri) {
+  return paths.admits(directory / std::filesystem::path(uri)) &&
+         paths.admits(directory / std::filesystem::path(percent_decoded(uri)));
 }
 
 }  // namespace quiver

@@ -36,7 +36,7 @@ MtlLookup libraries(std::map<std::string, std::string> texts) {
   return [texts = std::move(texts)](std::string_view name) -> std::optional<MtlLibrary> {
     const auto found = texts.find(std::string(name));
     if (found == texts.end()) return std::nullopt;
-    return MtlLibrary{found->second, found->first, kTestData};
+    return MtlLibrary{found->second, found->first, kTestData, {}};
   };
 }
 

@@ -166,7 +166,8 @@ TEST(SceneLoader, RecordsEveryFileItReads) {
 TEST(SceneLoader, TheCreaseAngleOptionReachesObjAndTomlMeshes) {
   const testing::TemporaryDirectory dir;
   const fs::path roof = kTestData / "obj" / "roof.obj";
-  std::ofstream(dir.path() / "roof.toml") << "[[meshes]]\nfile = \"" << roof.string() << "\"\ncrease_angle = 10\n";
+  fs::copy_file(roof, dir.path() / "roof.obj");
+  std::ofstream(dir.path() / "roof.toml") << "[[meshes]]\nfile = \"roof.obj\"\ncrease_angle = 10\n";
   const auto smoothed = [](const SceneDesc& scene) {
     return std::count_if(scene.triangles.begin(), scene.triangles.end(),
                          [](const SceneTriangle& t) { return t.triangle.normals.has_value(); });

@@ -33,7 +33,12 @@ void expect_near(const Vec3<float>& v, float x, float y, float z) {
   EXPECT_NEAR(v.z, z, 1e-5f);
 }
 
-SceneDesc parse(std::string_view text) { return parse_toml_scene(text, "test.toml", kTestData); }
+// Files named relative to tests/data/toml may lie anywhere in tests/data (the meshes are in ../obj).
+const PathRule kDataFolder{false, kTestData.parent_path()};
+
+SceneDesc parse(std::string_view text) {
+  return parse_toml_scene(text, "test.toml", kTestData, std::nullopt, false, kDataFolder);
+}
 
 // parse(text) throws a ParseError at test.toml:line:column whose what()
 // contains both fragments.
@@ -72,7 +77,8 @@ constexpr std::string_view kSphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 
 // ---- well-formed input ----
 
 TEST(TomlReader, ReadsEveryKeyWithExactValues) {
-  const SceneDesc scene = read_toml_scene(kTestData / "every_key.toml");
+  // Its image lies in a sibling folder (../obj/tex): allowed here, refused by default (io/path_rule.h).
+  const SceneDesc scene = read_toml_scene(kTestData / "every_key.toml", std::nullopt, false, PathRule{true, {}});
   expect_vec3(scene.background, 0.1f, 0.2f, 0.3f);
   expect_vec3(scene.ambient, 0.05f, 0.06f, 0.07f);
 
@@ -460,8 +466,8 @@ TEST(TomlReader, MeshCreaseAngleKeyAndTheCommandLineOverride) {
   EXPECT_EQ(smoothed(parse(mesh + "crease_angle = 29.5\n")), 0u);
   EXPECT_EQ(smoothed(parse(mesh + "crease_angle = 180\n")), 2u);
   // The override (--crease-angle) wins over the key, both ways.
-  EXPECT_EQ(smoothed(parse_toml_scene(mesh, "test.toml", kTestData, 0.0)), 0u);
-  EXPECT_EQ(smoothed(parse_toml_scene(mesh + "crease_angle = 0\n", "test.toml", kTestData, 60.0)), 2u);
+  EXPECT_EQ(smoothed(parse_toml_scene(mesh, "test.toml", kTestData, 0.0, false, kDataFolder)), 0u);
+  EXPECT_EQ(smoothed(parse_toml_scene(mesh + "crease_angle = 0\n", "test.toml", kTestData, 60.0, false, kDataFolder)), 2u);
   EXPECT_THROW(parse_toml_scene(mesh, "test.toml", kTestData, 200.0), std::invalid_argument);
   // Checked like every key, even when overridden.
   EXPECT_TRUE(error_at(mesh + "crease_angle = 181\n", 3, 16, "an angle from 0 to 180 degrees (crease_angle in [[meshes]])",

@@ -4,6 +4,7 @@ every SIMD width and thread count; hits that agree with the geometry of
 scenes built from arrays; misses as inf and -1; occluded agreeing with
 intersect."""
 import os
+import shutil
 import sys
 
 import numpy as np
@@ -102,10 +103,9 @@ def test_triangles_from_arrays_report_barycentrics_and_face_index():
 
 
 def test_instance_hits_name_the_instance_and_the_mesh_triangle(tmp_path):
-    mesh = os.path.abspath(os.path.join(DATA, "obj", "roof.obj"))
+    shutil.copy(os.path.join(DATA, "obj", "roof.obj"), tmp_path / "roof.obj")  # a scene names files in its folder
     scene_file = tmp_path / "instances.toml"
-    scene_file.write_text('[[instances]]\nfile = "%s"\n[[instances]]\nfile = "%s"\ntranslate = [5, 0, 0]\n'
-                          % (mesh, mesh))
+    scene_file.write_text('[[instances]]\nfile = "roof.obj"\n[[instances]]\nfile = "roof.obj"\ntranslate = [5, 0, 0]\n')
     scene = quiver.load(str(scene_file))
     assert scene.primitive_count == 2  # the roof's two faces, stored once
     origins = np.array([[0.25, 0.25, 5.0], [5.25, 0.25, 5.0], [-4.75, 0.25, 5.0], [20.0, 0.0, 5.0]])

@@ -49,7 +49,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
       default:
-        quiver::check_gltf(bytes, name, QUIVER_FUZZ_FILES_DIR, kind == 3, kMaxBytes);
+        quiver::check_gltf(bytes, name, QUIVER_FUZZ_FILES_DIR, quiver::PathRule{}.for_folder(QUIVER_FUZZ_FILES_DIR),
+                           kind == 3, kMaxBytes);
     }
   } catch (const quiver::ParseError& error) {
     check(error.file() == name);

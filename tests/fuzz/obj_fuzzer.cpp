@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view obj = input.substr(0, split);
   const std::string_view mtl = split == std::string_view::npos ? std::string_view() : input.substr(split + 1);
   const quiver::MtlLookup find_library = [mtl](std::string_view) -> std::optional<quiver::MtlLibrary> {
-    return quiver::MtlLibrary{std::string(mtl), std::string(kMtlFileName), QUIVER_FUZZ_FILES_DIR};
+    return quiver::MtlLibrary{std::string(mtl), std::string(kMtlFileName), QUIVER_FUZZ_FILES_DIR, {}};
   };
   using quiver::fuzz::check;
   try {
