@@ -416,8 +416,14 @@ class AsciiCursor {
 
   std::string name(const PlyProperty& property) const { return value_name(property, *element_); }
 
+  // Past the current line's end; the end of a file without a final line
+  // break stays on its last line.
   void next_line() {
-    p_ = std::min(line_end_ + 1, bytes_.size());
+    if (line_end_ == bytes_.size()) {
+      p_ = line_end_;
+      return;
+    }
+    p_ = line_end_ + 1;
     ++line_;
     line_start_ = p_;
   }

@@ -144,6 +144,12 @@ TEST(PlyReader, AsciiValuesAreNumbersOfTheirTypeReportedAtTheirPlace) {
             "test.ply:8:7: expected end of line (3 properties of element 'vertex'), found '0'");
   EXPECT_EQ(error_of(header + "0 0 0\n   0 0"),
             "test.ply:9:7: expected a value ('z' of element 'vertex'), found end of file");
+  // An element short at the end of a file without a final line break (a
+  // fuzzer's find): the end is on the last line.
+  std::string three = header;
+  three.replace(three.find("vertex 2"), 8, "vertex 3");
+  EXPECT_EQ(error_of(three + "0 0 0\n0 0 0      "),
+            "test.ply:9:12: expected a line of element 'vertex', found end of file");
   EXPECT_EQ(error_of(header + "0 0 0\n0 inf 0\n"),
             "test.ply:9:3: expected a finite number ('y' of element 'vertex'), found 'inf'");
 }
