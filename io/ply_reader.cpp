@@ -230,7 +230,7 @@ bool is_index_list(const PlyProperty& property) {
 bool is_unread_geometry(std::string_view name) { return name == "edge"; }
 
 struct Layout {
-  bool has_normals = false, has_uvs = false, has_polygons = false;
+  bool has_normals = false, has_uvs = false;
   std::uint64_t vertices = 0;
   const PlyElement* vertex = nullptr;
 };
@@ -562,7 +562,6 @@ struct FaceStore {
   std::uint64_t triangles = 0;  // after triangulation
   std::size_t short_faces = 0;
   std::string first_short_face;  // its place
-  std::vector<std::int64_t> strip;
 };
 
 template <typename Cursor>
