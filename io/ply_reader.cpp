@@ -229,6 +229,16 @@ bool is_index_list(const PlyProperty& property) {
 // Elements of geometry quiver does not draw: dropped with a warning.
 bool is_unread_geometry(std::string_view name) { return name == "edge"; }
 
+// Per-corner texture coordinates in a face list (MeshLab's `texcoord`),
+// which quiver does not read: a warning.
+const PlyProperty* face_texcoords(const PlyElement& element) {
+  if (element.name != "face" || element.count == 0) return nullptr;
+  for (const PlyProperty& property : element.properties) {
+    if (property.count_type != nullptr && property.name == "texcoord") return &property;
+  }
+  return nullptr;
+}
+
 struct Layout {
   bool has_normals = false, has_uvs = false;
   std::uint64_t vertices = 0;
@@ -873,6 +883,11 @@ void read_data(Cursor& in, const PlyHeader& header, const Layout& layout, Reader
                     "faces or triangle strips",
                     joined({std::to_string(element.count), " of element '", element.name, "'"}),
                     "they are not drawn");
+    }
+    if (const PlyProperty* texcoords = face_texcoords(element)) {
+      warnings.warn("ply face texcoord", {std::string(file), texcoords->line, texcoords->column},
+                    "texture coordinates of the vertex element (u v, s t or texture_u texture_v)",
+                    "'texcoord' lists of element 'face'", "they are not read");
     }
   }
   const FaceStore& faces = walk.faces();

@@ -222,6 +222,16 @@ TEST(PlyReader, UnreadGeometryIsAWarningNamingItAndOtherElementsAreSkipped) {
   EXPECT_EQ(error_of(text, true), "test.ply:10:1: expected faces or triangle strips, found 2 of element 'edge'");
 }
 
+TEST(PlyReader, PerFaceTextureCoordinatesAreAWarning) {
+  const std::string text = ascii_ladder(
+      "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n",
+      "3 0 1 2 6 0 0 1 0 0 1\n");
+  EXPECT_EQ(only_warning_of_one_triangle(text),
+            "test.ply:9:27: warning: expected texture coordinates of the vertex element (u v, s t or texture_u "
+            "texture_v), found 'texcoord' lists of element 'face'; they are not read");
+  EXPECT_EQ(error_of(text, true).rfind("test.ply:9:27: expected texture coordinates of the vertex element", 0), 0u);
+}
+
 TEST(PlyReader, QuadsFanFromTheirConcaveCornerAndNormalsAndUvsAreRead) {
   const std::string text =
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
