@@ -76,7 +76,7 @@ const PlyScalarType* ply_type(std::string_view name) {
 }
 
 // What a property is to quiver.
-enum class Role : std::uint8_t { skip, x, y, z, nx, ny, nz, u, v, face, strip };
+enum class Role : std::uint8_t { skip, x, y, z, nx, ny, nz, u, v, face, strip, corner_uvs };
 
 struct PlyProperty {
   const PlyScalarType* count_type = nullptr;  // lists only
@@ -229,16 +229,6 @@ bool is_index_list(const PlyProperty& property) {
 // Elements of geometry quiver does not draw: dropped with a warning.
 bool is_unread_geometry(std::string_view name) { return name == "edge"; }
 
-// Per-corner texture coordinates in a face list (MeshLab's `texcoord`),
-// which quiver does not read: a warning.
-const PlyProperty* face_texcoords(const PlyElement& element) {
-  if (element.name != "face" || element.count == 0) return nullptr;
-  for (const PlyProperty& property : element.properties) {
-    if (property.count_type != nullptr && property.name == "texcoord") return &property;
-  }
-  return nullptr;
-}
-
 struct Layout {
   bool has_normals = false, has_uvs = false;
   std::uint64_t vertices = 0;
@@ -252,7 +242,7 @@ Layout assign_roles(PlyHeader& header, std::string_view file) {
   for (PlyElement& element : header.elements) {
     const bool is_vertex = element.name == "vertex" && layout.vertex == nullptr;
     const bool is_face = element.name == "face", is_strip = element.name == "tristrips";
-    std::array<bool, 11> seen{};
+    std::array<bool, 12> seen{};
     for (PlyProperty& property : element.properties) {
       if (is_vertex && property.count_type == nullptr) property.role = vertex_role(property.name);
       if ((is_face || is_strip) && is_index_list(property) && !seen[std::size_t(Role::face)] &&
@@ -263,6 +253,10 @@ Layout assign_roles(PlyHeader& header, std::string_view file) {
                            quoted_token(property.item_type->name));
         }
         property.role = is_face ? Role::face : Role::strip;
+      }
+      if (is_face && property.count_type != nullptr && property.name == "texcoord" &&
+          !seen[std::size_t(Role::corner_uvs)]) {
+        property.role = Role::corner_uvs;
       }
       seen[std::size_t(property.role)] = true;
     }
@@ -568,7 +562,13 @@ struct FaceStore {
   struct Polygon {
     std::size_t offset, corners;
   };
+  // A corner's own texture coordinates (a face's `texcoord` list).
+  struct CornerUv {
+    std::size_t slot;  // in PlyMesh::triangles
+    float u, v;
+  };
   std::vector<Polygon> polygons;
+  std::vector<CornerUv> corner_uvs;
   std::uint64_t triangles = 0;  // after triangulation
   std::size_t short_faces = 0;
   std::string first_short_face;  // its place
@@ -589,8 +589,12 @@ class PlyWalk {
     }
     for (std::uint64_t i = 0; i < element.count; ++i) {
       in_.begin_instance(element);
+      face_corners_ = 0;
+      face_uvs_.clear();
+      bool has_corner_uvs = false;
       for (const PlyProperty& property : element.properties) {
         if (property.count_type != nullptr) {
+          has_corner_uvs = has_corner_uvs || property.role == Role::corner_uvs;
           list(property);
         } else if (property.role == Role::skip) {
           in_.skip(property, *property.item_type);
@@ -598,6 +602,7 @@ class PlyWalk {
           store(property, static_cast<std::size_t>(i));
         }
       }
+      if (has_corner_uvs && face_corners_ > 0) add_corner_uvs();
       in_.end_instance();
     }
   }
@@ -621,7 +626,25 @@ class PlyWalk {
     const std::uint64_t length = in_.length(property);
     if (property.role == Role::face) return face(property, length);
     if (property.role == Role::strip) return strip(property, length);
+    if (property.role == Role::corner_uvs) {
+      for (std::uint64_t k = 0; k < length; ++k) face_uvs_.push_back(in_.number(property));
+      return;
+    }
     for (std::uint64_t k = 0; k < length; ++k) in_.skip(property, *property.item_type);
+  }
+
+  // The face's texcoord list, a u v pair per corner (or empty), for its
+  // stored corners.
+  void add_corner_uvs() {
+    if (face_uvs_.empty()) return;
+    if (face_uvs_.size() != 2 * face_corners_) {
+      in_.fail(joined({"a 'texcoord' list of ", std::to_string(2 * face_corners_), " values (u v for each of the "
+                       "face's ", std::to_string(face_corners_), " vertices), not ",
+                       std::to_string(face_uvs_.size())}));
+    }
+    for (std::size_t k = 0; k < face_corners_; ++k) {
+      faces_.corner_uvs.push_back({face_offset_ + k, face_uvs_[2 * k], face_uvs_[2 * k + 1]});
+    }
   }
 
   std::uint32_t index(const PlyProperty& property) {
@@ -657,6 +680,8 @@ class PlyWalk {
     mesh_.triangles.resize(offset + 3 * (corners - 2));
     for (std::uint64_t k = 0; k < corners; ++k) mesh_.triangles[offset + k] = index(property);
     if (corners > 3) faces_.polygons.push_back({offset, static_cast<std::size_t>(corners)});
+    face_offset_ = offset;
+    face_corners_ = static_cast<std::size_t>(corners);
   }
 
   // A strip's triangle k takes vertices k, k+1, k+2; odd ones turn the other
@@ -694,7 +719,28 @@ class PlyWalk {
   std::uint64_t budget_;
   PlyMesh& mesh_;
   FaceStore faces_;
+  // The face being read: where its corners are, and its texcoord values.
+  std::size_t face_offset_ = 0, face_corners_ = 0;
+  std::vector<float> face_uvs_;
 };
+
+// Gives each corner with its own texture coordinates a vertex of its own
+// (the position and normal copied), as Assimp did.
+void split_corner_uvs(const FaceStore& faces, PlyMesh& mesh) {
+  if (faces.corner_uvs.empty()) return;
+  mesh.uvs.resize(2 * (mesh.positions.size() / 3));  // vertices without any keep (0, 0)
+  for (const FaceStore::CornerUv& corner : faces.corner_uvs) {
+    const std::uint32_t from = mesh.triangles[corner.slot];
+    mesh.triangles[corner.slot] = static_cast<std::uint32_t>(mesh.positions.size() / 3);
+    for (std::vector<float>* values : {&mesh.positions, &mesh.normals}) {
+      if (values->empty()) continue;
+      const std::array<float, 3> copy{(*values)[3 * from], (*values)[3 * from + 1], (*values)[3 * from + 2]};
+      values->insert(values->end(), copy.begin(), copy.end());
+    }
+    mesh.uvs.push_back(corner.u);
+    mesh.uvs.push_back(corner.v);
+  }
+}
 
 // ---- triangulation as Assimp 5.2's aiProcess_Triangulate --------------------------
 
@@ -884,11 +930,6 @@ void read_data(Cursor& in, const PlyHeader& header, const Layout& layout, Reader
                     joined({std::to_string(element.count), " of element '", element.name, "'"}),
                     "they are not drawn");
     }
-    if (const PlyProperty* texcoords = face_texcoords(element)) {
-      warnings.warn("ply face texcoord", {std::string(file), texcoords->line, texcoords->column},
-                    "texture coordinates of the vertex element (u v, s t or texture_u texture_v)",
-                    "'texcoord' lists of element 'face'", "they are not read");
-    }
   }
   const FaceStore& faces = walk.faces();
   if (faces.short_faces > 0) {
@@ -897,6 +938,7 @@ void read_data(Cursor& in, const PlyHeader& header, const Layout& layout, Reader
                   "they are dropped");
   }
   if (!any_faces) mesh.point_cloud_vertices = static_cast<std::size_t>(layout.vertices);
+  split_corner_uvs(faces, mesh);
   triangulate(faces, mesh);
 }
 

@@ -5,7 +5,8 @@
 // texture coordinates (u v, s t or texture_u texture_v) when present;
 // `face` lists (`vertex_indices` or `vertex_index`) as polygons,
 // triangulated as Assimp 5.2 does (quads from their concave corner, larger
-// polygons by ear clipping in their Newell plane); `tristrips` lists, where
+// polygons by ear clipping in their Newell plane), with their `texcoord`
+// lists (a vertex of its own for each such corner); `tristrips` lists, where
 // -1 restarts a strip and every second triangle turns the other way.
 // Rules: every element count and list length is bounded by the bytes that
 // follow it before anything is allocated; ASCII holds one element per line,

@@ -222,14 +222,26 @@ TEST(PlyReader, UnreadGeometryIsAWarningNamingItAndOtherElementsAreSkipped) {
   EXPECT_EQ(error_of(text, true), "test.ply:10:1: expected faces or triangle strips, found 2 of element 'edge'");
 }
 
-TEST(PlyReader, PerFaceTextureCoordinatesAreAWarning) {
-  const std::string text = ascii_ladder(
-      "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n",
-      "3 0 1 2 6 0 0 1 0 0 1\n");
-  EXPECT_EQ(only_warning_of_one_triangle(text),
-            "test.ply:9:27: warning: expected texture coordinates of the vertex element (u v, s t or texture_u "
-            "texture_v), found 'texcoord' lists of element 'face'; they are not read");
-  EXPECT_EQ(error_of(text, true).rfind("test.ply:9:27: expected texture coordinates of the vertex element", 0), 0u);
+// MeshLab's texture coordinates per face corner: each corner becomes a
+// vertex of its own with them.
+TEST(PlyReader, PerCornerTextureCoordinatesOfFacesAreRead) {
+  const std::string faces =
+      "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n";
+  const PlyMesh mesh = read(ascii_ladder(faces, "3 0 1 3 6 0.5 0 1 0 0 1\n"));
+  const std::vector<std::array<std::uint32_t, 3>> expected{{6, 7, 8}};
+  ASSERT_EQ(triangles_of(mesh), expected);
+  ASSERT_EQ(mesh.positions.size(), 27u);
+  ASSERT_EQ(mesh.uvs.size(), 18u);
+  const std::array<std::uint32_t, 3> from{0, 1, 3};
+  const std::array<std::array<float, 2>, 3> uvs{{{0.5f, 0.f}, {1.f, 0.f}, {0.f, 1.f}}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(mesh.positions[3 * (6 + k) + c], mesh.positions[3 * from[k] + c]);
+    EXPECT_EQ(mesh.uvs[2 * (6 + k)], uvs[k][0]);
+    EXPECT_EQ(mesh.uvs[2 * (6 + k) + 1], uvs[k][1]);
+  }
+  EXPECT_EQ(error_of(ascii_ladder(faces, "3 0 1 2 4 0 0 1 0\n")),
+            "test.ply:17:17: expected a 'texcoord' list of 6 values (u v for each of the face's 3 vertices), not 4, "
+            "found '0'");
 }
 
 TEST(PlyReader, QuadsFanFromTheirConcaveCornerAndNormalsAndUvsAreRead) {
