@@ -1,5 +1,5 @@
 // Loads the quiver_assimp module (io/assimp_module.h) on first use: Assimp
-// is mapped only by a run that reads a PLY, glTF or STL mesh. Where it is
+// is mapped only by a run that reads a glTF or STL mesh. Where it is
 // looked for: io/module_loader.h, with $QUIVER_ASSIMP_MODULE.
 #pragma once
 

@@ -1,11 +1,10 @@
-// Structural checks of PLY, STL and glTF/GLB files before Assimp reads them
+// Structural checks of STL and glTF/GLB files before Assimp reads them
 // (io/mesh_import.h), so that no count in a file makes the importer
-// allocate more than the file's bytes can back: every PLY element count and
-// list length against the bytes left (the data walked once, as the header
-// declares it), a binary STL's triangle count against the file's size, a
-// GLB's length and chunks, and every glTF buffer's byteLength against the
-// file or data URI that holds it. Errors in text name file:line:column;
-// in binary data, "file: byte N: expected X, found Y".
+// allocate more than the file's bytes can back: a binary STL's triangle
+// count against the file's size, a GLB's length and chunks, and every glTF
+// buffer's byteLength against the file or data URI that holds it (PLY is
+// read by quiver itself: io/ply_reader.h). Errors in text name
+// file:line:column; in binary data, "file: byte N: expected X, found Y".
 #pragma once
 
 #include <cstddef>
@@ -13,22 +12,16 @@
 #include <string_view>
 
 #include "io/path_rule.h"
-#include "io/reader_warnings.h"
 
 namespace quiver {
 
 // What the file's header declares, for the caller's bounds.
 struct MeshFileCounts {
-  std::size_t vertices = 0;   // PLY's vertex element; 0 when unknown
-  std::size_t triangles = 0;  // after fan triangulation; 0 when unknown
+  std::size_t triangles = 0;  // 0 when unknown
   bool stl_binary = false;
 };
 
 // `bytes` is the whole file, `file` its name in messages. Throws ParseError.
-// A PLY header line that is none of PLY's (Blender 2.4 wrote "Created by
-// ..." without "comment") is a warning in `warnings` and skipped, as
-// Assimp skips it; strict, an error.
-MeshFileCounts check_ply(std::string_view bytes, std::string_view file, ReaderWarnings& warnings);
 MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
 // URI are looked for relative to `directory` (outside `paths`, an error:

@@ -17,6 +17,7 @@
 #include "io/file_extension.h"
 #include "io/mesh_file_check.h"
 #include "io/parse_error.h"
+#include "io/ply_reader.h"
 #include "io/reader_warnings.h"
 #include "io/text_file.h"
 #include "io/uri_path.h"
@@ -225,6 +226,28 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   return scene;
 }
 
+// A PLY mesh (io/ply_reader.h) as one part of an import, so that its
+// triangles and smooth normals are built as every imported mesh's.
+SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double crease_angle_degrees,
+                         ReaderWarnings& warnings) {
+  ImportedPart part{};
+  part.vertex_count = ply.positions.size() / 3;
+  part.positions = ply.positions.data();
+  part.normals = ply.normals.empty() ? nullptr : ply.normals.data();
+  part.uvs = ply.uvs.empty() ? nullptr : ply.uvs.data();
+  part.uv_stride = 2;
+  part.triangle_count = ply.triangles.size() / 3;
+  part.indices = ply.triangles.data();
+  const ImportedMaterial material{};
+  ImportedMesh mesh{};
+  mesh.part_count = 1;
+  mesh.parts = &part;
+  mesh.material_count = 1;
+  mesh.materials = &material;
+  mesh.dropped_points_and_lines = ply.point_cloud_vertices;
+  return scene_from(mesh, MeshFormat::ply, file, {}, PathRule{}, crease_angle_degrees, warnings);  // PLY names no files
+}
+
 }  // namespace
 
 bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
@@ -245,8 +268,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   ReaderWarnings warnings(strict);
   switch (*format) {
     case MeshFormat::ply:
-      check_ply(bytes, file, warnings);
-      break;
+      return scene_from_ply(read_ply(bytes, file, warnings, triangle_budget), file, crease_angle_degrees, warnings);
     case MeshFormat::stl:
       check_stl(bytes, file);
       break;
@@ -264,9 +286,9 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   } catch (const std::runtime_error& error) {
     throw ParseError::whole_file(file, error.what());
   }
-  // PLY and STL are read from the bytes checked; glTF from its file, whose
-  // buffers and images are named relative to it.
-  const bool from_memory = *format == MeshFormat::ply || *format == MeshFormat::stl;
+  // STL is read from the bytes checked; glTF from its file, whose buffers
+  // and images are named relative to it.
+  const bool from_memory = *format == MeshFormat::stl;
   ImportedMesh mesh{};
   char error[1024] = {};
   ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),

@@ -1,9 +1,9 @@
-// Reader for PLY, glTF 2.0 (.gltf, .glb) and STL meshes through Assimp
-// (the quiver_assimp module, loaded on first use: io/assimp_loader.h).
-// Before Assimp sees a file its structure is checked here
-// (io/mesh_file_check.h), so memory stays bounded by the file's size and
-// the errors name file:line:column or the byte; Assimp's own errors read
-// "file: Assimp: message". The result is a SceneDesc of triangles in world
+// Reader for PLY (quiver's own reader, io/ply_reader.h), glTF 2.0 (.gltf,
+// .glb) and STL meshes (through Assimp: the quiver_assimp module, loaded on
+// first use, io/assimp_loader.h). Before Assimp sees a file its structure
+// is checked (io/mesh_file_check.h), so memory stays bounded by the file's
+// size and the errors name file:line:column or the byte; Assimp's own
+// errors read "file: Assimp: message". The result is a SceneDesc of triangles in world
 // space (each mesh placed by every node that names it, the winding kept
 // front-facing under a mirror; points and lines dropped with a warning). Normals as the file gives them; PLY faces without normals and
 // every STL face (whose normals are per facet) get smooth normals with the
@@ -36,7 +36,7 @@ bool is_imported_mesh_extension(std::string_view extension);
 // triangle_budget triangles (kMaxObjTriangles in all when meshes are
 // appended). Strict: what is otherwise a warning is a ParseError. A glTF's
 // buffer and image files outside `paths` are errors (io/path_rule.h). Throws
-// ParseError, also when the Assimp module cannot be loaded, and
+// ParseError, also when the Assimp module cannot be loaded (glTF, STL), and
 // std::invalid_argument for a crease angle outside [0, 180].
 SceneDesc read_imported_mesh(const std::filesystem::path& path,
                              double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,

@@ -1,14 +1,15 @@
-// libFuzzer target for the structural checks run before Assimp reads a PLY,
-// STL or glTF file (io/mesh_file_check.h), whose walk over binary counts is
-// quiver's own code. The input's first byte picks the check (0 PLY, 1 STL,
-// 2 glTF text, 3 GLB; modulo 4), the rest is the file's bytes; glTF buffer
-// URIs resolve in tests/data/mesh. quiver::ParseError is the only accepted
-// failure; any other exception, a sanitizer report or a broken invariant is
-// a finding.
+// libFuzzer target for quiver's PLY reader (io/ply_reader.h) and the
+// structural checks run before Assimp reads an STL or glTF file
+// (io/mesh_file_check.h). The input's first byte picks the reader (0 PLY,
+// 1 STL, 2 glTF text, 3 GLB; modulo 4), the rest is the file's bytes; glTF
+// buffer URIs resolve in tests/data/mesh. quiver::ParseError is the only
+// accepted failure; any other exception, a sanitizer report or a broken
+// invariant is a finding.
 //
-// Invariants on success: the counts are within the OBJ bounds
-// (kMaxObjVertices, kMaxObjTriangles), and a binary STL's triangle count
-// is what its size says.
+// Invariants on success: a PLY's vertices and triangles are within the OBJ
+// bounds (kMaxObjVertices, kMaxObjTriangles), its normals and texture
+// coordinates are per vertex, and every index names a vertex; a binary
+// STL's triangle count is what its size says.
 // Invariants on ParseError: file() is the input's name; an error with a
 // line points into the input as the text readers' do (PLY's header and
 // ASCII data, glTF's JSON), one without reads "name: ...".
@@ -20,6 +21,7 @@
 #include "io/mesh_file_check.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
+#include "io/ply_reader.h"
 #include "tests/fuzz/scene_invariants.h"
 
 namespace {
@@ -39,8 +41,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     switch (kind) {
       case 0: {
         quiver::ReaderWarnings warnings(false);
-        const quiver::MeshFileCounts counts = quiver::check_ply(bytes, name, warnings);
-        check(counts.vertices <= quiver::kMaxObjVertices && counts.triangles <= quiver::kMaxObjTriangles);
+        const quiver::PlyMesh mesh = quiver::read_ply(bytes, name, warnings);
+        const std::size_t vertices = mesh.positions.size() / 3;
+        check(mesh.positions.size() % 3 == 0 && vertices <= quiver::kMaxObjVertices);
+        check(mesh.triangles.size() % 3 == 0 && mesh.triangles.size() / 3 <= quiver::kMaxObjTriangles);
+        check(mesh.normals.empty() || mesh.normals.size() == 3 * vertices);
+        check(mesh.uvs.empty() || mesh.uvs.size() == 2 * vertices);
+        for (std::uint32_t index : mesh.triangles) check(index < vertices);
         break;
       }
       case 1: {
