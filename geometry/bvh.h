@@ -47,10 +47,10 @@ constexpr std::int32_t leaf_store(std::int32_t child) { return (-1 - child) / 16
 inline constexpr std::size_t kMaxBvhPrimitives = std::size_t(1) << 26;
 
 struct BvhBuildOptions {
-  int width = 8;               // children per node: 2, 4 or 8 (8 measured fastest, bench/README.md)
+  int width = 8;               // children per node: 2, 4 or 8 (8: a shallower tree, a node's children tested together)
   int max_leaf_size = 8;       // at most kMaxLeafSize
   int bins = 16;               // SAH bins per axis
-  float traversal_cost = 4.f;  // relative to one primitive test (3-8 within the noise, bench/README.md)
+  float traversal_cost = 4.f;  // relative to one primitive test
   std::size_t parallel_threshold = 4096;  // subtrees at least this big build in parallel (oneTBB)
 };
 

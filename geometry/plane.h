@@ -1,8 +1,8 @@
 // Ray / infinite plane, two formulas for t over one stored plane (unit n,
 // a point p on it as given, and d = -n.p rounded to float):
 //   seed:     t = -(d + n.o) / (n.dir), the seed's formula. d + n.o cancels
-//             when the origin is far from the world origin, so t loses
-//             digits there (bench/ACCURACY.md: 1e-3 relative at 1e5).
+//             when the origin is far from the world origin, so t's absolute
+//             error is about eps (|d| + |o|) / |n.dir|, however short t is.
 //   anchored: t = n.(p - o) / (n.dir). p - o is exact or nearly so when o is
 //             near p, so the error follows the ray's distance from the
 //             plane's point, not from the world origin (as the robust

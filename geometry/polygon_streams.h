@@ -15,7 +15,7 @@ enum class PolygonMethod { crossing };
 template <KernelUnit U>
 KernelStreams<PolygonSoA> polygon_streams(PolygonMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<PolygonSoA> polygon_bvh_streams(PolygonMethod method);
 

@@ -13,7 +13,7 @@ enum class SphereMethod { algebraic, geometric, robust };
 template <KernelUnit U>
 KernelStreams<SphereSoA> sphere_streams(SphereMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<SphereSoA> sphere_bvh_streams(SphereMethod method);
 

@@ -6,7 +6,7 @@
 //   u = T.p/det, v = d.q/det, t = e2.q/det (as products with 1/det, like the
 //   paper's code). Epsilon-free: only det == 0 misses (1 is fed to the
 //   division). Not watertight: a ray through a shared edge can miss both
-//   triangles (measured in tests/geometry_triangle_test.cpp).
+//   triangles (tests/geometry_triangle_test.cpp finds such rays).
 // TriangleWatertight: Woop, Benthin & Wald, "Watertight Ray/Triangle
 //   Intersection", JCGT 2(1), 2013. prepare(): per lane kz = argmax|d| (ties
 //   to z, then y), kx, ky cyclic after it and swapped when d[kz] < 0, shear
@@ -16,9 +16,9 @@
 //   opposite values, and by monotonic rounding the right sign or 0. A 0 is
 //   recomputed with difference_of_products (error <= 2 ulp, so the exact
 //   sign unless the products underflow) in place of the paper's double.
-//   Deviations, both measured: the shear uses fma (fewer misses far from the
-//   origin than unfused), and t is range-tested after the division, not as
-//   the paper's scaled t xor sign(det), so (tmin, tmax) is exact and the
+//   Deviations: the shear uses fma (one rounding instead of two, so fewer
+//   misses far from the origin), and t is range-tested after the division,
+//   not as the paper's scaled t xor sign(det), so (tmin, tmax) is exact and the
 //   stream orders agree bit for bit; the division still waits until some
 //   lane passes the edge tests.
 //   Axes: when every lane shares kz and the swap (always for one ray, for a
@@ -224,8 +224,8 @@ struct TriangleWatertight {
   // triangles at a time: calls visit(prepared, Axes{}) with the ray's frame
   // as a compile-time AxesFixed, so that a caller testing many blocks
   // (the single-ray BVH walk) chooses the frame once per ray, not per block.
-  // (Preparing the scalar ray and broadcasting its fields measured faster
-  // than prepare(broadcast_ray<F>(ray)).)
+  // The scalar ray is prepared and its fields broadcast, so the axis choice
+  // runs once on floats instead of on every lane of a broadcast ray.
   template <class F, class Visit>
   [[gnu::always_inline]] static void with_fixed_axes(const Ray<float>& ray, Visit&& visit) {
     using namespace triangle_detail;

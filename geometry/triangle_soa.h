@@ -60,7 +60,7 @@ inline constexpr double kMinTriangleRelativeHeight = 0x1p-24;
 // Drops triangles with a non-finite number (vertex, normal, uv, or an edge or
 // normal that overflows) and degenerate ones: zero area (repeated vertex,
 // collinear vertices), height below kMinTriangleRelativeHeight times the
-// longest edge (measured in double), or a float edge cross product that is
+// longest edge (computed in double), or a float edge cross product that is
 // exactly zero. When some triangles have normals (uvs) and others do not,
 // the others get the unit geometric normal (uvs (0,0), (1,0), (0,1)); a zero
 // shading normal is replaced by the geometric one; normals are normalised.

@@ -13,7 +13,7 @@ enum class TriangleMethod { moller_trumbore, watertight };
 template <KernelUnit U>
 KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh_traversal.h).
+// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method);
 

@@ -57,7 +57,7 @@ struct PixelTile {
 // row, partial groups at the right and bottom edges. Traced in this order,
 // 16 consecutive samples (one 16-wide packet) cover a 4 x 4 footprint and
 // eight (one 8-wide packet) a 4 x 2 footprint, not a row, and stay closer
-// together through the BVH (bench/README.md).
+// together through the BVH.
 inline constexpr int kPixelGroupWidth = 4, kPixelGroupHeight = 4;
 template <class Visit>
 void for_each_pixel_in_groups(int x0, int y0, int x1, int y1, Visit&& visit) {

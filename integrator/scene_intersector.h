@@ -5,12 +5,11 @@
 // with the watertight triangle, crossing polygon, seed plane and quadric cone
 // methods, and the sphere method chosen per scene: the seed's algebraic test
 // where no ray origin is more than kAlgebraicSphereMaxDistanceRatio radii from
-// a sphere's centre (it gives no wrong answer on clear rays through 31.6
-// radii, bench/ACCURACY.md "Choosing per scene"), else the robust one. HitSoA
-// carries the closest t, so the stores compose; every path reports the
-// smallest (t, id), so the order does not matter. Instances go through
-// their top-level BVH (geometry/instance_leaves.h) into their meshes'
-// triangle BVHs, with the same triangle method.
+// a sphere's centre (kAlgebraicSphereMaxDistanceRatio says why), else the
+// robust one. HitSoA carries the closest t, so the stores compose; every
+// path reports the smallest (t, id), so the order does not matter.
+// Instances go through their top-level BVH (geometry/instance_leaves.h)
+// into their meshes' triangle BVHs, with the same triangle method.
 #pragma once
 
 #include "geometry/cone_streams.h"
@@ -36,8 +35,8 @@ double sphere_origin_distance_ratio(const Scene& scene);
 
 // The algebraic sphere test is wrong on clear rays from 100 radii on and
 // clean through 31.6 (tests/accuracy_failure_points_test.cpp); its error
-// band grows as ratio^2, so 10 keeps it 10x inside the last clean point, and
-// 10 radii is where the acne study measured it with the robust offset.
+// band grows as ratio^2, so 10 keeps it 10x inside the last clean point,
+// near enough that the robust offset still clears the surface a ray leaves.
 inline constexpr double kAlgebraicSphereMaxDistanceRatio = 10.0;
 
 // algebraic when the scene has spheres and every ray origin is within the

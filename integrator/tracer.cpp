@@ -255,7 +255,7 @@ void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
   // rays still lit, from their last crossing on; the first along the slot's
   // own rays when at most an eighth are occluded (those given the empty
   // range (0, -1)), sparing the copies: with more, their dead lanes in the
-  // packets cost more than the copies (bench/README.md).
+  // packets cost more than the copies.
   ShadowSlot& slot = slots_[s];
   std::vector<Vec3<float>>& transmittance = transmittance_[s];
   AlignedInts& occluded = occlusion_[s].occluded;

@@ -266,7 +266,7 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   // the kr share, it crosses no surface, so the colour (a filter where light
   // refracts through the surface, entering or leaving) does not multiply
   // it: through a tinted prism that folds a ray twice inside, the sky is
-  // kt^4 C^2, not kt^4 C^4 (issue 29: POV-Ray gives C^2).
+  // kt^4 C^2, not kt^4 C^4, as POV-Ray gives it.
   const Mask<F> total_internal = and_not(transmissive, transmitted);
   reflect_weight = select(total_internal, reflect_weight + weight * kt, reflect_weight);
   refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), refract_weight);

@@ -74,21 +74,18 @@ inline bool same_octant(const Ray<F>& ray, const Mask<F>& active) {
   return true;
 }
 
-// Stores whose incoherent rays traverse faster one by one (scan leaves):
-// triangles. Polygon packets were faster together on every ray set
-// measured (bench/README.md). Spheres stay together too: the octant rule
-// gained 15% on balls-s4's diffuse rays but lost 7% on its reflection rays,
-// and reflections are what a Whitted renderer traces. Cones follow spheres.
+// Stores whose incoherent packets walk ray by ray: triangles, whose leaves
+// a lone ray scans several triangles at a time. Polygon packets stay
+// together (a lone ray tests polygons one at a time); so do spheres and
+// cones, whose reflection rays, what a Whitted renderer traces, stay
+// coherent enough to share a walk.
 template <class S>
 concept IncoherentRaysTraverseAlone = S::kIncoherentRaysTraverseAlone;
 
 // Whether the packet's active lanes walk the tree together: never when one
 // reaches behind its origin (the packet walks' slab tests need tmin >= 0),
 // else as the traversal says; automatic: triangles only within one octant.
-// (Any-hit triangle packets one by one won 9% on the bunny's shadow rays
-// and lost 38% on teapot-s12's, so they follow the same rule. Handing a packet's last 1, 2 or 3 lanes to the single-ray walk
-// (Benthin et al. 2012) gained at most 3% (bunny primary rays) and lost up
-// to 23% (gears-s4 shadow rays), so it is not used.)
+// Any-hit packets follow the same rule as closest-hit ones.
 template <class S, class F>
 inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Mask<F>& active) {
   if (traversal == BvhTraversal::single || reaches_behind(ray, active)) return false;
@@ -147,8 +144,8 @@ template <KernelUnit U, class Method, class S, int N, int K>
     if (none(open)) continue;
     if (travels_together<S>(traversal, ray, open)) {
       // No frustum over two stores: the walk skips the untested store's
-      // children without a box test, which leaves it little to save
-      // (gears-s4: shadow rays -3..-5%, its whole render -5%).
+      // children without a box test, which leaves the frustum too little to
+      // save for its setup per packet.
       const PacketSlab<F, N> slab(ray, open);
       const NodeFrustum<U, N> frustum =
           K == 1 ? NodeFrustum<U, N>(slab, ray.tmin, ray.tmax, open) : NodeFrustum<U, N>();

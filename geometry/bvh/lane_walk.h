@@ -76,10 +76,10 @@ struct LaneOccludedWalk {
 // The closest hits of a packet's `lanes` (bits), ray by ray. The packet's
 // node terms and frames are set up at once (LaneNodeTerms,
 // Method::prepare_lanes) and its rays walked frame by frame, so no ray
-// pays for its own divisions and frame branches (rays with few node visits
-// spent most of their time in that setup: bench/README.md); a lane those
-// terms do not cover walks through
-// closest_bvh_single. Out of line and flattened, as closest_bvh_single.
+// pays for its own divisions and frame branches (a ray with few node
+// visits would spend most of its walk on that setup); a lane those terms
+// do not cover walks through closest_bvh_single. Out of line and
+// flattened, as closest_bvh_single.
 template <KernelUnit U, class Method, int N, class S, int K>
 [[gnu::noinline, gnu::flatten]] void closest_bvh_lanes(BvhStores<S, K> stores, const Bvh& bvh, const RaySoA& rays,
                                                        std::size_t first, unsigned lanes, HitSoA& hits) {

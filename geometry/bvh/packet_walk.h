@@ -26,7 +26,8 @@ inline namespace QUIVER_UNIT_NAMESPACE {
 // Calls visit(c) for the children c of an N-wide node a packet tests, in
 // order (kLastFirst: N-1 down to 0): without a frustum every child, in a
 // counted loop; after one (kSome) the children in `candidates`, bit by bit.
-// (One loop form for both measured slower: bench/README.md.)
+// Two forms chosen at compile time: the counted loop unrolls, the bit loop
+// skips the children the frustum ruled out.
 template <int N, bool kSome, bool kLastFirst, class Visit>
 [[gnu::always_inline]] inline void for_each_child(unsigned candidates, const Visit& visit) {
   if constexpr (!kSome) {
@@ -108,7 +109,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
       std::array<F, N> child_near;
       unsigned entered = 0;
       for (int c = 0; c < N; ++c) {
-        // One store: no check, an empty slot's empty box lets no lane in (measured faster on balls-s4).
+        // One store: no check, an empty slot's empty box lets no lane in, so a check would only add work.
         if constexpr (K == 2) {
           if (!worth_entering(stores, BvhNodes<N>::child(block, c))) continue;
         }

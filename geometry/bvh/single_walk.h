@@ -31,7 +31,7 @@ auto prepare_for_leaves(const Ray<float>& ray) {
 
 // Method::intersect, flattened on its own. GCC leaves the one-ray (float)
 // test of a kind without a scan orientation out of line in the single-ray
-// walks; forcing it inline measured slower on gears-s4 (bench/README.md).
+// walks, which keeps the walk's own loop small.
 template <KernelUnit U, class Method, class Prepared, class L, class F>
 [[gnu::flatten]] inline Mask<F> intersect_in_unit(const Prepared& prepared, const L& prims, const F& tmax,
                                                   const Mask<F>& active, Candidate<F>& out) {
@@ -81,8 +81,7 @@ template <KernelUnit U, class Method, class S, class Walk>
 }
 
 // Calls walk(leaf_ray). A scan with a per-ray frame gets one walk per frame
-// (six), chosen once per ray: faster than choosing the frame at every leaf
-// block (bench/README.md).
+// (six), chosen once per ray, so no leaf block pays for choosing it.
 template <KernelUnit U, class Method, class S, class Walk>
 [[gnu::always_inline]] inline void with_leaf_ray(const Ray<float>& ray, const Walk& walk) {
   using F = LeafScanLanes<U>;
@@ -111,8 +110,8 @@ struct WithNodeTests {
 // far off that o/d overflows: rays no renderer makes) through one plain
 // copy with float node tests (which enter every child of a ray reaching
 // behind its origin, NodeRay::tmin). Other kinds keep one copy, on the
-// floats: two copies made the polygon walk much slower (its per-ray setup
-// weighs much there).
+// floats: their per-ray setup outweighs the node tests, so the bits would
+// save little and a second copy would cost code.
 template <KernelUnit U, class Method, class S, class Walk>
 [[gnu::always_inline]] inline void run_single_walk(const Ray<float>& ray, const Walk& walk) {
   if constexpr (!ScanStore<S>) {
@@ -240,8 +239,8 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
     const float* block = nodes.block(entry);
     for (unsigned bits = enter_children<N, kBits>(block, node_ray, tmax, near); bits != 0;
          bits &= bits - 1) {
-      // Never an empty slot (empty boxes are never entered), yet dropping
-      // that test measured slower on shadow rays (bench/README.md).
+      // Never an empty slot (empty boxes are never entered); the test is
+      // kept on purpose: this loop runs slower without it.
       const std::int32_t child = BvhNodes<N>::child(block, __builtin_ctz(bits));
       if (worth_entering(stores, child)) stack[top++] = child;
     }

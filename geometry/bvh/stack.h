@@ -1,7 +1,7 @@
 // The walks' traversal stacks push a node's children farthest first, so the
 // nearest is popped next: each push is an insertion into the entries pushed
-// for the same node. The stacks themselves stay local arrays in each walk
-// (held in a struct, primary rays ran a quarter slower: bench/README.md).
+// for the same node. The stacks themselves are local arrays in each walk, so
+// nothing outside the walk can alias them.
 #pragma once
 
 #include <cstddef>

@@ -39,7 +39,7 @@ concept ScanStore = requires(const S& s) { s.template load<float>(0); };
 // tests those in `tested` (bit s for store s): the packet walks and the
 // any-hit walk never push a leaf of the others, the closest-hit single-ray
 // walk may reach one and tests nothing in it. One store is a compile-time
-// case: choosing the store per leaf measured slower.
+// case, so its walks choose no store per leaf.
 template <class S, int K>
 struct BvhStores;
 
