@@ -59,7 +59,7 @@ void check_rows_layout(const py::array& array, const char* name, char rows_lette
   }
 }
 
-// "a list of 4 items", "a numpy.ndarray of shape (3, 1) and dtype float64", "an int".
+// "a list of 4 items", "an array of shape (3, 1) and dtype float64", "an int".
 std::string describe(const py::handle& value) {
   if (py::isinstance<py::array>(value)) {
     const auto array = py::reinterpret_borrow<py::array>(value);
@@ -77,9 +77,9 @@ std::string describe(const py::handle& value) {
 
 // Three real numbers, or a ValueError saying what value was. A NumPy array
 // must have shape (3,) and an integer or floating dtype (bool, complex,
-// text and object arrays are refused rather than cast); text and bytes are
-// refused before the caster, which would read a str's characters or a
-// bytes' codes as items.
+// text and object arrays are refused rather than cast); bytes and
+// bytearray are refused before the caster, which would read their byte
+// codes as the numbers.
 std::array<double, 3> three_numbers(const py::object& value, const char* name) {
   const auto refused = [&] {
     return std::invalid_argument(std::string(name) + ": expected \"x,y,z\" or three real numbers, found " +

@@ -3,8 +3,9 @@ vectors as text, sequences or NumPy arrays of any real dtype, layout and
 byte order give the same render as the text of their values; arrays of
 every other dtype or layout, 0-d, empty, misaligned or of huge length, and
 arguments of the wrong type raise a ValueError or TypeError naming the
-argument, never a crash or another value. The NumPy-camera case once read a
-freed NumPy scalar: a child interpreter under PYTHONMALLOC=debug repeats it."""
+argument, never a crash or another value. The NumPy-camera case also runs in
+a child interpreter under PYTHONMALLOC=debug, where reading a freed object
+(a NumPy array's items are temporaries) crashes at once."""
 import array
 import fractions
 import os
@@ -59,7 +60,7 @@ def test_the_numpy_camera_renders_as_its_text(scene):
     image = quiver.render(scene, width=32, height=32, look_from=np.array([0, 0.1, 3.0]), look_at=(0, 0.1, 0))
     expected = quiver.render(scene, width=32, height=32, look_from="0,0.1,3", look_at="0,0.1,0")
     np.testing.assert_array_equal(image, expected)
-    # A later, unrelated call on a heap the first one wrote through a freed scalar.
+    # A later, unrelated allocation-heavy call: a heap written through a freed object fails here.
     assert [str(i) for i in range(10000)][-1] == "9999"
     np.testing.assert_array_equal(render(scene, look_from=np.array([1.0, 2.0, 8.0])), render(scene, look_from="1,2,8"))
 
