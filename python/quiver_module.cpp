@@ -3,7 +3,9 @@
 // API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
 // ValueError) for bad scene files, with the CLI's file:line:column text;
 // quiver.UsageError (a ValueError) for bad options, naming the CLI flag;
-// ValueError for bad arrays or values; RuntimeError for other failures.
+// ValueError for bad arrays or values; TypeError (OverflowError beyond
+// int32) for an argument of the wrong type (python/arguments.h);
+// RuntimeError for other failures.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
