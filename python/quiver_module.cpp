@@ -1,6 +1,6 @@
 // The `quiver` Python module (pybind11): NumPy arrays in and out, checked
-// by python/arguments.h, then handed to the C++ of this folder with the GIL released. Its
-// API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
+// by python/arguments.h, then handed to the C++ of this folder with the GIL
+// released. Its API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
 // ValueError) for bad scene files, with the CLI's file:line:column text;
 // quiver.UsageError (a ValueError) for bad options, naming the CLI flag;
 // ValueError for bad arrays or values; TypeError (OverflowError beyond
