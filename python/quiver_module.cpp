@@ -1,9 +1,11 @@
 // The `quiver` Python module (pybind11): NumPy arrays in and out, checked
-// here, then handed to the C++ of this folder with the GIL released. Its
-// API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
+// by python/arguments.h, then handed to the C++ of this folder with the GIL
+// released. Its API is documented in docs/PYTHON.md. Errors: quiver.ParseError (a
 // ValueError) for bad scene files, with the CLI's file:line:column text;
 // quiver.UsageError (a ValueError) for bad options, naming the CLI flag;
-// ValueError for bad arrays or values; RuntimeError for other failures.
+// ValueError for bad arrays or values; TypeError (OverflowError beyond
+// int32) for an argument of the wrong type (python/arguments.h);
+// RuntimeError for other failures.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -21,6 +23,7 @@
 #include "app/trace_command.h"
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
+#include "python/arguments.h"
 #include "python/camera_rays.h"
 #include "python/output_buffers.h"
 #include "python/python_scene.h"
@@ -35,80 +38,17 @@ namespace {
 
 using SceneHandle = std::shared_ptr<PythonScene>;
 
-// The array's dimensions, or a ValueError naming it.
-py::array as_array(const py::handle& object, const char* name) {
-  if (!py::isinstance<py::array>(object)) {
-    throw std::invalid_argument(std::string(name) + ": expected a numpy.ndarray, found " +
-                                std::string(py::str(py::type::of(object).attr("__name__"))));
-  }
-  return py::reinterpret_borrow<py::array>(object);
-}
-
-std::string shape_text(const py::array& array) {
-  std::string text = "(";
-  for (py::ssize_t d = 0; d < array.ndim(); ++d) {
-    text += (d ? ", " : "") + std::to_string(array.shape(d));
-  }
-  return text + (array.ndim() == 1 ? ",)" : ")");
-}
-
-// A C-contiguous (rows, columns) array of float32 or float64 (rows >= 1
-// unless allow_empty), else a ValueError saying what was wrong.
-std::pair<py::array, ArrayFloat> float_rows(const py::handle& object, const char* name, py::ssize_t columns,
-                                            bool allow_empty) {
-  py::array array = as_array(object, name);
-  ArrayFloat type;
-  if (py::isinstance<py::array_t<float>>(array)) {
-    type = ArrayFloat::float32;
-  } else if (py::isinstance<py::array_t<double>>(array)) {
-    type = ArrayFloat::float64;
-  } else {
-    throw std::invalid_argument(std::string(name) + ": expected dtype float32 or float64 (native byte order), found " +
-                                std::string(py::str(array.dtype())));
-  }
-  if (array.ndim() != 2 || array.shape(1) != columns) {
-    throw std::invalid_argument(std::string(name) + ": expected shape (N, " + std::to_string(columns) + "), found " +
-                                shape_text(array));
-  }
-  if (!allow_empty && array.shape(0) == 0) {
-    throw std::invalid_argument(std::string(name) + ": expected at least one row, found shape " + shape_text(array));
-  }
-  if (!(array.flags() & py::array::c_style)) {
-    throw std::invalid_argument(std::string(name) +
-                                ": expected a C-contiguous array (numpy.ascontiguousarray makes one), found strides " +
-                                std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
-                                    array.strides(), array.strides() + array.ndim()))))));
-  }
-  return {std::move(array), type};
-}
-
-RayArrays ray_arrays(const py::handle& origins_object, const py::handle& directions_object) {
-  const auto [origins, origin_type] = float_rows(origins_object, "origins", 3, false);
-  const auto [directions, direction_type] = float_rows(directions_object, "directions", 3, false);
-  if (origins.shape(0) != directions.shape(0)) {
-    throw std::invalid_argument("origins and directions: expected the same number of rays, found shapes " +
-                                shape_text(origins) + " and " + shape_text(directions));
-  }
-  if (origin_type != direction_type) {
-    throw std::invalid_argument("origins and directions: expected one dtype for both, found " +
-                                std::string(py::str(origins.dtype())) + " and " +
-                                std::string(py::str(directions.dtype())));
-  }
-  // The arrays stay alive: the caller's arguments hold them.
-  return {origins.data(), directions.data(), std::size_t(origins.shape(0)), origin_type};
-}
-
 // intersect's and occluded's threads and simd arguments, checked as the CLI's --threads and --simd.
-QueryThreads query_threads(int threads, const std::optional<std::string>& simd) {
+QueryThreads query_threads(const py::handle& threads, const std::optional<std::string>& simd) {
   RenderOptions options;
-  options.threads = threads;
+  options.threads = integer_argument(threads, "threads");
   options.simd = simd;
   check_render_options(options);
-  return {threads, choose_isa(simd, std::getenv("QUIVER_SIMD"))};
+  return {options.threads, choose_isa(simd, std::getenv("QUIVER_SIMD"))};
 }
 
 py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions, double tmin,
-                   double tmax, int threads, const std::optional<std::string>& simd) {
+                   double tmax, const py::handle& threads, const std::optional<std::string>& simd) {
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);
@@ -147,7 +87,8 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
 }
 
 py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions,
-                                  double tmin, double tmax, int threads, const std::optional<std::string>& simd) {
+                                  double tmin, double tmax, const py::handle& threads,
+                                  const std::optional<std::string>& simd) {
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);
@@ -168,54 +109,15 @@ SceneHandle load_file(const std::string& path, const std::optional<double>& crea
 }
 
 SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object& vertices, const py::object& triangles) {
-  std::optional<FloatRows> sphere_rows, vertex_rows;
-  std::optional<IndexRows> triangle_rows;
-  py::array keep_spheres, keep_vertices, keep_triangles;
-  if (!spheres.is_none()) {
-    auto [array, type] = float_rows(spheres, "spheres", 4, true);
-    sphere_rows = FloatRows{array.data(), std::size_t(array.shape(0)), 4, type};
-    keep_spheres = std::move(array);
-  }
-  if (!vertices.is_none()) {
-    auto [array, type] = float_rows(vertices, "vertices", 3, true);
-    vertex_rows = FloatRows{array.data(), std::size_t(array.shape(0)), 3, type};
-    keep_vertices = std::move(array);
-  }
-  if (!triangles.is_none()) {
-    keep_triangles = as_array(triangles, "triangles");
-    const bool int64 = py::isinstance<py::array_t<std::int64_t>>(keep_triangles);
-    if (!int64 && !py::isinstance<py::array_t<std::int32_t>>(keep_triangles)) {
-      throw std::invalid_argument("triangles: expected dtype int32 or int64 (native byte order), found " +
-                                  std::string(py::str(keep_triangles.dtype())));
-    }
-    if (keep_triangles.ndim() != 2 || keep_triangles.shape(1) != 3) {
-      throw std::invalid_argument("triangles: expected shape (F, 3), found " + shape_text(keep_triangles));
-    }
-    if (!(keep_triangles.flags() & py::array::c_style)) {
-      throw std::invalid_argument("triangles: expected a C-contiguous array (numpy.ascontiguousarray makes one)");
-    }
-    triangle_rows = IndexRows{keep_triangles.data(), std::size_t(keep_triangles.shape(0)), int64};
-  }
-  SceneDesc desc = scene_from_arrays(sphere_rows, vertex_rows, triangle_rows);
+  std::optional<CheckedRows<FloatRows>> sphere_rows, vertex_rows;
+  std::optional<CheckedRows<IndexRows>> triangle_rows;
+  if (!spheres.is_none()) sphere_rows = float_rows(spheres, "spheres", 4, true);
+  if (!vertices.is_none()) vertex_rows = float_rows(vertices, "vertices", 3, true);
+  if (!triangles.is_none()) triangle_rows = index_rows(triangles, "triangles");
+  const auto rows = [](const auto& checked) { return checked ? std::optional(checked->rows) : std::nullopt; };
+  SceneDesc desc = scene_from_arrays(rows(sphere_rows), rows(vertex_rows), rows(triangle_rows));
   py::gil_scoped_release release;
   return std::make_shared<PythonScene>(make_python_scene("<arrays>", std::move(desc)));
-}
-
-// A camera flag's "x,y,z" text from a string as given or a sequence of
-// numbers (each written as Python's repr, which reads back to the same double).
-std::optional<std::string> vector_flag(const py::object& value, const char* name) {
-  if (value.is_none()) return std::nullopt;
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (!py::isinstance<py::sequence>(value)) {
-    throw std::invalid_argument(std::string(name) + ": expected \"x,y,z\" or three numbers, found " +
-                                std::string(py::repr(value)));
-  }
-  std::string text;
-  for (const py::handle item : value.cast<py::sequence>()) {
-    if (!text.empty()) text += ",";
-    text += std::string(py::repr(py::float_(py::reinterpret_borrow<py::object>(item))));
-  }
-  return text;
 }
 
 CameraFlags camera_flags(const py::object& look_from, const py::object& look_at, const py::object& up,
@@ -233,21 +135,21 @@ py::array_t<T> owning_array(std::vector<T>&& values, std::vector<py::ssize_t> sh
   return py::array_t<T>(std::move(shape), owned->data(), owner);
 }
 
-py::object render_arrays(const PythonScene& scene, std::optional<int> width, std::optional<int> height,
-                  std::optional<std::string> aa, std::optional<int> max_depth, std::optional<double> min_weight,
-                  int threads, std::optional<std::string> simd, const py::int_& seed, std::optional<std::string> aov,
+py::object render_arrays(const PythonScene& scene, const py::object& width, const py::object& height,
+                  std::optional<std::string> aa, const py::object& max_depth, std::optional<double> min_weight,
+                  const py::handle& threads, std::optional<std::string> simd, const py::handle& seed, std::optional<std::string> aov,
                   std::optional<std::string> preset, bool two_sided, bool robust_methods, const py::object& look_from,
                   const py::object& look_at, const py::object& up, std::optional<double> fov,
                   std::optional<std::string> texture_filter) {
   RenderOptions options;
-  options.width = width;
-  options.height = height;
+  options.width = optional_integer(width, "width");
+  options.height = optional_integer(height, "height");
   options.aa = std::move(aa);
-  options.max_depth = max_depth;
+  options.max_depth = optional_integer(max_depth, "max_depth");
   options.min_weight = min_weight;
-  options.threads = threads;
+  options.threads = integer_argument(threads, "threads");
   options.simd = std::move(simd);
-  options.seed = parse_seed(seed.attr("__str__")().cast<std::string>());
+  options.seed = parse_seed(integer_text(seed, "seed"));
   options.aov = std::move(aov);
   if (preset) check_preset(*preset);
   options.preset_spd = preset.has_value();
@@ -271,12 +173,12 @@ py::object render_arrays(const PythonScene& scene, std::optional<int> width, std
   return py::make_tuple(rgb, aovs);
 }
 
-py::dict camera_ray_arrays(const PythonScene& scene, std::optional<int> width, std::optional<int> height,
+py::dict camera_ray_arrays(const PythonScene& scene, const py::object& width, const py::object& height,
                      const py::object& look_from, const py::object& look_at, const py::object& up,
                      std::optional<double> fov) {
   TraceOptions options;
-  options.width = width;
-  options.height = height;
+  options.width = optional_integer(width, "width");
+  options.height = optional_integer(height, "height");
   options.camera = camera_flags(look_from, look_at, up, fov);
   const CameraRayPlan plan = plan_camera_rays(scene.desc, options);
   const auto n = py::ssize_t(plan.ray_count());

@@ -139,6 +139,8 @@ def resident_kib():
 
 
 def test_a_thousand_calls_leave_the_process_no_bigger():
+    if "libasan" in os.environ.get("LD_PRELOAD", ""):
+        pytest.skip("under ASan (the sanitize preset) freed memory stays resident in its quarantine by design")
     scene = quiver.load(TINY)
     rays = quiver.camera_rays(scene, width=100, height=100)
     o, d = rays["origins"], rays["directions"]
