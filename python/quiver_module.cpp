@@ -102,10 +102,13 @@ py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& or
   return blocked;
 }
 
-SceneHandle load_file(const std::string& path, const std::optional<double>& crease_angle) {
+SceneHandle load_file(const std::string& path, const std::optional<double>& crease_angle, bool allow_outside_paths) {
   check_crease_angle(crease_angle);
   py::gil_scoped_release release;
-  return std::make_shared<PythonScene>(make_python_scene(path, load_scene(path, {crease_angle})));
+  SceneLoadOptions options;
+  options.crease_angle_degrees = crease_angle;
+  options.allow_outside_paths = allow_outside_paths;
+  return std::make_shared<PythonScene>(make_python_scene(path, load_scene(path, options)));
 }
 
 SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object& vertices, const py::object& triangles) {
@@ -231,8 +234,10 @@ PYBIND11_MODULE(quiver, m) {
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");
 
-  m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(),
-        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl) and builds it");
+  m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(), py::kw_only(),
+        arg("allow_outside_paths") = false,
+        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl) and builds it. Files the scene names "
+        "must lie in its folder or below unless allow_outside_paths (as `quiver render --allow-outside-paths`)");
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
         arg("triangles") = py::none(),
         "A scene of spheres (N, 4: centre, radius) and triangles (vertices (V, 3), indices (F, 3))");

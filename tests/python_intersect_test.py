@@ -102,6 +102,16 @@ def test_triangles_from_arrays_report_barycentrics_and_face_index():
     np.testing.assert_allclose(np.abs(result["normal"][:, 2]), 1.0, rtol=1e-6)
 
 
+def test_a_scene_naming_a_file_outside_its_folder_needs_allow_outside_paths(tmp_path):
+    (tmp_path / "scene").mkdir()
+    mesh = os.path.abspath(os.path.join(DATA, "obj", "roof.obj"))
+    scene_file = tmp_path / "scene" / "outside.toml"
+    scene_file.write_text('[[meshes]]\nfile = "%s"\n' % mesh)
+    with pytest.raises(quiver.ParseError, match="inside the scene's folder"):
+        quiver.load(str(scene_file))
+    assert quiver.load(str(scene_file), allow_outside_paths=True).primitive_count == 2
+
+
 def test_instance_hits_name_the_instance_and_the_mesh_triangle(tmp_path):
     shutil.copy(os.path.join(DATA, "obj", "roof.obj"), tmp_path / "roof.obj")  # a scene names files in its folder
     scene_file = tmp_path / "instances.toml"
