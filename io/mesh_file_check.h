@@ -4,7 +4,8 @@
 // list length against the bytes left (the data walked once, as the header
 // declares it), a binary STL's triangle count against the file's size, a
 // GLB's length and chunks, and every glTF buffer's byteLength against the
-// file or data URI that holds it. Errors in text name file:line:column;
+// file or data URI that holds it, then the rest of the glTF
+// (io/gltf_check.h). Errors in text name file:line:column;
 // in binary data, "file: byte N: expected X, found Y".
 #pragma once
 
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "io/gltf_check.h"
 #include "io/reader_warnings.h"
 
 namespace quiver {
@@ -31,8 +33,9 @@ MeshFileCounts check_ply(std::string_view bytes, std::string_view file, ReaderWa
 MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
 // URI are looked for relative to `directory`, and their sizes added up with
-// the file's against max_total_bytes.
-void check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
-                bool binary, std::size_t max_total_bytes);
+// the file's against max_total_bytes; then the document's contents
+// (io/gltf_check.h), its placed triangles against triangle_budget.
+GltfContents check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
+                        bool binary, std::size_t max_total_bytes, std::size_t triangle_budget);
 
 }  // namespace quiver
