@@ -46,9 +46,9 @@ std::string shown_size(std::uint64_t bytes) {
 // quantization lets positions and normals be integers that Assimp 5.2
 // copies into floats byte for byte, KHR_binary_glTF is glTF 1.0's binary
 // container.
-constexpr std::array<std::string_view, 5> kUnreadExtensions = {
-    "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization",
-    "KHR_binary_glTF"};
+constexpr std::array<std::string_view, 5> kUnreadExtensions = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                                               "KHR_meshopt_compression", "KHR_mesh_quantization",
+                                                               "KHR_binary_glTF"};
 
 struct ComponentType {
   std::uint64_t code, bytes;
@@ -100,8 +100,10 @@ class ContentsCheck {
     check_images_and_textures();
     check_skins_and_animations();
     if (decoded_bytes_ > kMaxGltfDecodedBytes) {
-      fail(joined({"expected the accessors' data, as decoded once per use, to take at most ",
-                   std::to_string(kMaxGltfDecodedBytes), " bytes, found ", shown_size(decoded_bytes_)}));
+      fail(
+          joined({"expected the accessors' data, as decoded once per use, to "
+                  "take at most ",
+                  std::to_string(kMaxGltfDecodedBytes), " bytes, found ", shown_size(decoded_bytes_)}));
     }
     check_node_graph();
     return std::move(contents_);
@@ -127,7 +129,8 @@ class ContentsCheck {
     return result;
   }
 
-  // object[key] as a whole number; `fallback` when absent (required without one).
+  // object[key] as a whole number; `fallback` when absent (required without
+  // one).
   std::uint64_t whole(const json& object, const char* key, const std::string& path,
                       std::optional<std::uint64_t> fallback = std::nullopt) const {
     const auto found = object.find(key);
@@ -204,8 +207,8 @@ class ContentsCheck {
       const json& view = *views_.items[i];
       const std::string path = views_.path(i);
       refuse_extension_names(view, "extensions");
-      const std::size_t buffer = reference(view.contains("buffer") ? view["buffer"] : json(), buffers_,
-                                           path + ".buffer");
+      const std::size_t buffer =
+          reference(view.contains("buffer") ? view["buffer"] : json(), buffers_, path + ".buffer");
       const std::uint64_t available = buffer_bytes_[buffer];
       const std::uint64_t offset = whole(view, "byteOffset", path, 0);
       const std::uint64_t length = whole(view, "byteLength", path);
@@ -215,13 +218,13 @@ class ContentsCheck {
       }
       if (length > available - offset) {
         fail(joined({"expected ", path, ".byteLength to be at most the ", std::to_string(available - offset),
-                     " bytes of ", buffers_.path(buffer), " after its byteOffset ", std::to_string(offset),
-                     ", found ", std::to_string(length)}));
+                     " bytes of ", buffers_.path(buffer), " after its byteOffset ", std::to_string(offset), ", found ",
+                     std::to_string(length)}));
       }
       const std::uint64_t stride = whole(view, "byteStride", path, 0);
       if (view.contains("byteStride") && (stride < 4 || stride > 252 || stride % 4 != 0)) {
-        fail(joined({"expected ", path, ".byteStride to be a multiple of 4 from 4 to 252, found ",
-                     std::to_string(stride)}));
+        fail(joined(
+            {"expected ", path, ".byteStride to be a multiple of 4 from 4 to 252, found ", std::to_string(stride)}));
       }
       view_bytes_.push_back(length);
       view_stride_.push_back(stride);
@@ -264,7 +267,8 @@ class ContentsCheck {
       if (stride == 0) stride = element;
       check_span(path, whole(a, "byteOffset", path, 0), count, stride, element, *view);
     }
-    if (const auto sparse = a.find("sparse"); sparse != a.end()) check_sparse(*sparse, path + ".sparse", count, element);
+    if (const auto sparse = a.find("sparse"); sparse != a.end())
+      check_sparse(*sparse, path + ".sparse", count, element);
     accessor_info_.push_back({count, type->rows * type->columns, code, type->name});
   }
 
@@ -279,10 +283,10 @@ class ContentsCheck {
     }
     const std::uint64_t end = saturating_add(saturating_add(offset, saturating_mul(count - 1, stride)), element);
     if (end > available) {
-      fail(joined({"expected ", path, "'s ", std::to_string(count), " elements (", std::to_string(element),
-                   " bytes, ", std::to_string(stride), " apart, from byteOffset ", std::to_string(offset),
-                   ") within the ", std::to_string(available), " bytes of ", views_.path(view),
-                   ", found them ending at byte ", shown_size(end)}));
+      fail(joined({"expected ", path, "'s ", std::to_string(count), " elements (", std::to_string(element), " bytes, ",
+                   std::to_string(stride), " apart, from byteOffset ", std::to_string(offset), ") within the ",
+                   std::to_string(available), " bytes of ", views_.path(view), ", found them ending at byte ",
+                   shown_size(end)}));
     }
   }
 
@@ -305,8 +309,8 @@ class ContentsCheck {
       if (part == std::string_view("indices")) {
         const std::uint64_t code = whole(*found, "componentType", part_path);
         if (code != 5121 && code != 5123 && code != 5125) {
-          fail(joined({"expected ", part_path, ".componentType to be 5121, 5123 or 5125, found ",
-                       std::to_string(code)}));
+          fail(joined(
+              {"expected ", part_path, ".componentType to be 5121, 5123 or 5125, found ", std::to_string(code)}));
         }
         bytes = code == 5121 ? 1 : code == 5123 ? 2 : 4;
       }
@@ -349,7 +353,8 @@ class ContentsCheck {
     for (std::size_t p = 0; p < primitives->size(); ++p) {
       const json& primitive = (*primitives)[p];
       const std::string primitive_path = path + ".primitives[" + std::to_string(p) + "]";
-      if (!primitive.is_object()) fail(joined({"expected ", primitive_path, " to be an object, found ", shown(primitive)}));
+      if (!primitive.is_object())
+        fail(joined({"expected ", primitive_path, " to be an object, found ", shown(primitive)}));
       refuse_extension_names(primitive, "extensions");
       std::uint64_t positions = 0;
       use_attributes(primitive.contains("attributes") ? primitive["attributes"] : json::object(),
@@ -361,10 +366,13 @@ class ContentsCheck {
         }
       }
       std::uint64_t corners = positions;
-      if (const std::optional<std::size_t> indices = optional_reference(primitive, "indices", accessors_, primitive_path)) {
+      if (const std::optional<std::size_t> indices =
+              optional_reference(primitive, "indices", accessors_, primitive_path)) {
         const Accessor& a = use_accessor(*indices);
         if (a.type != "SCALAR" || (a.component_type != 5121 && a.component_type != 5123 && a.component_type != 5125)) {
-          fail(joined({"expected ", primitive_path, ".indices to name a SCALAR accessor of unsigned integers (5121, ",
+          fail(joined({"expected ", primitive_path,
+                       ".indices to name a SCALAR accessor of unsigned integers "
+                       "(5121, ",
                        "5123 or 5125), found ", std::string(a.type), " of componentType ",
                        std::to_string(a.component_type)}));
         }
@@ -384,7 +392,10 @@ class ContentsCheck {
   void check_images_and_textures() {
     for (std::size_t i = 0; i < images_.items.size(); ++i) {
       const json& image = *images_.items[i];
-      optional_reference(image, "bufferView", views_, images_.path(i));
+      // Assimp copies an image's bufferView for each image that names it.
+      if (const auto view = optional_reference(image, "bufferView", views_, images_.path(i))) {
+        decoded_bytes_ = saturating_add(decoded_bytes_, view_bytes_[*view]);
+      }
       const auto uri = image.find("uri");
       if (uri == image.end()) continue;
       if (!uri->is_string()) fail(joined({"expected ", images_.path(i), ".uri to be a string, found ", shown(*uri)}));
@@ -412,8 +423,10 @@ class ContentsCheck {
     for (std::size_t i = 0; i < animations.items.size(); ++i) {
       const json& animation = *animations.items[i];
       const std::string path = animations.path(i);
-      // glTF 1.0 names its accessors in "parameters"; 2.0 in samplers' input and output.
-      if (const auto parameters = animation.find("parameters"); parameters != animation.end() && parameters->is_object()) {
+      // glTF 1.0 names its accessors in "parameters"; 2.0 in samplers' input
+      // and output.
+      if (const auto parameters = animation.find("parameters");
+          parameters != animation.end() && parameters->is_object()) {
         for (auto entry = parameters->begin(); entry != parameters->end(); ++entry) {
           use_accessor(reference(entry.value(), accessors_, path + ".parameters." + entry.key()));
         }
@@ -456,12 +469,12 @@ class ContentsCheck {
       for (std::size_t i = 0; i < roots.size(); ++i) roots[i] = has_parent[i] ? 0 : 1;
       return roots;
     }
+    // Every scene's roots, unless "scene" picks one.
     const auto scene = document_.find("scene");
-    const std::optional<std::size_t> chosen =
-        scene == document_.end() ? std::nullopt : std::optional<std::size_t>(reference(*scene, scenes, "scene"));
+    const std::size_t chosen = scene == document_.end() ? scenes.items.size() : reference(*scene, scenes, "scene");
     for (std::size_t s = 0; s < scenes.items.size(); ++s) {
       const std::vector<std::size_t> nodes = references(*scenes.items[s], "nodes", nodes_, scenes.path(s));
-      if (chosen && *chosen != s) continue;
+      if (chosen != scenes.items.size() && chosen != s) continue;
       for (std::size_t node : nodes) roots[node] = saturating_add(roots[node], 1);
     }
     return roots;

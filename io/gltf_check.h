@@ -34,8 +34,13 @@ inline constexpr std::uint64_t kMaxGltfAccessorCount = 3 * std::uint64_t{kMaxObj
 // triangle bound's triangles have when no vertex is shared.
 inline constexpr std::uint64_t kMaxGltfPlacedVertices = 3 * std::uint64_t{kMaxObjTriangles};
 // Bytes Assimp decodes from accessors (4 per component), counted once per
-// reference from a primitive, morph target, skin or animation sampler.
+// reference from a primitive, morph target, skin or animation sampler, and
+// the bytes of images' bufferViews, once per image.
 inline constexpr std::uint64_t kMaxGltfDecodedBytes = std::uint64_t{1} << 30;
+
+// Values in a glTF's JSON (each number, string, array and object), counted
+// as it is parsed: nlohmann/json takes 16 bytes to over 100 per value.
+inline constexpr std::size_t kMaxGltfJsonValues = std::size_t{1} << 22;
 
 // What the checks found that the caller needs.
 struct GltfContents {

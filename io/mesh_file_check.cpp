@@ -363,8 +363,23 @@ GltfContents check_gltf_json(std::string_view json_text, std::string_view file, 
                              std::optional<std::size_t> binary_chunk_bytes, std::size_t total_bytes,
                              std::size_t max_total_bytes, std::size_t triangle_budget) {
   nlohmann::json document;
+  // nlohmann/json takes 16 bytes and more per value: their count is bounded
+  // as they are parsed, before the document grows past it.
+  struct TooManyValues {};
+  std::size_t values = 0;
+  const auto count_values = [&values](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    using Event = nlohmann::json::parse_event_t;
+    if ((event == Event::value || event == Event::object_start || event == Event::array_start) &&
+        ++values > kMaxGltfJsonValues) {
+      throw TooManyValues{};
+    }
+    return true;
+  };
   try {
-    document = nlohmann::json::parse(json_text.begin(), json_text.end());
+    document = nlohmann::json::parse(json_text.begin(), json_text.end(), count_values);
+  } catch (const TooManyValues&) {
+    throw ParseError::whole_file(file, joined({"expected glTF's JSON of at most ", std::to_string(kMaxGltfJsonValues),
+                                               " values (numbers, strings, arrays, objects ...), found more"}));
   } catch (const nlohmann::json::parse_error& error) {
     const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
     const TextPosition at = position_at(json_text, offset);

@@ -573,8 +573,9 @@ TEST(MeshImportPublicModels, EveryFileLoadsOrIsAnErrorNamingIt) {
       ++refused;
     }
   }
-  // Debian 12's assimp-testmodels 5.2.5: 70 such files.
-  EXPECT_GE(loaded, 40u);
+  // Debian 12's assimp-testmodels 5.2.5: 70 such files (39 load; the Draco
+  // engine and a bufferView past its buffer are among those refused).
+  EXPECT_GE(loaded, 38u);
   EXPECT_GE(refused, 10u);
 }
 
@@ -619,6 +620,9 @@ TEST(MeshImportPublicModels, ReadAsTheirFormatsDescribeThem) {
       {root / "PLY" / "pond.0.ply", ": byte 2171788: expected the data of element 'vertex'"},  // 69 bytes short
       {root / "glTF2" / "BoxWithInfinites-glTF-Binary" / "BoxWithInfinites.glb", ": expected finite vertex positions"},
       {root / "glTF2" / "MissingBin" / "BoxTextured.gltf", ": expected buffers[0]'s file 'BoxTextured0.bin'"},
+      {root / "glTF2" / "draco" / "2CylinderEngine.gltf", ": uses KHR_draco_mesh_compression, which quiver does not read"},
+      {root / "glTF2" / "IncorrectVertexArrays" / "Cube.gltf", ": expected bufferViews[2].byteLength to be at most the 10 "
+                                                              "bytes of buffers[0] after its byteOffset 504, found 432"},
       {root / "glTF2" / "RecursiveNodes" / "RecursiveNodes.gltf", ": expected nodes that form trees, found nodes[0] "},
       {root / "glTF" / "BoxTextured-glTF-Binary" / "BoxTextured.glb", ": byte 4: expected GLB version 2, found 1"},
   };

@@ -219,7 +219,9 @@ def ply_file(rng):
 
 
 def obj_file(rng):
+    """(kind, bytes, the files it names: MTL libraries, relative to it)."""
     lines = []
+    named = []
     pick = rng.random()
     if pick < 0.3:
         for _ in range(3):
@@ -231,11 +233,12 @@ def obj_file(rng):
         lines.append("f " + " ".join(str(rng.choice([1, 2, 3, 0, -4, 2**31, 2**64, 18446744073709551617]))
                                      for _ in range(rng.choice([3, 3, 256, 3000]))))
     elif pick < 0.8:
-        lines += ["mtllib " + rng.choice(["../../../../etc/passwd", "x" * 5000, "nowhere.mtl"]), "usemtl a"]
+        named.append(rng.choice(["../../../../etc/passwd", "x" * 5000, "nowhere.mtl"]))
+        lines += ["mtllib " + named[-1], "usemtl a"]
         lines += ["v 0 0 0", "v 1 0 0", "v 0 1 0", "f 1 2 3"]
     else:
         lines += ["v 0 0 0"] * rng.choice([10, 100000]) + ["f " + " ".join(["1"] * 3)]
-    return "obj", ("\n".join(lines) + "\n").encode()
+    return "obj", ("\n".join(lines) + "\n").encode(), named
 
 
 def byte_flips(data, rng):
@@ -255,8 +258,9 @@ def byte_flips(data, rng):
 
 
 def hostile_file(index, rng):
-    """(format, kind, main file name, {name: bytes}) of the index-th file."""
+    """(format, kind, main file name, {name: bytes}, names of other files it reads) of the index-th file."""
     fmt = ["gltf", "glb", "stl", "ply", "obj"][index % 5]
+    named = []
     if fmt in ("gltf", "glb"):
         kind, data, extra = gltf_files(rng, fmt == "glb")
     elif fmt == "stl":
@@ -266,19 +270,23 @@ def hostile_file(index, rng):
         kind, data = ply_file(rng)
         extra = {}
     else:
-        kind, data = obj_file(rng)
+        kind, data, named = obj_file(rng)
         extra = {}
     if rng.random() < 0.15 and kind not in ("deep", "doubling"):
         data = byte_flips(data, rng)
         kind += "-flipped"
     name = f"h{index:05d}.{fmt}"
-    return fmt, kind, name, dict(extra, **{name: data})
+    return fmt, kind, name, dict(extra, **{name: data}), named
 
 
 # ---- running ------------------------------------------------------------------
 
-def run_one(quiver, path, timeout):
-    """(outcome, peak RSS in KB, stderr text) of `quiver info path`."""
+def run_one(quiver, path, timeout, other_files):
+    """(outcome, peak RSS in KB, stderr text) of `quiver info path`. An
+    error names the file holding the fault when it names `path` or one of
+    other_files (an MTL library the OBJ names). The peak RSS is Linux's
+    high-water mark, which exec keeps: it includes this script's size when
+    it forked (tens of MB), an upper bound on quiver's."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         process = subprocess.Popen([quiver, "info", path], stdout=out, stderr=err, start_new_session=True)
         deadline = time.monotonic() + timeout
@@ -299,7 +307,8 @@ def run_one(quiver, path, timeout):
         return "crash", usage.ru_maxrss, text
     if process.returncode == 0:
         return "success", usage.ru_maxrss, text
-    return ("error" if path in text else "unnamed"), usage.ru_maxrss, text
+    named = any(name in text for name in [path] + other_files)
+    return ("error" if named else "unnamed"), usage.ru_maxrss, text
 
 
 def campaign(args):
@@ -308,14 +317,15 @@ def campaign(args):
     findings = []
     with tempfile.TemporaryDirectory(prefix="quiver_hostile_") as work:
         for index in range(args.count):
-            fmt, kind, name, files = hostile_file(index, rng)
+            fmt, kind, name, files, named = hostile_file(index, rng)
             folder = os.path.join(work, f"{index:05d}")
             os.mkdir(folder)
             for file_name, data in files.items():
                 with open(os.path.join(folder, file_name), "wb") as f:
                     f.write(data)
             path = os.path.join(folder, name)
-            outcome, rss, text = run_one(args.quiver, path, args.timeout)
+            others = [os.path.normpath(os.path.join(folder, other)) for other in named]
+            outcome, rss, text = run_one(args.quiver, path, args.timeout, others)
             row = totals.setdefault(fmt, {"files": 0, "crash": 0, "hang": 0, "over 1 GB": 0, "unnamed": 0,
                                           "error": 0, "success": 0})
             row["files"] += 1
@@ -342,7 +352,8 @@ def campaign(args):
         for c in columns:
             total[c] += row[c]
     print(f"{'all':<6}  " + "  ".join(f"{total[c]:>9}" for c in columns))
-    print("(unnamed: an error whose message does not name the file given; error: one that does)")
+    print("(unnamed: an error whose message names neither the file given nor a file it names; error: one that "
+          "does; over 1 GB: peak RSS, this script's size at fork included)")
     for outcome, fmt, kind, path, rss, text in findings[:40]:
         print(f"FINDING {outcome} {fmt}/{kind} rss={rss} KB {os.path.basename(path)}: {text}")
     return 1 if findings else 0
