@@ -2,14 +2,15 @@
 """A hostile-file campaign against quiver's mesh readers (glTF, GLB, STL, PLY, OBJ).
 
     /usr/bin/python3 tests/fuzz/hostile_meshes.py run [--quiver build/bin/quiver] [--count 2000]
-        [--timeout 20] [--seed 1] [--keep DIR]
+        [--timeout 20] [--memory-limit-mb 4096] [--seed 1] [--keep DIR]
     /usr/bin/python3 tests/fuzz/hostile_meshes.py seeds DIR (gltf|glb)
 
 `run` generates COUNT hostile files (structural mutations of valid files,
 offsets and counts near 2^64, deep and duplicated node graphs, cycles,
 refused extensions, huge lists, extreme numbers, byte flips) and runs
-`quiver info FILE` on each under TIMEOUT seconds, measuring the child's
-peak RSS (os.wait4). It prints, per format and in all, the counts of
+`quiver info FILE` on each under TIMEOUT seconds and an address-space
+limit (RLIMIT_AS, so that a memory bomb fails instead of taking the
+machine), measuring the child's peak RSS (os.wait4). It prints, per format and in all, the counts of
 crashes (a signal), hangs (the timeout), runs above 1 GB, errors whose
 message does not name the file given, and successes; the files of the
 findings are kept in DIR (default: none kept). Exit status 1 when any
@@ -26,6 +27,7 @@ import copy
 import json
 import os
 import random
+import resource
 import signal
 import struct
 import subprocess
@@ -281,14 +283,20 @@ def hostile_file(index, rng):
 
 # ---- running ------------------------------------------------------------------
 
-def run_one(quiver, path, timeout, other_files):
+def run_one(quiver, path, timeout, other_files, memory_limit_mb):
     """(outcome, peak RSS in KB, stderr text) of `quiver info path`. An
     error names the file holding the fault when it names `path` or one of
     other_files (an MTL library the OBJ names). The peak RSS is Linux's
     high-water mark, which exec keeps: it includes this script's size when
     it forked (tens of MB), an upper bound on quiver's."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        process = subprocess.Popen([quiver, "info", path], stdout=out, stderr=err, start_new_session=True)
+        limit = memory_limit_mb << 20
+
+        def limit_memory():
+            resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+        process = subprocess.Popen([quiver, "info", path], stdout=out, stderr=err, start_new_session=True,
+                                   preexec_fn=limit_memory)
         deadline = time.monotonic() + timeout
         while True:
             pid, status, usage = os.wait4(process.pid, os.WNOHANG)
@@ -325,7 +333,7 @@ def campaign(args):
                     f.write(data)
             path = os.path.join(folder, name)
             others = [os.path.normpath(os.path.join(folder, other)) for other in named]
-            outcome, rss, text = run_one(args.quiver, path, args.timeout, others)
+            outcome, rss, text = run_one(args.quiver, path, args.timeout, others, args.memory_limit_mb)
             row = totals.setdefault(fmt, {"files": 0, "crash": 0, "hang": 0, "over 1 GB": 0, "unnamed": 0,
                                           "error": 0, "success": 0})
             row["files"] += 1
@@ -390,6 +398,7 @@ def main():
     run.add_argument("--quiver", default="build/bin/quiver")
     run.add_argument("--count", type=int, default=2000)
     run.add_argument("--timeout", type=float, default=20.0)
+    run.add_argument("--memory-limit-mb", type=int, default=4096)
     run.add_argument("--seed", type=int, default=1)
     run.add_argument("--keep", default="")
     seeds = sub.add_parser("seeds")
