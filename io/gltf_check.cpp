@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 constexpr std::uint64_t kSaturated = std::numeric_limits<std::uint64_t>::max();
+// Bytes of zero-filled accessors allowed beyond the buffers' bytes.
+constexpr std::uint64_t kZeroAccessorAllowance = std::uint64_t{1} << 20;
 
 std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
   std::uint64_t sum = 0;
@@ -96,6 +98,7 @@ class ContentsCheck {
     images_ = collection("images");
     check_buffer_views();
     for (std::size_t i = 0; i < accessors_.items.size(); ++i) check_accessor(i);
+    check_zero_accessors();
     for (std::size_t i = 0; i < meshes_.items.size(); ++i) check_mesh(i);
     check_images_and_textures();
     check_skins_and_animations();
@@ -266,10 +269,24 @@ class ContentsCheck {
       std::uint64_t stride = std::max(view_stride_[*view], whole(a, "byteStride", path, 0));
       if (stride == 0) stride = element;
       check_span(path, whole(a, "byteOffset", path, 0), count, stride, element, *view);
+    } else {
+      zero_bytes_ = saturating_add(zero_bytes_, saturating_mul(count, element));
     }
     if (const auto sparse = a.find("sparse"); sparse != a.end())
       check_sparse(*sparse, path + ".sparse", count, element);
     accessor_info_.push_back({count, type->rows * type->columns, code, type->name});
+  }
+
+  // Accessors without a bufferView are zeros (a sparse part may patch
+  // them): as many bytes of them as the buffers hold, plus
+  // kZeroAccessorAllowance, so that a small file cannot make large ones.
+  void check_zero_accessors() const {
+    std::uint64_t backed = kZeroAccessorAllowance;
+    for (std::uint64_t bytes : buffer_bytes_) backed = saturating_add(backed, bytes);
+    if (zero_bytes_ > backed) {
+      fail(joined({"expected the accessors without a bufferView to take at most ", std::to_string(backed),
+                   " bytes (the buffers' bytes and 1 MiB), found ", shown_size(zero_bytes_)}));
+    }
   }
 
   // count elements of `element` bytes, `stride` apart, from `offset` of
@@ -563,7 +580,7 @@ class ContentsCheck {
   std::vector<std::uint64_t> buffer_bytes_, view_bytes_, view_stride_;
   std::vector<Accessor> accessor_info_;
   std::vector<std::uint64_t> mesh_triangles_, mesh_vertices_;
-  std::uint64_t decoded_bytes_ = 0;
+  std::uint64_t decoded_bytes_ = 0, zero_bytes_ = 0;
   GltfContents contents_;
 };
 

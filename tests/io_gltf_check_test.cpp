@@ -240,6 +240,11 @@ TEST_F(GltfCheck, BufferViewsAndAccessorsLieWithinWhatHoldsThem) {
                                  "\"count\": 6148914691236517206, \"type\": \"SCALAR\""}}),
                "expected accessors[1].count to be from 1 to 50331648, found "
                "6148914691236517206");
+  // Zeros without a bufferView: no more than the buffers hold, plus 1 MiB.
+  expect_error(edited_triangle({{"\"bufferView\": 0,", ""}, {"\"count\": 3,\n   \"type\": \"VEC3\"",
+                                                             "\"count\": 50331648, \"type\": \"VEC3\""}}),
+               "expected the accessors without a bufferView to take at most 1048620 bytes (the buffers' bytes and 1 "
+               "MiB), found 603979776");
   expect_error(edited_triangle({{"\"indices\": 1", "\"indices\": 2"}}),
                "expected meshes[0].primitives[0].indices to be an index below "
                "2 (the accessors), found 2");
