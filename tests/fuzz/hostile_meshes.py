@@ -99,8 +99,9 @@ def hostile_value(rng):
     return copy.deepcopy(rng.choice(ODD))
 
 
-def mutate_document(doc, rng):
-    """One to three structural mutations of a triangle document."""
+def mutate_document(doc, rng, copies=(10, 1000, 5000)):
+    """One to three structural mutations of a triangle document; `copies`
+    are the lengths of the repeated lists (primitives, samplers) it may write."""
     edits = [
         lambda: doc["bufferViews"][rng.randrange(2)].__setitem__(
             rng.choice(["byteOffset", "byteLength", "byteStride", "buffer"]), hostile_value(rng)),
@@ -127,8 +128,8 @@ def mutate_document(doc, rng):
         lambda: doc["bufferViews"][0].__setitem__("extensions", {"EXT_meshopt_compression": {
             "buffer": 0, "byteOffset": hostile_value(rng), "byteLength": 36, "byteStride": 12, "count": 3}}),
         lambda: doc.__setitem__("images", [{"bufferView": hostile_value(rng), "mimeType": "image/png"}]),
-        lambda: doc["meshes"][0]["primitives"].extend([doc["meshes"][0]["primitives"][0]] * rng.choice([10, 1000])),
-        lambda: doc.__setitem__("animations", [{"samplers": [{"input": 0, "output": 0}] * rng.choice([1, 5000]),
+        lambda: doc["meshes"][0]["primitives"].extend([doc["meshes"][0]["primitives"][0]] * rng.choice(copies)),
+        lambda: doc.__setitem__("animations", [{"samplers": [{"input": 0, "output": 0}] * rng.choice(copies),
                                                 "channels": []}]),
         lambda: doc["accessors"].__setitem__(0, {"componentType": 5126, "count": hostile_value(rng), "type": "VEC3"}),
     ]
@@ -374,8 +375,9 @@ def write_seeds(folder, fmt):
     rng = random.Random(7)
     seeds = {"deep300": deep_chain(300), "doubling22": deep_chain(22, duplicate=True)}
     for i in range(40):
+        # Short lists: libFuzzer's inputs are at most 64 KB, and small ones run faster.
         seeds[f"mutated{i:02d}"] = mutate_document(triangle_document(None if fmt == "glb" else data_uri(
-            triangle_buffer())), rng)
+            triangle_buffer())), rng, copies=(2, 10))
     plain = triangle_document(None if fmt == "glb" else data_uri(triangle_buffer()))
     seeds["plain"] = plain
     sparse = copy.deepcopy(plain)
