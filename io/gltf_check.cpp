@@ -46,8 +46,7 @@ std::string shown_size(std::uint64_t bytes) {
 // Extensions whose data Assimp would read without quiver's bounds: Draco
 // and meshopt decode compressed bufferViews of their own sizes, mesh
 // quantization lets positions and normals be integers that Assimp 5.2
-// copies into floats byte for byte, KHR_binary_glTF is glTF 1.0's binary
-// container.
+// copies into floats byte for byte, KHR_binary_glTF is glTF 1.0's binary container.
 constexpr std::array<std::string_view, 5> kUnreadExtensions = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                                "KHR_meshopt_compression", "KHR_mesh_quantization",
                                                                "KHR_binary_glTF"};
@@ -103,10 +102,8 @@ class ContentsCheck {
     check_images_and_textures();
     check_skins_and_animations();
     if (decoded_bytes_ > kMaxGltfDecodedBytes) {
-      fail(
-          joined({"expected the accessors' data, as decoded once per use, to "
-                  "take at most ",
-                  std::to_string(kMaxGltfDecodedBytes), " bytes, found ", shown_size(decoded_bytes_)}));
+      fail(joined({"expected the accessors' data, as decoded once per use, to take at most ",
+                   std::to_string(kMaxGltfDecodedBytes), " bytes, found ", shown_size(decoded_bytes_)}));
     }
     check_node_graph();
     return std::move(contents_);
@@ -132,8 +129,7 @@ class ContentsCheck {
     return result;
   }
 
-  // object[key] as a whole number; `fallback` when absent (required without
-  // one).
+  // object[key] as a whole number; `fallback` when absent (required without one).
   std::uint64_t whole(const json& object, const char* key, const std::string& path,
                       std::optional<std::uint64_t> fallback = std::nullopt) const {
     const auto found = object.find(key);
@@ -147,8 +143,7 @@ class ContentsCheck {
     return found->get<std::uint64_t>();
   }
 
-  // The item of `target` that `value` (at `path`) refers to: an index
-  // (glTF 2.0) or an id (1.0).
+  // The item of `target` that `value` (at `path`) refers to: an index (glTF 2.0) or an id (1.0).
   std::size_t reference(const json& value, const Collection& target, const std::string& path) const {
     if (target.ids.empty()) {
       if (value.is_number_unsigned() && value.get<std::uint64_t>() < target.items.size()) {
@@ -289,8 +284,7 @@ class ContentsCheck {
     }
   }
 
-  // count elements of `element` bytes, `stride` apart, from `offset` of
-  // bufferView `view` lie within it.
+  // count elements of `element` bytes, `stride` apart, from `offset` of bufferView `view` lie within it.
   void check_span(const std::string& path, std::uint64_t offset, std::uint64_t count, std::uint64_t stride,
                   std::uint64_t element, std::size_t view) const {
     const std::uint64_t available = view_bytes_[view];
@@ -387,9 +381,7 @@ class ContentsCheck {
               optional_reference(primitive, "indices", accessors_, primitive_path)) {
         const Accessor& a = use_accessor(*indices);
         if (a.type != "SCALAR" || (a.component_type != 5121 && a.component_type != 5123 && a.component_type != 5125)) {
-          fail(joined({"expected ", primitive_path,
-                       ".indices to name a SCALAR accessor of unsigned integers "
-                       "(5121, ",
+          fail(joined({"expected ", primitive_path, ".indices to name a SCALAR accessor of unsigned integers (5121, ",
                        "5123 or 5125), found ", std::string(a.type), " of componentType ",
                        std::to_string(a.component_type)}));
         }
@@ -440,8 +432,7 @@ class ContentsCheck {
     for (std::size_t i = 0; i < animations.items.size(); ++i) {
       const json& animation = *animations.items[i];
       const std::string path = animations.path(i);
-      // glTF 1.0 names its accessors in "parameters"; 2.0 in samplers' input
-      // and output.
+      // glTF 1.0 names its accessors in "parameters"; 2.0 in samplers' input and output.
       if (const auto parameters = animation.find("parameters");
           parameters != animation.end() && parameters->is_object()) {
         for (auto entry = parameters->begin(); entry != parameters->end(); ++entry) {
@@ -473,8 +464,7 @@ class ContentsCheck {
   }
 
   // How often each node is a root: the nodes of the scene Assimp reads
-  // ("scene", else every scene's), or every node without a parent when
-  // there are no scenes.
+  // ("scene", else every scene's), or every node without a parent when there are no scenes.
   std::vector<std::uint64_t> root_counts(const std::vector<std::vector<std::size_t>>& children) const {
     std::vector<std::uint64_t> roots(nodes_.items.size(), 0);
     const Collection scenes = collection("scenes");
