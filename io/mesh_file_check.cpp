@@ -461,7 +461,9 @@ MeshFileCounts check_stl(std::string_view bytes, std::string_view file) {
 
 GltfContents check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, bool binary,
                         std::size_t max_total_bytes, std::size_t triangle_budget) {
-  if (!binary) return check_gltf_json(bytes, file, directory, std::nullopt, bytes.size(), max_total_bytes, triangle_budget);
+  if (!binary) {
+    return check_gltf_json(bytes, file, directory, std::nullopt, bytes.size(), max_total_bytes, triangle_budget);
+  }
   if (bytes.size() < 12 || little_endian_u32(bytes, 0) != kGlbMagic) {
     fail_at_byte(file, 0, "a GLB header starting 'glTF'", quoted_token(bytes.substr(0, 4)));
   }
@@ -485,7 +487,8 @@ GltfContents check_gltf(std::string_view bytes, std::string_view file, const fs:
     at += 8 + length;
   }
   if (json_text.data() == nullptr) fail_at_byte(file, 12, "a JSON chunk", "end of file");
-  return check_gltf_json(json_text, file, directory, binary_chunk_bytes, bytes.size(), max_total_bytes, triangle_budget);
+  return check_gltf_json(json_text, file, directory, binary_chunk_bytes, bytes.size(), max_total_bytes,
+                         triangle_budget);
 }
 
 }  // namespace quiver
