@@ -55,36 +55,20 @@ std::size_t data_uri_bytes(std::string_view uri) {
   return (payload.size() + padding) / 4 * 3 - padding;
 }
 
-void check_gltf_json(std::string_view json_text, std::string_view file, const fs::path& directory,
-                     const PathRule& paths, std::optional<std::size_t> binary_chunk_bytes, std::size_t total_bytes,
-                     std::size_t max_total_bytes) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(json_text.begin(), json_text.end());
-  } catch (const nlohmann::json::parse_error& error) {
-    const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
-    const TextPosition at = position_at(json_text, offset);
-    const std::string_view rest = json_text.substr(std::min(offset, json_text.size()));
-    throw ParseError(file, at.line, at.column, "glTF's JSON",
-                     rest.empty() ? std::string("end of file") : quoted_token(rest.substr(0, rest.find('\n'))));
-  } catch (const nlohmann::json::exception& error) {
-    // A number beyond double's range (out_of_range 406), which has no position.
-    throw ParseError::whole_file(file, joined({"expected glTF's JSON, found: ", error.what()}));
-  }
-  if (!document.is_object() || !document.contains("asset")) {
-    throw ParseError::whole_file(file, "expected a glTF document (a JSON object with an \"asset\"), found none");
-  }
-  const auto buffers = document.find("buffers");
-  if (buffers == document.end()) return;
+// Each buffer's byteLength against the file, data URI or binary chunk
+// that holds it; the files it names, each admitted by `paths`, are added to `files`.
+void check_gltf_buffers(const nlohmann::json& buffers, std::string_view file, const fs::path& directory,
+                        const PathRule& paths, std::optional<std::size_t> binary_chunk_bytes,
+                        std::size_t total_bytes, std::size_t max_total_bytes, std::vector<fs::path>& files) {
   // glTF 2.0 lists its buffers; glTF 1.0 names them (an object).
-  if (!buffers->is_array() && !buffers->is_object()) {
+  if (!buffers.is_array() && !buffers.is_object()) {
     throw ParseError::whole_file(file, "expected \"buffers\" to be an array (or, in glTF 1.0, an object)");
   }
   std::size_t index = 0;
-  for (auto entry = buffers->begin(); entry != buffers->end(); ++entry, ++index) {
+  for (auto entry = buffers.begin(); entry != buffers.end(); ++entry, ++index) {
     const nlohmann::json& buffer = *entry;
     const std::string name =
-        buffers->is_array() ? "buffers[" + std::to_string(index) + "]" : "buffers." + entry.key();
+        buffers.is_array() ? "buffers[" + std::to_string(index) + "]" : "buffers." + entry.key();
     const auto length = buffer.is_object() ? buffer.find("byteLength") : buffer.end();
     if (length == buffer.end() || !length->is_number_unsigned()) {
       throw ParseError::whole_file(file, "expected " + name + " to have a whole-number byteLength");
@@ -121,6 +105,7 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
             file, "larger than the mesh limit of " + std::to_string(max_total_bytes) + " bytes with its buffer files");
       }
       holder = "its file " + quoted_token(text);
+      files.push_back(path);
     }
     if (stated > available) {
       throw ParseError::whole_file(file, "expected " + name + ".byteLength to be at most the " +
@@ -128,6 +113,50 @@ void check_gltf_json(std::string_view json_text, std::string_view file, const fs
                                              std::to_string(stated));
     }
   }
+}
+
+GltfContents check_gltf_json(std::string_view json_text, std::string_view file, const fs::path& directory,
+                             const PathRule& paths, std::optional<std::size_t> binary_chunk_bytes,
+                             std::size_t total_bytes, std::size_t max_total_bytes, std::size_t triangle_budget) {
+  nlohmann::json document;
+  // nlohmann/json takes 16 bytes and more per value: their count is bounded
+  // as they are parsed, before the document grows past it.
+  struct TooManyValues {};
+  std::size_t values = 0;
+  const auto count_values = [&values](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    using Event = nlohmann::json::parse_event_t;
+    if ((event == Event::value || event == Event::object_start || event == Event::array_start) &&
+        ++values > kMaxGltfJsonValues) {
+      throw TooManyValues{};
+    }
+    return true;
+  };
+  try {
+    document = nlohmann::json::parse(json_text.begin(), json_text.end(), count_values);
+  } catch (const TooManyValues&) {
+    throw ParseError::whole_file(file, joined({"expected glTF's JSON of at most ", std::to_string(kMaxGltfJsonValues),
+                                               " values (numbers, strings, arrays, objects ...), found more"}));
+  } catch (const nlohmann::json::parse_error& error) {
+    const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
+    const TextPosition at = position_at(json_text, offset);
+    const std::string_view rest = json_text.substr(std::min(offset, json_text.size()));
+    throw ParseError(file, at.line, at.column, "glTF's JSON",
+                     rest.empty() ? std::string("end of file") : quoted_token(rest.substr(0, rest.find('\n'))));
+  } catch (const nlohmann::json::exception& error) {
+    // A number beyond double's range (out_of_range 406), which has no position.
+    throw ParseError::whole_file(file, joined({"expected glTF's JSON, found: ", error.what()}));
+  }
+  if (!document.is_object() || !document.contains("asset")) {
+    throw ParseError::whole_file(file, "expected a glTF document (a JSON object with an \"asset\"), found none");
+  }
+  std::vector<fs::path> buffer_files;
+  if (const auto buffers = document.find("buffers"); buffers != document.end()) {
+    check_gltf_buffers(*buffers, file, directory, paths, binary_chunk_bytes, total_bytes, max_total_bytes,
+                       buffer_files);
+  }
+  GltfContents contents = check_gltf_contents(document, file, directory, paths, triangle_budget);
+  contents.files.insert(contents.files.begin(), buffer_files.begin(), buffer_files.end());
+  return contents;
 }
 
 }  // namespace
@@ -156,11 +185,11 @@ MeshFileCounts check_stl(std::string_view bytes, std::string_view file) {
                std::to_string(little_endian_u32(bytes, 80)));
 }
 
-void check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, const PathRule& paths,
-                bool binary, std::size_t max_total_bytes) {
+GltfContents check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, const PathRule& paths,
+                        bool binary, std::size_t max_total_bytes, std::size_t triangle_budget) {
   if (!binary) {
-    check_gltf_json(bytes, file, directory, paths, std::nullopt, bytes.size(), max_total_bytes);
-    return;
+    return check_gltf_json(bytes, file, directory, paths, std::nullopt, bytes.size(), max_total_bytes,
+                           triangle_budget);
   }
   if (bytes.size() < 12 || little_endian_u32(bytes, 0) != kGlbMagic) {
     fail_at_byte(file, 0, "a GLB header starting 'glTF'", quoted_token(bytes.substr(0, 4)));
@@ -185,7 +214,8 @@ void check_gltf(std::string_view bytes, std::string_view file, const fs::path& d
     at += 8 + length;
   }
   if (json_text.data() == nullptr) fail_at_byte(file, 12, "a JSON chunk", "end of file");
-  check_gltf_json(json_text, file, directory, paths, binary_chunk_bytes, bytes.size(), max_total_bytes);
+  return check_gltf_json(json_text, file, directory, paths, binary_chunk_bytes, bytes.size(), max_total_bytes,
+                         triangle_budget);
 }
 
 }  // namespace quiver

@@ -2,15 +2,17 @@
 // (io/mesh_import.h), so that no count in a file makes the importer
 // allocate more than the file's bytes can back: a binary STL's triangle
 // count against the file's size, a GLB's length and chunks, and every glTF
-// buffer's byteLength against the file or data URI that holds it (PLY is
-// read by quiver itself: io/ply_reader.h). Errors in text name
-// file:line:column; in binary data, "file: byte N: expected X, found Y".
+// buffer's byteLength against the file or data URI that holds it, then the
+// rest of the glTF (io/gltf_check.h). PLY is read by quiver itself
+// (io/ply_reader.h). Errors in text name file:line:column; in binary data,
+// "file: byte N: expected X, found Y".
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
 #include <string_view>
 
+#include "io/gltf_check.h"
 #include "io/path_rule.h"
 
 namespace quiver {
@@ -26,8 +28,10 @@ MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
 // URI are looked for relative to `directory` (outside `paths`, an error:
 // io/path_rule.h), and their sizes added up with the file's against
-// max_total_bytes.
-void check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
-                const PathRule& paths, bool binary, std::size_t max_total_bytes);
+// max_total_bytes; then the document's contents (io/gltf_check.h), its
+// placed triangles against triangle_budget.
+GltfContents check_gltf(std::string_view bytes, std::string_view file, const std::filesystem::path& directory,
+                        const PathRule& paths, bool binary, std::size_t max_total_bytes,
+                        std::size_t triangle_budget);
 
 }  // namespace quiver

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -162,6 +163,23 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
   }
 }
 
+// A vertex position (of part `part`, after its node's transform) finite and
+// within the OBJ reader's coordinate bound, as the camera and bounding
+// boxes need.
+void check_position(const Vec3<float>& p, std::string_view file, std::size_t part, std::uint32_t vertex) {
+  const std::string where = joined({" (mesh ", std::to_string(part), ", vertex ", std::to_string(vertex), ")"});
+  if (!all_finite(p)) {
+    throw ParseError::whole_file(file, joined({"expected finite vertex positions, found one that is not", where}));
+  }
+  const float largest = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  if (largest > kLargestMeshCoordinate) {
+    char shown[96];
+    std::snprintf(shown, sizeof shown, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+    throw ParseError::whole_file(
+        file, joined({"expected vertex positions from -3.4e38 to 3.4e38, found ", shown, where}));
+  }
+}
+
 SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
                      const PathRule& paths, double crease_angle_degrees, ReaderWarnings& warnings) {
   SceneDesc scene;
@@ -198,11 +216,7 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
       for (std::size_t k = 0; k < 3; ++k) {
         const std::uint32_t v = part.indices[3 * t + k];
         triangle.triangle.p[k] = vector_at(part.positions, v);
-        if (!all_finite(triangle.triangle.p[k])) {
-          throw ParseError::whole_file(file, joined({"expected finite vertex positions, found one that is not "
-                                                     "(mesh ",
-                                                     std::to_string(i), ", vertex ", std::to_string(v), ")"}));
-        }
+        check_position(triangle.triangle.p[k], file, i, v);
         if (has_normals) normals[k] = vector_at(part.normals, v);
         if (part.uvs != nullptr) uvs[k] = {part.uvs[part.uv_stride * v], part.uvs[part.uv_stride * v + 1]};
       }
@@ -266,6 +280,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   const fs::path directory = path.parent_path();
   const PathRule rule = paths.for_folder(directory);
   ReaderWarnings warnings(strict);
+  GltfContents gltf;
   switch (*format) {
     case MeshFormat::ply:
       return scene_from_ply(read_ply(bytes, file, warnings, triangle_budget), file, crease_angle_degrees, warnings);
@@ -273,10 +288,10 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
       check_stl(bytes, file);
       break;
     case MeshFormat::gltf:
-      check_gltf(bytes, file, directory, rule, false, kMaxImportedMeshBytes);
+      gltf = check_gltf(bytes, file, directory, rule, false, kMaxImportedMeshBytes, triangle_budget);
       break;
     case MeshFormat::glb:
-      check_gltf(bytes, file, directory, rule, true, kMaxImportedMeshBytes);
+      gltf = check_gltf(bytes, file, directory, rule, true, kMaxImportedMeshBytes, triangle_budget);
       break;
   }
 
@@ -295,7 +310,15 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                                        extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, error);
-  return scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
+  SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
+  // Its buffer and image files are inputs too, which no output may overwrite.
+  for (const fs::path& read : gltf.files) {
+    const std::string name = read.string();
+    if (std::find(scene.source_files.begin(), scene.source_files.end(), name) == scene.source_files.end()) {
+      scene.source_files.push_back(name);
+    }
+  }
+  return scene;
 }
 
 }  // namespace quiver

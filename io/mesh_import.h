@@ -34,9 +34,12 @@ bool is_imported_mesh_extension(std::string_view extension);
 
 // Reads the mesh at path (its extension names the format). At most
 // triangle_budget triangles (kMaxObjTriangles in all when meshes are
-// appended). Strict: what is otherwise a warning is a ParseError. A glTF's
-// buffer and image files outside `paths` are errors (io/path_rule.h). Throws
-// ParseError, also when the Assimp module cannot be loaded (glTF, STL), and
+// appended), counted for glTF before Assimp runs; vertex positions finite
+// and within +-kLargestMeshCoordinate. A glTF's buffer and image files are
+// listed in the result's source_files (the file itself is not), and files
+// outside `paths` are errors (io/path_rule.h). Strict: what is otherwise a
+// warning is a ParseError. Throws ParseError, also when the Assimp module
+// cannot be loaded (glTF, STL), and
 // std::invalid_argument for a crease angle outside [0, 180].
 SceneDesc read_imported_mesh(const std::filesystem::path& path,
                              double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,

@@ -38,9 +38,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::string_view kEndOfLine = "end of line";
-// Largest magnitude of an OBJ or MTL number: a round bound just below
-// FLT_MAX (3.4028235e38), so no value is within rounding of overflow.
-constexpr float kLargestObjNumber = 3.4e38f;
 
 struct Token {
   std::string_view text;
@@ -165,7 +162,7 @@ class LineScanner {
       value = std::signbit(wide) ? -0.f : 0.f;
     }
     if (!std::isfinite(value)) fail_at(token, joined({"a finite number (", what, ")"}));
-    if (std::fabs(value) > kLargestObjNumber) {
+    if (std::fabs(value) > kLargestMeshCoordinate) {
       fail_at(token, joined({"a number from -3.4e38 to 3.4e38 (", what, ")"}));
     }
     if (!exponent_has_at_most_9_digits(token.text)) {

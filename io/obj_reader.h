@@ -32,6 +32,11 @@ inline constexpr std::size_t kMaxMtlLibraries = 64;
 // when meshes are appended to it (io/mesh_append.h), whatever their format.
 inline constexpr std::size_t kMaxObjVertices = std::size_t{1} << 24;
 inline constexpr std::size_t kMaxObjTriangles = std::size_t{1} << 24;
+// Largest magnitude of a mesh coordinate: a round bound just below FLT_MAX
+// (3.4028235e38), so that nothing downstream (a bounding box's extent, the
+// auto camera) is within rounding of overflow. The OBJ reader's number
+// bound; imported meshes' positions keep it too (io/mesh_import.h).
+inline constexpr float kLargestMeshCoordinate = 3.4e38f;
 // Most corners of `f`, `l` and `p` statements together.
 inline constexpr std::size_t kMaxObjCorners = std::size_t{1} << 26;
 // Most vertices of one face: this reader's bound, far above what meshes

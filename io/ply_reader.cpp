@@ -25,10 +25,6 @@ namespace quiver {
 
 namespace {
 
-// Largest magnitude of a coordinate, normal or texture coordinate: OBJ's
-// bound (io/obj_reader.cpp), a round value just below FLT_MAX, so no
-// value is within rounding of overflow.
-constexpr double kLargestPlyNumber = 3.4e38;
 // Most corners of one polygon: OBJ's bound, so that no face makes ear
 // clipping (quadratic and more) slow.
 constexpr std::size_t kMaxPlyFaceCorners = kMaxObjFaceVertices;
@@ -315,7 +311,7 @@ std::string value_name(const PlyProperty& property, const PlyElement& element) {
 }
 
 // The bound every coordinate, normal and texture coordinate keeps.
-bool within_bound(double value) { return std::isfinite(value) && std::fabs(value) <= kLargestPlyNumber; }
+bool within_bound(double value) { return std::isfinite(value) && std::fabs(value) <= double(kLargestMeshCoordinate); }
 
 // ---- cursors ------------------------------------------------------------------
 

@@ -185,6 +185,10 @@ void read_texture_images(SceneDesc& scene) {
                                 : decode_texture_image(t.encoded, t.named_at.file + " (embedded image)");
       std::vector<std::uint8_t>().swap(t.encoded);  // the texels replace the file's bytes
     } catch (const ParseError& error) {
+      // An image file a mesh names as a whole (a glTF's): the mesh, then the image.
+      if (t.named_at.line == 0 && !t.path.empty() && !t.named_at.file.empty()) {
+        throw ParseError::whole_file(t.named_at.file, joined({"in the image texture it names: ", error.what()}));
+      }
       if (t.named_at.line == 0) throw;
       throw ParseError::in_named_file(t.named_at, "image texture", error);
     }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "scene/camera_frame.h"
 
@@ -238,6 +240,14 @@ std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int hei
 
   double eye[3];
   for (int a = 0; a < 3; ++a) eye[a] = center[a] + distance * toward_eye[a];
+  // The eye and the light beside it lie up to about 2.5 view distances out: both must stay finite in float.
+  if (!scene.camera && !(distance * 2.5 + length(center) < double(std::numeric_limits<float>::max()))) {
+    const std::string name = scene.source_files.empty() ? std::string("the scene") : scene.source_files.front();
+    std::ostringstream size;
+    size << std::setprecision(3) << 2.0 * radius;
+    throw std::invalid_argument(name + ": expected a model that a default view can frame, found one " + size.str() +
+                                " across, too large for a camera in float; give the scene a camera, or scale it");
+  }
   if (!scene.camera) {
     CameraDesc camera{};
     camera.from = to_float(eye);

@@ -48,8 +48,9 @@ inline constexpr double kViewLean = 0.15;
 // intensity is 1 minus the largest ambient
 // component (at least 0.3); a zero ambient becomes 0.1.
 // Nothing is changed where the scene has its own camera or lights. Throws
-// std::invalid_argument for width or height outside [1, kMaxImageSide], and
-// as camera_frame (scene/camera_frame.h) when a light is added beside a
+// std::invalid_argument for width or height outside [1, kMaxImageSide], for
+// a model too large for a default camera in float ("<scene file>: ..."),
+// and as camera_frame (scene/camera_frame.h) when a light is added beside a
 // degenerate camera of the scene's own.
 std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
                                             const std::optional<Vec3<double>>& up = std::nullopt);

@@ -149,8 +149,8 @@ struct SceneDesc {
   std::vector<SceneInstance> instances;
   RenderDesc render;
   // The files the scene was read from, each once, in reading order: the
-  // scene file, OBJ meshes and MTL libraries (texture images are in
-  // textures[].path).
+  // scene file, meshes, MTL libraries, and a glTF's buffer and image files
+  // (texture images are also in textures[].path).
   std::vector<std::string> source_files;
   // What a forgiving reader let pass, one line each ("file:line:column:
   // warning: ..."; io/reader_warnings.h), for the program to show.

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -380,6 +381,35 @@ TEST_F(Cli, AnOutputNamingADeviceOrFifoIsRefusedAndLeftAsItIs) {
     EXPECT_TRUE(fs::is_character_file("/dev/null"));
     EXPECT_FALSE(fs::exists(work() / "out.png"));
   }
+}
+
+// A glTF's buffer file is read with it, so no output may overwrite it
+// (`quiver render m.gltf --stats m.bin` once did).
+TEST_F(Cli, NoOutputMayNameAGltfsBufferFile) {
+  const fs::path inputs = io() / "inputs";
+  fs::create_directories(inputs);
+  // tests/data/mesh/triangle.gltf with its 44-byte buffer in m.bin: three
+  // float positions, then the ushort indices 0 1 2 and two bytes of padding.
+  std::string json = read_text(fs::path(QUIVER_TEST_DATA_DIR) / "mesh" / "triangle.gltf");
+  const std::size_t start = json.find("data:");
+  ASSERT_NE(start, std::string::npos);
+  json.replace(start, json.find('"', start) - start, "m.bin");
+  std::ofstream(inputs / "m.gltf") << json;
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, 2, 0};
+  std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+  buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  std::ofstream(inputs / "m.bin", std::ios::binary) << buffer;
+  const std::map<std::string, std::string> before = contents(inputs);
+  const std::string gltf = (inputs / "m.gltf").string(), bin = (inputs / "m.bin").string();
+  const Outcome r = run({"render", gltf, "-o", "out.png", "--stats", bin, "--width", "8", "--height", "6"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("the render reads ('" + bin + "')"), std::string::npos) << r.err;
+  EXPECT_TRUE(work_files().empty());
+  EXPECT_EQ(contents(inputs), before);
+  // The model itself renders.
+  const Outcome fine = run({"render", gltf, "-o", "out.png", "--width", "8", "--height", "6", "-q"});
+  EXPECT_EQ(fine.exit_code, 0) << fine.err;
 }
 
 TEST_F(Cli, AFailedStatsWriteLeavesEveryOutputAsItWas) {

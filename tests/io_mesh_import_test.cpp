@@ -23,6 +23,8 @@
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
 #include "io/texture_image.h"
+#include "tests/support/base64.h"
+#include "tests/support/gltf_text.h"
 #include "tests/support/temporary_directory.h"
 
 namespace quiver {
@@ -42,19 +44,7 @@ std::string file_bytes(const fs::path& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// The bytes a base64 text (standard alphabet, '=' padding) encodes.
-std::string base64_decoded(std::string_view text) {
-  constexpr std::string_view kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string bytes;
-  std::uint32_t bits = 0;
-  int count = 0;
-  for (char c : text) {
-    if (c == '=') break;
-    bits = (bits << 6) | static_cast<std::uint32_t>(kAlphabet.find(c));
-    if ((count += 6) >= 8) bytes += static_cast<char>((bits >> (count -= 8)) & 0xff);
-  }
-  return bytes;
-}
+using testing::base64_decoded;
 
 template <typename T>
 void put(std::string& bytes, T value, bool big_endian = false) {
@@ -249,11 +239,7 @@ TEST(MeshImport, GltfGetsItsNodeTransformAndBaseColourAndStaysFacetedWithoutNorm
 
 // triangle.gltf with its nodes replaced by `nodes` (JSON), all placing mesh 0.
 std::string triangle_gltf_with_nodes(const std::string& nodes, const std::string& scene_nodes) {
-  std::string json = file_bytes(kMeshes / "triangle.gltf");
-  const std::size_t from = json.find("\"scene\": 0");
-  const std::size_t to = json.find("\"meshes\"");
-  return json.substr(0, from) + "\"scene\": 0, \"scenes\": [{\"nodes\": " + scene_nodes + "}], \"nodes\": " + nodes +
-         ",\n " + json.substr(to);
+  return testing::gltf_with_nodes(file_bytes(kMeshes / "triangle.gltf"), nodes, scene_nodes);
 }
 
 // Each node that names a mesh places it; a mirroring node keeps the file's
@@ -289,7 +275,7 @@ TEST(MeshImport, GltfNodesPlaceTheirMeshesAndAMirrorKeepsTheFront) {
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& error) {
     EXPECT_EQ(std::string(error.what()),
-              path.string() + ": expected at most 1 triangles once the file's nodes place its meshes, found more");
+              path.string() + ": expected at most 1 triangles once the file's nodes place its meshes, found 2");
   }
 }
 
@@ -639,8 +625,9 @@ TEST(MeshImportPublicModels, EveryFileLoadsOrIsAnErrorNamingIt) {
       ++refused;
     }
   }
-  // Debian 12's assimp-testmodels 5.2.5: 70 such files.
-  EXPECT_GE(loaded, 40u);
+  // Debian 12's assimp-testmodels 5.2.5: 70 such files (39 load; the Draco
+  // engine and a bufferView past its buffer are among those refused).
+  EXPECT_GE(loaded, 38u);
   EXPECT_GE(refused, 10u);
 }
 
@@ -686,7 +673,12 @@ TEST(MeshImportPublicModels, ReadAsTheirFormatsDescribeThem) {
       {root / "PLY" / "pond.0.ply", ":3:16: expected an element count that the 2171512 bytes after the header"},
       {root / "glTF2" / "BoxWithInfinites-glTF-Binary" / "BoxWithInfinites.glb", ": expected finite vertex positions"},
       {root / "glTF2" / "MissingBin" / "BoxTextured.gltf", ": expected buffers[0]'s file 'BoxTextured0.bin'"},
-      {root / "glTF2" / "RecursiveNodes" / "RecursiveNodes.gltf", ": Assimp: "},
+      {root / "glTF2" / "draco" / "2CylinderEngine.gltf",
+       ": uses KHR_draco_mesh_compression, which quiver does not read"},
+      {root / "glTF2" / "IncorrectVertexArrays" / "Cube.gltf",
+       ": expected bufferViews[2].byteLength to be at most the 10 bytes of buffers[0] after its byteOffset 504"},
+      {root / "glTF2" / "RecursiveNodes" / "RecursiveNodes.gltf",
+       ": expected nodes that form trees, found nodes[0] among its own descendants"},
       {root / "glTF" / "BoxTextured-glTF-Binary" / "BoxTextured.glb", ": byte 4: expected GLB version 2, found 1"},
   };
   for (const auto& [path, message] : broken) {

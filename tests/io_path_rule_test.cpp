@@ -145,7 +145,7 @@ TEST_F(PathRuleTest, AGltfBufferOrImageOutsideIsAnErrorNamingTheGltf) {
   }
   write_file(scene() / "image.gltf", triangle_gltf("data.bin", "/etc/passwd"));
   const std::string image = load_error("image.gltf");
-  EXPECT_NE(image.find("image.gltf: expected material 0's image to be a file inside"), std::string::npos) << image;
+  EXPECT_NE(image.find("image.gltf: expected images[0]'s file to be a file inside"), std::string::npos) << image;
   EXPECT_EQ(image.find("root:"), std::string::npos) << "the file was read: " << image;
 
   write_file(scene() / "model.gltf", triangle_gltf("../private/data.bin"));

@@ -110,6 +110,32 @@ TEST(AutoView, EmptySceneGetsASaneCameraAndALight) {
   EXPECT_GT(scene.lights[0].position.y, scene.camera->from.y);  // above the eye
 }
 
+// A model spanning +-3.4e38 (the readers' largest coordinates): no camera in
+// float frames it, and the error names the scene file rather than a camera
+// that was never the user's.
+TEST(AutoView, AModelTooLargeForAFloatCameraIsAnErrorNamingItsFile) {
+  SceneDesc scene;
+  scene.source_files = {"huge.obj"};
+  for (const float x : {-3.4e38f, 3.4e38f}) {
+    SceneTriangle t{};
+    t.triangle.p = {Vec3<float>{x, 0.f, 0.f}, Vec3<float>{0.f, 1.f, 0.f}, Vec3<float>{0.f, 0.f, 1.f}};
+    scene.triangles.push_back(t);
+  }
+  try {
+    add_default_view(scene, 32, 32);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("huge.obj: expected a model that a default view can frame", 0), 0u)
+        << error.what();
+  }
+  EXPECT_FALSE(scene.camera.has_value());
+  scene.triangles.pop_back();
+  scene.triangles[0].triangle.p[0].x = -1e37f;  // 1e37 across: framed, every camera coordinate finite
+  add_default_view(scene, 32, 32);
+  ASSERT_TRUE(scene.camera.has_value());
+  for (int a = 0; a < 3; ++a) EXPECT_TRUE(std::isfinite(scene.camera->from[a]) && std::isfinite(scene.lights[0].position[a]));
+}
+
 TEST(AutoView, KeepsWhatTheSceneHas) {
   SceneDesc scene;
   CameraDesc camera{};

@@ -2,19 +2,23 @@
 // structural checks run before Assimp reads an STL or glTF file
 // (io/mesh_file_check.h). The input's first byte picks the reader (0 PLY,
 // 1 STL, 2 glTF text, 3 GLB; modulo 4), the rest is the file's bytes; glTF
-// buffer URIs resolve in tests/data/mesh. quiver::ParseError is the only
-// accepted failure; any other exception, a sanitizer report or a broken
-// invariant is a finding.
+// buffer URIs resolve in tests/data/mesh. $QUIVER_FUZZ_MESH_KIND (0 to 3),
+// when set, picks the reader instead, the first byte still skipped, so that
+// a run can fuzz one format (run.sh's ply, gltf and glb).
+// quiver::ParseError is the only accepted failure; any other exception, a
+// sanitizer report or a broken invariant is a finding.
 //
 // Invariants on success: a PLY's vertices and triangles are within the OBJ
 // bounds (kMaxObjVertices, kMaxObjTriangles), its normals and texture
 // coordinates are per vertex, and every index names a vertex; a binary
-// STL's triangle count is what its size says.
+// STL's triangle count is what its size says; a glTF's placed triangles and
+// nodes are within the budget and kMaxGltfNodePlacements.
 // Invariants on ParseError: file() is the input's name; an error with a
 // line points into the input as the text readers' do (PLY's header and
 // ASCII data, glTF's JSON), one without reads "name: ...".
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -29,11 +33,18 @@ namespace {
 constexpr std::string_view kNames[] = {"fuzz.ply", "fuzz.stl", "fuzz.gltf", "fuzz.glb"};
 constexpr std::size_t kMaxBytes = std::size_t{1} << 30;
 
+// The check $QUIVER_FUZZ_MESH_KIND forces, or -1.
+int forced_kind() {
+  const char* kind = std::getenv("QUIVER_FUZZ_MESH_KIND");
+  return kind != nullptr && kind[0] >= '0' && kind[0] <= '3' && kind[1] == '\0' ? kind[0] - '0' : -1;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::size_t kind = data[0] % 4;
+  static const int forced = forced_kind();
+  const std::size_t kind = forced >= 0 ? static_cast<std::size_t>(forced) : data[0] % 4;
   const std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
   const std::string_view name = kNames[kind];
   using quiver::fuzz::check;
@@ -55,9 +66,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check(!counts.stl_binary || 84 + 50 * counts.triangles == bytes.size());
         break;
       }
-      default:
-        quiver::check_gltf(bytes, name, QUIVER_FUZZ_FILES_DIR, quiver::PathRule{}.for_folder(QUIVER_FUZZ_FILES_DIR),
-                           kind == 3, kMaxBytes);
+      default: {
+        const quiver::GltfContents contents =
+            quiver::check_gltf(bytes, name, QUIVER_FUZZ_FILES_DIR, quiver::PathRule{}.for_folder(QUIVER_FUZZ_FILES_DIR),
+                               kind == 3, kMaxBytes, quiver::kMaxObjTriangles);
+        check(contents.placed_triangles <= quiver::kMaxObjTriangles &&
+              contents.node_placements <= quiver::kMaxGltfNodePlacements);
+      }
     }
   } catch (const quiver::ParseError& error) {
     check(error.file() == name);

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes the scene readers with libFuzzer + ASan + UBSan, each for SECONDS
 # (default 60), one after another.
-#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh (default: all four)
+#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh, gltf, glb
+#                                                   (default: nff, toml, obj, mesh)
+# gltf and glb run mesh_fuzzer on one format alone (QUIVER_FUZZ_MESH_KIND).
 # Configures the "fuzz" preset when needed (clang++) and builds the fuzzers
 # in build-fuzz/, seeds build-fuzz/corpus-FUZZER from the repository's test
 # data (and the small SPD scenes of ../shared for nff, when present), runs
@@ -11,7 +13,7 @@
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh ...]  (SECONDS a positive integer, default 60; default: all fuzzers)" >&2
+  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh|gltf|glb ...]  (SECONDS a positive integer, default 60; default: nff toml obj mesh)" >&2
   exit 2
 }
 
@@ -24,7 +26,7 @@ if [ "$seconds" -lt 1 ]; then usage; fi
 fuzzers=("$@")
 if [ ${#fuzzers[@]} -eq 0 ]; then fuzzers=(nff toml obj mesh); fi
 for name in "${fuzzers[@]}"; do
-  case "$name" in nff | toml | obj | mesh) ;; *) usage ;; esac
+  case "$name" in nff | toml | obj | mesh | gltf | glb) ;; *) usage ;; esac
 done
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -36,7 +38,11 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake --preset fuzz >/dev/null
 fi
 targets=()
-for name in "${fuzzers[@]}"; do targets+=("${name}_fuzzer"); done
+# The target each name runs: gltf and glb are mesh_fuzzer with one check forced.
+binary_of() {
+  case "$1" in gltf | glb) echo mesh ;; *) echo "$1" ;; esac
+}
+for name in "${fuzzers[@]}"; do targets+=("$(binary_of "$name")_fuzzer"); done
 cmake --build "$build" -j2 --target "${targets[@]}" >/dev/null
 
 crashes="$build/crashes"
@@ -83,6 +89,18 @@ seed_corpus() {
         esac
         cat "$seed" >>"$out"
       done
+      /usr/bin/python3 "$here/hostile_meshes.py" seeds "$corpus" gltf
+      /usr/bin/python3 "$here/hostile_meshes.py" seeds "$corpus" glb
+      ;;
+    gltf | glb)
+      # Structure-aware seeds (nested and doubled nodes, sparse accessors,
+      # offsets near 2^64, extensions, data URIs) behind the selector byte.
+      /usr/bin/python3 "$here/hostile_meshes.py" seeds "$corpus" "$name"
+      if [ "$name" = gltf ]; then
+        for seed in "$root"/tests/data/mesh/*.gltf; do
+          { printf '\2'; cat "$seed"; } >"$corpus/seed-$(basename "$seed")"
+        done
+      fi
       ;;
   esac
   chmod u+w "$corpus"/seed-* 2>/dev/null || true
@@ -95,9 +113,12 @@ for name in "${fuzzers[@]}"; do
   seed_corpus "$name" "$corpus"
   log="$build/fuzz-$name-last.log"
   status=0
+  binary="$(binary_of "$name")"
+  kind=""
+  case "$name" in gltf) kind=2 ;; glb) kind=3 ;; esac
   # -print_final_stats=1 adds the stat:: lines; the last #N line is the final state.
-  "$build/bin/${name}_fuzzer" "$corpus" \
-    -dict="$here/$name.dict" \
+  QUIVER_FUZZ_MESH_KIND="$kind" "$build/bin/${binary}_fuzzer" "$corpus" \
+    -dict="$here/$binary.dict" \
     -max_total_time="$seconds" \
     -rss_limit_mb=2048 \
     -max_len=65536 \
