@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes the scene readers with libFuzzer + ASan + UBSan, each for SECONDS
 # (default 60), one after another.
-#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh, gltf, glb
+#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh, ply, stl, gltf, glb
 #                                                   (default: nff, toml, obj, mesh)
-# gltf and glb run mesh_fuzzer on one format alone (QUIVER_FUZZ_MESH_KIND).
+# ply, stl, gltf and glb run mesh_fuzzer on one format alone (QUIVER_FUZZ_MESH_KIND).
 # Configures the "fuzz" preset when needed (clang++) and builds the fuzzers
 # in build-fuzz/, seeds build-fuzz/corpus-FUZZER from the repository's test
 # data (and the small SPD scenes of ../shared for nff, when present), runs
@@ -13,7 +13,7 @@
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh|gltf|glb ...]  (SECONDS a positive integer, default 60; default: nff toml obj mesh)" >&2
+  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh|ply|stl|gltf|glb ...]  (SECONDS a positive integer, default 60; default: nff toml obj mesh)" >&2
   exit 2
 }
 
@@ -26,7 +26,7 @@ if [ "$seconds" -lt 1 ]; then usage; fi
 fuzzers=("$@")
 if [ ${#fuzzers[@]} -eq 0 ]; then fuzzers=(nff toml obj mesh); fi
 for name in "${fuzzers[@]}"; do
-  case "$name" in nff | toml | obj | mesh | gltf | glb) ;; *) usage ;; esac
+  case "$name" in nff | toml | obj | mesh | ply | stl | gltf | glb) ;; *) usage ;; esac
 done
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -38,9 +38,9 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake --preset fuzz >/dev/null
 fi
 targets=()
-# The target each name runs: gltf and glb are mesh_fuzzer with one check forced.
+# The target each name runs: ply, stl, gltf and glb are mesh_fuzzer with one reader forced.
 binary_of() {
-  case "$1" in gltf | glb) echo mesh ;; *) echo "$1" ;; esac
+  case "$1" in ply | stl | gltf | glb) echo mesh ;; *) echo "$1" ;; esac
 }
 for name in "${fuzzers[@]}"; do targets+=("$(binary_of "$name")_fuzzer"); done
 cmake --build "$build" -j2 --target "${targets[@]}" >/dev/null
@@ -92,6 +92,14 @@ seed_corpus() {
       /usr/bin/python3 "$here/hostile_meshes.py" seeds "$corpus" gltf
       /usr/bin/python3 "$here/hostile_meshes.py" seeds "$corpus" glb
       ;;
+    ply | stl)
+      # The test data of that format behind its selector byte (0 PLY, 1 STL).
+      local selector='\0'
+      if [ "$name" = stl ]; then selector='\1'; fi
+      for seed in "$root"/tests/data/mesh/*."$name"; do
+        { printf "$selector"; cat "$seed"; } >"$corpus/seed-$(basename "$seed")"
+      done
+      ;;
     gltf | glb)
       # Structure-aware seeds (nested and doubled nodes, sparse accessors,
       # offsets near 2^64, extensions, data URIs) behind the selector byte.
@@ -115,7 +123,7 @@ for name in "${fuzzers[@]}"; do
   status=0
   binary="$(binary_of "$name")"
   kind=""
-  case "$name" in gltf) kind=2 ;; glb) kind=3 ;; esac
+  case "$name" in ply) kind=0 ;; stl) kind=1 ;; gltf) kind=2 ;; glb) kind=3 ;; esac
   # -print_final_stats=1 adds the stat:: lines; the last #N line is the final state.
   QUIVER_FUZZ_MESH_KIND="$kind" "$build/bin/${binary}_fuzzer" "$corpus" \
     -dict="$here/$binary.dict" \
