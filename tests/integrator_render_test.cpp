@@ -391,6 +391,28 @@ TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
   EXPECT_GT(tiled.stats.rays.primary, whole.stats.rays.primary);
 }
 
+// The jittered modes (jitter, refine) draw their sample positions from the
+// seed: the same seed repeats the image bit for bit, another seed changes
+// it. The modes that do not jitter (none, grid, corners, adaptive, whose
+// samples sit on fixed lattices) give the same image for any seed.
+TEST(Render, JitteredModesFollowTheSeedAndRepeatIt) {
+  const Scene scene = build_scene(default_scene(), {});
+  const auto image = [&](const char* aa, std::uint64_t seed) {
+    RenderSettings settings = small_settings(40, 30, aa);
+    settings.isa = best_supported_isa();
+    settings.trace.seed = seed;
+    return render(scene, settings).image;
+  };
+  for (const char* aa : {"jitter:3", "refine:0.02:4"}) {
+    const Framebuffer first = image(aa, 5);
+    EXPECT_TRUE(same_bits(first.rgb, image(aa, 5).rgb)) << aa << ": the same seed repeats the image";
+    EXPECT_FALSE(same_bits(first.rgb, image(aa, 6).rgb)) << aa << ": another seed moves the samples";
+  }
+  for (const char* aa : {"none", "grid:3", "corners", "adaptive:0.05:2"}) {
+    EXPECT_TRUE(same_bits(image(aa, 5).rgb, image(aa, 6).rgb)) << aa << " does not jitter";
+  }
+}
+
 TEST(Render, LaneStatisticsAddUp) {
   const Scene scene = build_scene(default_scene(), {});
   RenderSettings settings = small_settings(32, 24);
@@ -472,6 +494,26 @@ TEST(Render, DepthZeroOneTwoDifferOnlyWhereMirrorsAre) {
   }
 }
 
+// A reflection ray whose weight equals the cut-off exactly is cast (the
+// cut-off drops weights below it): a kr = 0.5 mirror seen by camera rays
+// (weight 1, so the reflection's weight is exactly 0.5) reflects at
+// min_weight 0.5 as at 0, and not at the next float above 0.5.
+TEST(Render, AReflectionWhoseWeightEqualsTheCutOffIsCast) {
+  SceneDesc desc = mirrors_scene(false);
+  desc.materials[1].kr = 0.5f;
+  const Scene scene = build_scene(desc, {});
+  const auto image_at = [&](float min_weight) {
+    RenderSettings settings = small_settings(48, 36);
+    settings.isa = best_supported_isa();
+    settings.trace.max_depth = 1;
+    settings.trace.min_weight = min_weight;
+    return render(scene, settings).image;
+  };
+  const Framebuffer every = image_at(0.f);
+  EXPECT_TRUE(same_bits(every.rgb, image_at(0.5f).rgb)) << "weight 0.5 at min_weight 0.5 is cast";
+  EXPECT_FALSE(same_bits(every.rgb, image_at(std::nextafter(0.5f, 1.f)).rgb)) << "a weight below the cut-off is not";
+}
+
 // ---- transparent shadows ---------------------------------------------------
 
 // A white matte floor under a light straight above; between them, at the
@@ -528,6 +570,20 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
   opaque.materials.push_back(MaterialDesc{});
   opaque.spheres.push_back({{{0.f, 7.f, 0.f}, 0.5f}, opaque.materials.size() - 1});
   EXPECT_EQ(centre_red(opaque), 0.f);
+}
+
+// A shadow ray toward a point light ends at the light: an opaque sphere on
+// the far side of the light (above it, the floor below) casts no shadow,
+// while the same sphere between the floor and the light does.
+TEST(Render, AnOccluderBeyondAPointLightCastsNoShadow) {
+  SceneDesc beyond = shadow_scene();
+  beyond.materials.push_back(MaterialDesc{});
+  beyond.spheres.push_back({{{0.f, 12.f, 0.f}, 1.f}, beyond.materials.size() - 1});  // the light is at y = 10
+  EXPECT_NEAR(centre_red(beyond), 0.8f, 1e-5f);  // kd (N.L) I with N.L = 1, as with no sphere
+  SceneDesc between = shadow_scene();
+  between.materials.push_back(MaterialDesc{});
+  between.spheres.push_back({{{0.f, 8.f, 0.f}, 1.f}, between.materials.size() - 1});
+  EXPECT_EQ(centre_red(between), 0.f);
 }
 
 // ---- texture filtering ------------------------------------------------------
