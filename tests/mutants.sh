@@ -10,7 +10,13 @@
 #
 # Usage: tests/mutants.sh [--list FILE] [--scratch DIR] [--only ID[,ID...]]
 #                         [--target T]... [--ctest-exclude REGEX] [--jobs N] [--timeout S] [--check]
+#                         [--gtest-only [FILTER]]
 #   --check          only report whether each mutant applies (no build, no tests)
+#   --gtest-only     run only the quiver_tests binary, in one process, stopping
+#                    at the first failure (--gtest_fail_fast), with an optional
+#                    gtest filter: much faster than CTest's process per test,
+#                    but it leaves out the CMake-script, Python and MPI tests
+#                    (say so when reporting a campaign run this way)
 #   --list           mutant list (default tests/mutants.txt)
 #   --scratch        where the copy and its build live (default build-mutants
 #                    in the worktree: under the ccache base_dir, so the first
@@ -35,6 +41,8 @@ ctest_exclude=""
 jobs=2
 timeout=600
 check=0
+gtest_only=0
+gtest_filter="*"
 while (($#)); do
   case $1 in
     --list) list=$(realpath "$2"); shift 2 ;;
@@ -45,6 +53,10 @@ while (($#)); do
     --jobs) jobs=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --check) check=1; shift ;;
+    --gtest-only)
+      gtest_only=1
+      if [[ $# -gt 1 && $2 != --* ]]; then gtest_filter=$2; shift; fi
+      shift ;;
     *) echo "mutants.sh: unknown argument '$1' (see the usage at the top of $0)" >&2; exit 2 ;;
   esac
 done
@@ -65,7 +77,13 @@ ctest_args=(--test-dir "$tree/build" --stop-on-failure -j "$jobs" --timeout "$ti
 [[ -n $ctest_exclude ]] && ctest_args+=(-E "$ctest_exclude")
 
 build() { cmake "${build_args[@]}"; }
-run_tests() { ctest "${ctest_args[@]}"; }
+run_tests() {
+  if ((gtest_only)); then
+    timeout "$timeout" "$tree/build/bin/quiver_tests" --gtest_fail_fast --gtest_brief=1 "--gtest_filter=$gtest_filter"
+  else
+    ctest "${ctest_args[@]}"
+  fi
+}
 
 if ((check == 0)) && [[ ! -f $tree/build/CMakeCache.txt ]]; then
   (cd "$tree" && CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache cmake --preset release) \
@@ -138,6 +156,8 @@ while IFS= read -r raw; do
     detail=$(grep -m1 -E '^[[:space:]]*[0-9]+ - .*\((Failed|Timeout|SEGFAULT|Subprocess aborted|Exception|Child aborted|Not Run)' "$log" |
              sed -E 's/^[[:space:]]*[0-9]+ - //' || true)
     [[ -z $detail ]] && detail=$(grep -m1 -E '\*\*\*(Failed|Timeout|Exception)' "$log" || true)
+    [[ -z $detail ]] && detail=$(grep -m1 -E '^\[  FAILED  \] [^ ]+' "$log" | sed -E 's/^\[  FAILED  \] ([^ ]+).*/\1/' || true)
+    [[ -z $detail ]] && detail="stopped: $(tail -n1 "$log")"
     killed=$((killed + 1))
   fi
   # Restored as a new file (a later time than its objects), so the next build recompiles it.
