@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/default_scene.h"
+#include "integrator/camera.h"
 #include "integrator/render.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
@@ -415,6 +416,48 @@ TEST(Render, JitteredModesFollowTheSeedAndRepeatIt) {
   for (const char* aa : {"none", "grid:3", "corners", "adaptive:0.05:2"}) {
     EXPECT_TRUE(same_bits(image(aa, 5).rgb, image(aa, 6).rgb)) << aa << " does not jitter";
   }
+}
+
+// jitter draws a sample's x and y offsets independently. One jittered
+// sample per pixel of a camera-facing solid checker whose cells are one
+// pixel wide with their corners at the pixel centres: a sample's colour is
+// the pixel's parity flipped by (x offset >= 1/2) xor (y offset >= 1/2), so
+// independent offsets give the parity pattern in half the pixels (1024
+// pixels: 16 standard deviations below 3/4), offsets tied together in all.
+TEST(Render, JitterDrawsEachSamplesXAndYOffsetIndependently) {
+  const int side = 32;
+  const double distance = 10.0;
+  const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
+                                     .pixel_size();
+  // The view axis meets the film between pixels 15 and 16: half a cell off puts the pixel centres on corners.
+  const float half = float(cell / 2), far = float(cell / 2 + distance);
+  SceneDesc desc;
+  desc.camera = CameraDesc{{half, half, far}, {half, half, half}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc checks;
+  checks.kind = TextureDesc::Kind::checker3d;
+  checks.scale = float(1.0 / cell);
+  desc.textures.push_back(checks);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.planes.push_back({{{0.f, 0.f, half}, {0.f, 0.f, 1.f}}, 0});  // z in the middle of a cell
+  RenderSettings settings = small_settings(side, side, "jitter:1");
+  settings.isa = best_supported_isa();
+  settings.trace.filter_textures = false;  // point samples: each exactly one colour
+  const Framebuffer image = render(build_scene(desc, {}), settings).image;
+  std::size_t follow_parity = 0;
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      const float red = image.rgb[(std::size_t(y) * side + std::size_t(x)) * 3];
+      ASSERT_TRUE(red == 0.f || red == 1.f) << x << ", " << y;
+      follow_parity += (red == image.rgb[0]) == ((x + y) % 2 == 0);
+    }
+  }
+  EXPECT_LT(follow_parity, std::size_t(side * side * 3 / 4));
+  EXPECT_GT(follow_parity, std::size_t(side * side / 4));
 }
 
 TEST(Render, LaneStatisticsAddUp) {
