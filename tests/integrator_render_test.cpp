@@ -460,6 +460,46 @@ TEST(Render, JitterDrawsEachSamplesXAndYOffsetIndependently) {
   EXPECT_GT(follow_parity, std::size_t(side * side / 4));
 }
 
+// refine's error estimate is the sample variance with n - 1 (unbiased).
+// A camera-facing solid checker of 0.5 and 0 whose cells are half a pixel,
+// aligned with the first pass's 2 x 2 strata, gives every pixel two samples
+// of each: variance 0.25 / 3 (0.25 / 4 with n), over 4 samples 1 / 48
+// against a threshold of 0.125 squared, 1 / 64 (so n would not refine);
+// equal pixel means and one surface leave the other rules silent.
+TEST(Render, RefineJudgesAPixelByItsUnbiasedSampleVariance) {
+  const int side = 16;
+  const double distance = 10.0;
+  const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
+                                     .pixel_size() / 2;
+  const float mid = float(cell / 2);  // the plane in the middle of a cell along z
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.f, 0.f, float(mid + distance)}, {0.f, 0.f, mid}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc checks;
+  checks.kind = TextureDesc::Kind::checker3d;
+  checks.color_a = {0.5f, 0.5f, 0.5f};
+  checks.color_b = {0.f, 0.f, 0.f};
+  checks.scale = float(1.0 / cell);
+  desc.textures.push_back(checks);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.planes.push_back({{{0.f, 0.f, mid}, {0.f, 0.f, 1.f}}, 0});
+  const Scene scene = build_scene(desc, {});
+  const auto primary_rays = [&](const char* aa) {
+    RenderSettings settings = small_settings(side, side, aa);
+    settings.isa = best_supported_isa();
+    settings.trace.filter_textures = false;
+    const RenderResult r = render(scene, settings);
+    for (std::size_t p = 0; p < r.image.pixel_count(); ++p) EXPECT_EQ(r.image.rgb[3 * p], 0.25f) << "pixel " << p;
+    return r.stats.rays.primary;
+  };
+  const std::uint64_t first_pass = primary_rays("refine:1:8");  // nothing is uncertain at threshold 1
+  EXPECT_GE(primary_rays("refine:0.125:8"), first_pass + std::uint64_t(side * side));
+}
+
 TEST(Render, LaneStatisticsAddUp) {
   const Scene scene = build_scene(default_scene(), {});
   RenderSettings settings = small_settings(32, 24);
