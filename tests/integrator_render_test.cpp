@@ -500,6 +500,37 @@ TEST(Render, RefineJudgesAPixelByItsUnbiasedSampleVariance) {
   EXPECT_GE(primary_rays("refine:0.125:8"), first_pass + std::uint64_t(side * side));
 }
 
+// A textured quad maps (u, v) by the inverse of its bilinear patch
+// p = a + s (b - a) + t (d - a) + s t (a - b + c - d), taking the root in
+// [0, 1]. The trapezoid (-2, -1), (2, -1), (1, 1), (-1, 1) puts (s, t) =
+// (0.4, 0.6) at (-0.28, 0.2), where t's quadratic -4 t^2 + 10.4 t - 4.8
+// has the roots 0.6 and 2. A 2 x 1 texture black to red, clamped, reads
+// red 2 (u - 1/4) there: 0.3 (float inputs: within 1e-5).
+TEST(Render, ATexturedQuadTakesTheBilinearRootInsideIt) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{-0.28f, 0.2f, 5.f}, {-0.28f, 0.2f, 0.f}, {0.f, 1.f, 0.f}, 10.f, 0.f, 1, 1};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc ramp;
+  ramp.kind = TextureDesc::Kind::image;
+  ramp.wrap = WrapMode::clamp;
+  ramp.width = 2;
+  ramp.height = 1;
+  ramp.rgb = {0.f, 0.f, 0.f, 1.f, 0.f, 0.f};
+  desc.textures.push_back(ramp);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.polygons.push_back({{{{-2.f, -1.f, 0.f}, {2.f, -1.f, 0.f}, {1.f, 1.f, 0.f}, {-1.f, 1.f, 0.f}}}, {}, 0});
+  RenderSettings settings = small_settings(1, 1);
+  settings.isa = best_supported_isa();
+  settings.trace.filter_textures = false;
+  const Framebuffer image = render(build_scene(desc, {}), settings).image;
+  ASSERT_EQ(image.kind[0], static_cast<std::int32_t>(PrimitiveKind::polygon));
+  EXPECT_NEAR(image.rgb[0], 0.3f, 1e-5f);
+}
+
 TEST(Render, LaneStatisticsAddUp) {
   const Scene scene = build_scene(default_scene(), {});
   RenderSettings settings = small_settings(32, 24);
