@@ -130,6 +130,9 @@ TEST(RenderOptions, OneSideKeepsTheCameraAspect) {
   options.width = 1;  // 0.75 -> 1 (at least one pixel)
   EXPECT_EQ(image_size(options, cam), std::make_pair(1, 1));
   options = {};
+  options.width = 101;  // 75.75 -> 76: the nearest side, not the truncated one
+  EXPECT_EQ(image_size(options, cam), std::make_pair(101, 76));
+  options = {};
   options.width = 10;
   options.height = 90;  // both given: as given
   EXPECT_EQ(image_size(options, cam), std::make_pair(10, 90));

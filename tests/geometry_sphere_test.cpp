@@ -302,6 +302,36 @@ TYPED_TEST(SphereWidths, MatchesScalarBitForBit) {
   }
 }
 
+// A hit exactly at tmax is outside the open interval (tmin, tmax): it neither
+// hits nor occludes, while the next float above tmax lets it do both; of two
+// spheres met at the same t the first wins. Every method, every unit, both
+// orientations, in every lane position of full and partial packets. The
+// ray from z = -5 along +z meets the unit sphere at t = 4 exactly in every
+// method (all their steps are exact on these integers).
+TYPED_TEST(SphereWidths, HitAtTmaxNeitherHitsNorOccludesAndTieGoesToFirst) {
+  const SphereSoA spheres = spheres_of({{{0, 0, 0}, 1.f}, {{0, 0, 0}, 1.f}});
+  const float tmax_of[3] = {4.f, std::nextafter(4.f, kInf), kInf};
+  std::vector<Ray<float>> rays;
+  for (int k = 0; k < 37; ++k) rays.push_back({{0, 0, -5}, {0, 0, 1}, 0.f, tmax_of[k % 3]});
+  RaySoA soa = testing::to_soa(rays);
+  testing::poison_padding(soa);
+  for (SphereMethod m : kMethods) {
+    SCOPED_TRACE(method_name(m));
+    const testing::StreamResults got = testing::run_streams(sphere_streams<TestFixture::kUnit>(m), soa, spheres);
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      const bool inside = k % 3 != 0;
+      const std::int32_t expected_id = inside ? 0 : kNoHit;
+      EXPECT_EQ(got.closest_packets.get(k).id, expected_id) << "closest, packets, ray " << k;
+      EXPECT_EQ(got.closest_scan.get(k).id, expected_id) << "closest, scan, ray " << k;
+      EXPECT_EQ(got.occluded_packets.occluded[k], inside ? 1 : 0) << "occluded, packets, ray " << k;
+      EXPECT_EQ(got.occluded_scan.occluded[k], inside ? 1 : 0) << "occluded, scan, ray " << k;
+      if (inside) {
+        EXPECT_EQ(got.closest_packets.get(k).t, 4.f) << "ray " << k;
+      }
+    }
+  }
+}
+
 // ---- never a NaN in a reported hit -------------------------------------------
 
 // Every width, both orientations, adversarial rays and poisoned padding: a

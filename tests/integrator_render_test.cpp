@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/default_scene.h"
+#include "integrator/camera.h"
 #include "integrator/render.h"
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
@@ -391,6 +392,145 @@ TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
   EXPECT_GT(tiled.stats.rays.primary, whole.stats.rays.primary);
 }
 
+// The jittered modes (jitter, refine) draw their sample positions from the
+// seed: the same seed repeats the image bit for bit, another seed changes
+// it. The modes that do not jitter (none, grid, corners, adaptive, whose
+// samples sit on fixed lattices) give the same image for any seed. Point
+// lights only: area lights draw their samples from the seed too.
+TEST(Render, JitteredModesFollowTheSeedAndRepeatIt) {
+  SceneDesc desc = default_scene();
+  std::erase_if(desc.lights, [](const LightDesc& l) { return l.kind != LightDesc::Kind::point; });
+  ASSERT_FALSE(desc.lights.empty());
+  const Scene scene = build_scene(desc, {});
+  const auto image = [&](const char* aa, std::uint64_t seed) {
+    RenderSettings settings = small_settings(40, 30, aa);
+    settings.isa = best_supported_isa();
+    settings.trace.seed = seed;
+    return render(scene, settings).image;
+  };
+  for (const char* aa : {"jitter:3", "refine:0.02:4"}) {
+    const Framebuffer first = image(aa, 5);
+    EXPECT_TRUE(same_bits(first.rgb, image(aa, 5).rgb)) << aa << ": the same seed repeats the image";
+    EXPECT_FALSE(same_bits(first.rgb, image(aa, 6).rgb)) << aa << ": another seed moves the samples";
+  }
+  for (const char* aa : {"none", "grid:3", "corners", "adaptive:0.05:2"}) {
+    EXPECT_TRUE(same_bits(image(aa, 5).rgb, image(aa, 6).rgb)) << aa << " does not jitter";
+  }
+}
+
+// jitter draws a sample's x and y offsets independently. One jittered
+// sample per pixel of a camera-facing solid checker whose cells are one
+// pixel wide with their corners at the pixel centres: a sample's colour is
+// the pixel's parity flipped by (x offset >= 1/2) xor (y offset >= 1/2), so
+// independent offsets give the parity pattern in half the pixels (1024
+// pixels: 16 standard deviations below 3/4), offsets tied together in all.
+TEST(Render, JitterDrawsEachSamplesXAndYOffsetIndependently) {
+  const int side = 32;
+  const double distance = 10.0;
+  const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
+                                     .pixel_size();
+  // The view axis meets the film between pixels 15 and 16: half a cell off puts the pixel centres on corners.
+  const float half = float(cell / 2), far = float(cell / 2 + distance);
+  SceneDesc desc;
+  desc.camera = CameraDesc{{half, half, far}, {half, half, half}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc checks;
+  checks.kind = TextureDesc::Kind::checker3d;
+  checks.scale = float(1.0 / cell);
+  desc.textures.push_back(checks);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.planes.push_back({{{0.f, 0.f, half}, {0.f, 0.f, 1.f}}, 0});  // z in the middle of a cell
+  RenderSettings settings = small_settings(side, side, "jitter:1");
+  settings.isa = best_supported_isa();
+  settings.trace.filter_textures = false;  // point samples: each exactly one colour
+  const Framebuffer image = render(build_scene(desc, {}), settings).image;
+  std::size_t follow_parity = 0;
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      const float red = image.rgb[(std::size_t(y) * side + std::size_t(x)) * 3];
+      ASSERT_TRUE(red == 0.f || red == 1.f) << x << ", " << y;
+      follow_parity += (red == image.rgb[0]) == ((x + y) % 2 == 0);
+    }
+  }
+  EXPECT_LT(follow_parity, std::size_t(side * side * 3 / 4));
+  EXPECT_GT(follow_parity, std::size_t(side * side / 4));
+}
+
+// refine's error estimate is the sample variance with n - 1 (unbiased).
+// A camera-facing solid checker of 0.5 and 0 whose cells are half a pixel,
+// aligned with the first pass's 2 x 2 strata, gives every pixel two samples
+// of each: variance 0.25 / 3 (0.25 / 4 with n), over 4 samples 1 / 48
+// against a threshold of 0.125 squared, 1 / 64 (so n would not refine);
+// equal pixel means and one surface leave the other rules silent.
+TEST(Render, RefineJudgesAPixelByItsUnbiasedSampleVariance) {
+  const int side = 16;
+  const double distance = 10.0;
+  const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
+                                     .pixel_size() / 2;
+  const float mid = float(cell / 2);  // the plane in the middle of a cell along z
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.f, 0.f, float(mid + distance)}, {0.f, 0.f, mid}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc checks;
+  checks.kind = TextureDesc::Kind::checker3d;
+  checks.color_a = {0.5f, 0.5f, 0.5f};
+  checks.color_b = {0.f, 0.f, 0.f};
+  checks.scale = float(1.0 / cell);
+  desc.textures.push_back(checks);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.planes.push_back({{{0.f, 0.f, mid}, {0.f, 0.f, 1.f}}, 0});
+  const Scene scene = build_scene(desc, {});
+  const auto primary_rays = [&](const char* aa) {
+    RenderSettings settings = small_settings(side, side, aa);
+    settings.isa = best_supported_isa();
+    settings.trace.filter_textures = false;
+    const RenderResult r = render(scene, settings);
+    for (std::size_t p = 0; p < r.image.pixel_count(); ++p) EXPECT_EQ(r.image.rgb[3 * p], 0.25f) << "pixel " << p;
+    return r.stats.rays.primary;
+  };
+  const std::uint64_t first_pass = primary_rays("refine:1:8");  // nothing is uncertain at threshold 1
+  EXPECT_GE(primary_rays("refine:0.125:8"), first_pass + std::uint64_t(side * side));
+}
+
+// A textured quad maps (u, v) by the inverse of its bilinear patch
+// p = a + s (b - a) + t (d - a) + s t (a - b + c - d), taking the root in
+// [0, 1]. The trapezoid (-2, -1), (2, -1), (1, 1), (-1, 1) puts (s, t) =
+// (0.4, 0.6) at (-0.28, 0.2), where t's quadratic -4 t^2 + 10.4 t - 4.8
+// has the roots 0.6 and 2. A 2 x 1 texture black to red, clamped, reads
+// red 2 (u - 1/4) there: 0.3 (float inputs: within 1e-5).
+TEST(Render, ATexturedQuadTakesTheBilinearRootInsideIt) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{-0.28f, 0.2f, 5.f}, {-0.28f, 0.2f, 0.f}, {0.f, 1.f, 0.f}, 10.f, 0.f, 1, 1};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc ramp;
+  ramp.kind = TextureDesc::Kind::image;
+  ramp.wrap = WrapMode::clamp;
+  ramp.width = 2;
+  ramp.height = 1;
+  ramp.rgb = {0.f, 0.f, 0.f, 1.f, 0.f, 0.f};
+  desc.textures.push_back(ramp);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.polygons.push_back({{{{-2.f, -1.f, 0.f}, {2.f, -1.f, 0.f}, {1.f, 1.f, 0.f}, {-1.f, 1.f, 0.f}}}, {}, 0});
+  RenderSettings settings = small_settings(1, 1);
+  settings.isa = best_supported_isa();
+  settings.trace.filter_textures = false;
+  const Framebuffer image = render(build_scene(desc, {}), settings).image;
+  ASSERT_EQ(image.kind[0], static_cast<std::int32_t>(PrimitiveKind::polygon));
+  EXPECT_NEAR(image.rgb[0], 0.3f, 1e-5f);
+}
+
 TEST(Render, LaneStatisticsAddUp) {
   const Scene scene = build_scene(default_scene(), {});
   RenderSettings settings = small_settings(32, 24);
@@ -472,6 +612,26 @@ TEST(Render, DepthZeroOneTwoDifferOnlyWhereMirrorsAre) {
   }
 }
 
+// A reflection ray whose weight equals the cut-off exactly is cast (the
+// cut-off drops weights below it): a kr = 0.5 mirror seen by camera rays
+// (weight 1, so the reflection's weight is exactly 0.5) reflects at
+// min_weight 0.5 as at 0, and not at the next float above 0.5.
+TEST(Render, AReflectionWhoseWeightEqualsTheCutOffIsCast) {
+  SceneDesc desc = mirrors_scene(false);
+  desc.materials[1].kr = 0.5f;
+  const Scene scene = build_scene(desc, {});
+  const auto image_at = [&](float min_weight) {
+    RenderSettings settings = small_settings(48, 36);
+    settings.isa = best_supported_isa();
+    settings.trace.max_depth = 1;
+    settings.trace.min_weight = min_weight;
+    return render(scene, settings).image;
+  };
+  const Framebuffer every = image_at(0.f);
+  EXPECT_TRUE(same_bits(every.rgb, image_at(0.5f).rgb)) << "weight 0.5 at min_weight 0.5 is cast";
+  EXPECT_FALSE(same_bits(every.rgb, image_at(std::nextafter(0.5f, 1.f)).rgb)) << "a weight below the cut-off is not";
+}
+
 // ---- transparent shadows ---------------------------------------------------
 
 // A white matte floor under a light straight above; between them, at the
@@ -528,6 +688,20 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
   opaque.materials.push_back(MaterialDesc{});
   opaque.spheres.push_back({{{0.f, 7.f, 0.f}, 0.5f}, opaque.materials.size() - 1});
   EXPECT_EQ(centre_red(opaque), 0.f);
+}
+
+// A shadow ray toward a point light ends at the light: an opaque sphere on
+// the far side of the light (above it, the floor below) casts no shadow,
+// while the same sphere between the floor and the light does.
+TEST(Render, AnOccluderBeyondAPointLightCastsNoShadow) {
+  SceneDesc beyond = shadow_scene();
+  beyond.materials.push_back(MaterialDesc{});
+  beyond.spheres.push_back({{{0.f, 12.f, 0.f}, 1.f}, beyond.materials.size() - 1});  // the light is at y = 10
+  EXPECT_NEAR(centre_red(beyond), 0.8f, 1e-5f);  // kd (N.L) I with N.L = 1, as with no sphere
+  SceneDesc between = shadow_scene();
+  between.materials.push_back(MaterialDesc{});
+  between.spheres.push_back({{{0.f, 8.f, 0.f}, 1.f}, between.materials.size() - 1});
+  EXPECT_EQ(centre_red(between), 0.f);
 }
 
 // ---- texture filtering ------------------------------------------------------
