@@ -326,7 +326,9 @@ class AsciiCursor {
     element_ = &element;
     while (true) {
       if (p_ == bytes_.size()) {
-        throw ParseError(file_, line_, p_ - line_start_ + 1, joined({"a line of element '", element.name, "'"}),
+        // The file's end, also where the header's last line has no line break.
+        const TextPosition end = end_of_text(bytes_);
+        throw ParseError(file_, end.line, end.column, joined({"a line of element '", element.name, "'"}),
                          "end of file");
       }
       line_end_ = std::min(bytes_.find('\n', p_), bytes_.size());

@@ -150,6 +150,9 @@ TEST(PlyReader, AsciiValuesAreNumbersOfTheirTypeReportedAtTheirPlace) {
   three.replace(three.find("vertex 2"), 8, "vertex 3");
   EXPECT_EQ(error_of(three + "0 0 0\n0 0 0      "),
             "test.ply:9:12: expected a line of element 'vertex', found end of file");
+  // The header's own last line without a line break (a fuzzer's find): the end is on that line.
+  EXPECT_EQ(error_of("ply\nformat ascii 1.0\nelement thing 1\nend_header"),
+            "test.ply:4:11: expected a line of element 'thing', found end of file");
   EXPECT_EQ(error_of(header + "0 0 0\n0 inf 0\n"),
             "test.ply:9:3: expected a finite number ('y' of element 'vertex'), found 'inf'");
 }
