@@ -250,6 +250,15 @@ struct AnalyticScene {
   }
 };
 
+std::size_t material_of(const SceneDesc& desc, const AnalyticScene::Hit& hit) {
+  switch (hit.shape) {
+    case AnalyticScene::Shape::sphere: return desc.spheres[hit.index].material;
+    case AnalyticScene::Shape::triangle: return desc.triangles[hit.index].material;
+    case AnalyticScene::Shape::plane:
+    default: return desc.planes[hit.index].material;
+  }
+}
+
 // One camera sample's value computed here, and its error bound. Kind: what
 // the sample shows, the first that applies of background (a miss), shadow
 // (every light that faces it hidden), textured, mirror, area_lit (all of a
@@ -258,6 +267,7 @@ struct Expected {
   V3 rgb{0, 0, 0};
   V3 tolerance{0, 0, 0};
   enum class Kind { lit, shadow, mirror, background, textured, area_lit } kind = Kind::lit;
+  bool light_hidden = false;  // some light that faces it is hidden from it
 };
 
 // A rectangle light seen from p (unit normal n), every sample decided the
@@ -437,6 +447,10 @@ std::optional<Expected> shade_locally(const AnalyticScene& scene, const V3& o, c
       if (gap < r * (1 - kMargin) && ends_outside && desc.materials[s.material].kt == 0.f) blocked = true;
     }
     const std::optional<AnalyticScene::Hit> along = scene.cast(p + n * kMargin, l, distance);
+    // So does the shadow ray's first hit, decided, on an opaque surface well before the light.
+    if (along && along->t < distance * (1 - kMargin) && desc.materials[material_of(desc, *along)].kt == 0.f) {
+      blocked = true;
+    }
     if (!blocked && (!along || along->t < distance)) return std::nullopt;  // neither clear nor surely blocked
     if (blocked) {
       blocked_any = true;
@@ -459,17 +473,9 @@ std::optional<Expected> shade_locally(const AnalyticScene& scene, const V3& o, c
       e.tolerance = e.tolerance + intensity * (slope + rounding);
     }
   }
+  e.light_hidden = blocked_any;
   e.kind = blocked_any && !lit_any ? Expected::Kind::shadow : (area_lit ? Expected::Kind::area_lit : Expected::Kind::lit);
   return e;
-}
-
-std::size_t material_of(const SceneDesc& desc, const AnalyticScene::Hit& hit) {
-  switch (hit.shape) {
-    case AnalyticScene::Shape::sphere: return desc.spheres[hit.index].material;
-    case AnalyticScene::Shape::triangle: return desc.triangles[hit.index].material;
-    case AnalyticScene::Shape::plane:
-    default: return desc.planes[hit.index].material;
-  }
 }
 
 // A checker texture's coordinates at a hit, in cells: (u, v) scaled
@@ -642,22 +648,28 @@ std::optional<Expected> expected_sample(const AnalyticScene& scene, const Camera
 
 // Every pixel of the golden render whose four grid:2 samples are all
 // decided is compared with the mean of their values computed here; returns
-// how many pixels of each kind were compared.
-std::map<Expected::Kind, std::size_t> check_independently(const SceneDesc& desc) {
+// how many pixels of each kind were compared, and how many of them have
+// some light hidden at every sample.
+struct Compared {
+  std::map<Expected::Kind, std::size_t> kinds;
+  std::size_t light_hidden = 0;
+};
+Compared check_independently(const SceneDesc& desc) {
   const Framebuffer image = render_small(desc);
   const Camera camera(*desc.camera, image.width, image.height);
   const AnalyticScene scene(desc);
-  std::map<Expected::Kind, std::size_t> compared;
+  Compared compared;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       V3 sum{0, 0, 0}, tolerance{0, 0, 0};
       std::optional<Expected::Kind> kind;
-      bool decided = true;
+      bool decided = true, hidden = true;
       for (int j = 0; j < 4 && decided; ++j) {
         const std::optional<Expected> e = expected_sample(scene, camera, x + (j % 2 + 0.5) / 2, y + (j / 2 + 0.5) / 2);
         decided = e.has_value() && (!kind || *kind == e->kind);
         if (!decided) break;
         kind = e->kind;
+        hidden = hidden && e->light_hidden;
         sum = sum + e->rgb * 0.25;
         tolerance = tolerance + e->tolerance * 0.25;
       }
@@ -668,7 +680,8 @@ std::map<Expected::Kind, std::size_t> check_independently(const SceneDesc& desc)
       EXPECT_NEAR(image.rgb[at], sum.x, tolerance.x) << "pixel " << x << ", " << y << " red";
       EXPECT_NEAR(image.rgb[at + 1], sum.y, tolerance.y) << "pixel " << x << ", " << y << " green";
       EXPECT_NEAR(image.rgb[at + 2], sum.z, tolerance.z) << "pixel " << x << ", " << y << " blue";
-      ++compared[*kind];
+      ++compared.kinds[*kind];
+      compared.light_hidden += hidden;
     }
   }
   return compared;
@@ -681,32 +694,34 @@ std::map<Expected::Kind, std::size_t> check_independently(const SceneDesc& desc)
 // instanced triangles (they are kept undecided).
 TEST(Golden, ScenesAgreeWithPixelsComputedIndependently) {
   struct Want {
-    std::size_t background, lit, shadow, mirror, textured, area_lit;
+    std::size_t background, lit, shadow, mirror, textured, area_lit, light_hidden;
   };
   const std::map<std::string, Want> wanted = {
-      {"shadows_hard", {0, 1, 1, 0, 0, 0}},        {"reflection_depth", {0, 0, 0, 1, 0, 0}},
-      {"transparent_shadows", {0, 1, 0, 0, 0, 0}}, {"mesh_include", {0, 1, 0, 0, 0, 0}},
-      {"instances", {0, 1, 0, 0, 0, 0}},           {"glass_tir", {1, 0, 0, 0, 1, 0}},
-      {"textures", {1, 0, 0, 0, 1, 0}},            {"adaptive_aa", {1, 0, 0, 0, 1, 0}},
-      {"shadows_soft", {0, 0, 1, 0, 0, 1}},        {"default", {1, 0, 0, 1, 1, 0}},
+      {"shadows_hard", {0, 1, 1, 0, 0, 0, 1}},        {"reflection_depth", {0, 0, 0, 1, 0, 0, 0}},
+      {"transparent_shadows", {0, 1, 0, 0, 0, 0, 0}}, {"mesh_include", {0, 1, 1, 0, 0, 0, 1}},
+      {"instances", {0, 1, 0, 0, 0, 0, 0}},           {"glass_tir", {1, 0, 0, 0, 1, 0, 0}},
+      {"textures", {1, 0, 0, 0, 1, 0, 1}},            {"adaptive_aa", {1, 0, 0, 0, 1, 0, 0}},
+      {"shadows_soft", {0, 0, 1, 0, 0, 1, 1}},        {"default", {1, 0, 0, 1, 1, 0, 1}},
   };
   for (const auto& [name, want] : wanted) {
     SCOPED_TRACE(name);
     const SceneDesc desc = name == "default" ? default_scene() : load_scene(kExamplesDir / (name + ".toml"));
-    const std::map<Expected::Kind, std::size_t> compared = check_independently(desc);
-    const auto count = [&](Expected::Kind k) { return compared.count(k) ? compared.at(k) : std::size_t{0}; };
+    const Compared compared = check_independently(desc);
+    const auto count = [&](Expected::Kind k) { return compared.kinds.count(k) ? compared.kinds.at(k) : std::size_t{0}; };
     RecordProperty(name, "background " + std::to_string(count(Expected::Kind::background)) + ", lit " +
                              std::to_string(count(Expected::Kind::lit)) + ", shadow " +
                              std::to_string(count(Expected::Kind::shadow)) + ", mirror " +
                              std::to_string(count(Expected::Kind::mirror)) + ", textured " +
                              std::to_string(count(Expected::Kind::textured)) + ", area_lit " +
-                             std::to_string(count(Expected::Kind::area_lit)));
+                             std::to_string(count(Expected::Kind::area_lit)) + "; some light hidden " +
+                             std::to_string(compared.light_hidden));
     EXPECT_GE(count(Expected::Kind::background), want.background) << "background pixels compared";
     EXPECT_GE(count(Expected::Kind::lit), want.lit) << "unshadowed Phong pixels compared";
     EXPECT_GE(count(Expected::Kind::shadow), want.shadow) << "pixels in full shadow compared";
     EXPECT_GE(count(Expected::Kind::mirror), want.mirror) << "mirror pixels compared";
     EXPECT_GE(count(Expected::Kind::textured), want.textured) << "checker-textured pixels compared";
     EXPECT_GE(count(Expected::Kind::area_lit), want.area_lit) << "pixels lit by a whole area light compared";
+    EXPECT_GE(compared.light_hidden, want.light_hidden) << "pixels with some light hidden compared";
   }
 }
 
