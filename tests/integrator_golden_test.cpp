@@ -290,9 +290,9 @@ struct AreaLight {
   V3 rgb{0, 0, 0}, tolerance{0, 0, 0};
 };
 
-AreaLight rectangle_light(const SceneDesc& desc, const std::vector<Ball>& balls, const V3& p, const V3& n,
-                          const V3& d, const V3& color, const MaterialDesc& m, const LightDesc& light) {
-  AreaLight out;
+// How the rectangle light is seen from p (unit normal n).
+AreaLight::Seen rectangle_seen(const SceneDesc& desc, const std::vector<Ball>& balls, const V3& p, const V3& n,
+                               const LightDesc& light) {
   const V3 corner = wide(light.position), eu = wide(light.edge_u), ev = wide(light.edge_v);
   const V3 centre = corner + (eu + ev) * 0.5;
   const double reach = std::max(norm(eu + ev), norm(eu - ev)) * 0.5;
@@ -301,14 +301,11 @@ AreaLight rectangle_light(const SceneDesc& desc, const std::vector<Ball>& balls,
   int facing = 0;
   for (const V3& q : corners) {
     const double c = dot(n, unit_of(q - p));
-    if (std::fabs(c) < kMargin) return out;
+    if (std::fabs(c) < kMargin) return AreaLight::Seen::undecided;
     facing += c > 0.0 ? 1 : -1;
   }
-  if (facing == -4) {
-    out.seen = AreaLight::Seen::away;
-    return out;
-  }
-  if (facing != 4) return out;
+  if (facing == -4) return AreaLight::Seen::away;
+  if (facing != 4) return AreaLight::Seen::undecided;
   const V3 axis = centre - p;
   constexpr int kSteps = 1024;
   const double slack = (norm(axis) + reach) / kSteps;
@@ -345,11 +342,16 @@ AreaLight rectangle_light(const SceneDesc& desc, const std::vector<Ball>& balls,
     const bool apart = (side == 4 && from > -kMargin) || (side == -4 && from < kMargin);
     if (!apart) clear = false;
   }
-  if (blocked) {
-    out.seen = AreaLight::Seen::blocked;
-    return out;
-  }
-  if (!clear) return out;
+  if (blocked) return AreaLight::Seen::blocked;
+  return clear ? AreaLight::Seen::clear : AreaLight::Seen::undecided;
+}
+
+AreaLight rectangle_light(const SceneDesc& desc, const std::vector<Ball>& balls, const V3& p, const V3& n,
+                          const V3& d, const V3& color, const MaterialDesc& m, const LightDesc& light) {
+  AreaLight out;
+  out.seen = rectangle_seen(desc, balls, p, n, light);
+  if (out.seen != AreaLight::Seen::clear) return out;
+  const V3 corner = wide(light.position), eu = wide(light.edge_u), ev = wide(light.edge_v);
   // Sample j lies in stratum (j % n, j / n) of an n x n grid: each
   // stratum's value lies between its own minimum and maximum.
   const int n_side = std::max(light.samples, 1), per = (32 + n_side - 1) / n_side, grid = n_side * per;
@@ -390,7 +392,6 @@ AreaLight rectangle_light(const SceneDesc& desc, const std::vector<Ball>& balls,
   const V3 intensity = wide(light.color);
   out.rgb = times(intensity, (low + high) * (0.5 / strata));
   out.tolerance = times(intensity, (high - low) * (0.5 / strata) + step);
-  out.seen = AreaLight::Seen::clear;
   return out;
 }
 
