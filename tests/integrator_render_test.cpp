@@ -4,6 +4,7 @@
 // no acne when the scene is scaled by 1e-4 or 1e6; lane statistics add up;
 // an OBJ mesh without normals shades smoothly across its face edges.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <mutex>
@@ -418,6 +419,31 @@ TEST(Render, JitteredModesFollowTheSeedAndRepeatIt) {
   }
 }
 
+// A plane facing the camera at z = plane_z, seen from `distance` above the
+// point (eye.x, eye.y, plane_z), under a solid checker of `cell`-wide cells
+// (colours a and b) lit by ambient light alone (ka 1, kd 0): each sample is
+// exactly its cell's colour.
+SceneDesc ambient_checker_plane(int side, std::array<float, 2> eye, float plane_z, double distance, double cell,
+                                Vec3<float> a, Vec3<float> b) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{eye[0], eye[1], float(plane_z + distance)}, {eye[0], eye[1], plane_z}, {0.f, 1.f, 0.f},
+                           40.f, 0.f, side, side};
+  desc.ambient = {1.f, 1.f, 1.f};
+  TextureDesc checks;
+  checks.kind = TextureDesc::Kind::checker3d;
+  checks.color_a = a;
+  checks.color_b = b;
+  checks.scale = float(1.0 / cell);
+  desc.textures.push_back(checks);
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = 0;
+  desc.materials.push_back(flat);
+  desc.planes.push_back({{{0.f, 0.f, plane_z}, {0.f, 0.f, 1.f}}, 0});
+  return desc;
+}
+
 // jitter draws a sample's x and y offsets independently. One jittered
 // sample per pixel of a camera-facing solid checker whose cells are one
 // pixel wide with their corners at the pixel centres: a sample's colour is
@@ -430,20 +456,8 @@ TEST(Render, JitterDrawsEachSamplesXAndYOffsetIndependently) {
   const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
                                      .pixel_size();
   // The view axis meets the film between pixels 15 and 16: half a cell off puts the pixel centres on corners.
-  const float half = float(cell / 2), far = float(cell / 2 + distance);
-  SceneDesc desc;
-  desc.camera = CameraDesc{{half, half, far}, {half, half, half}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
-  desc.ambient = {1.f, 1.f, 1.f};
-  TextureDesc checks;
-  checks.kind = TextureDesc::Kind::checker3d;
-  checks.scale = float(1.0 / cell);
-  desc.textures.push_back(checks);
-  MaterialDesc flat;
-  flat.ka = 1.f;
-  flat.kd = 0.f;
-  flat.texture = 0;
-  desc.materials.push_back(flat);
-  desc.planes.push_back({{{0.f, 0.f, half}, {0.f, 0.f, 1.f}}, 0});  // z in the middle of a cell
+  const float half = float(cell / 2);
+  const SceneDesc desc = ambient_checker_plane(side, {half, half}, half, distance, cell, {1.f, 1.f, 1.f}, {0.f, 0.f, 0.f});
   RenderSettings settings = small_settings(side, side, "jitter:1");
   settings.isa = best_supported_isa();
   settings.trace.filter_textures = false;  // point samples: each exactly one colour
@@ -472,21 +486,7 @@ TEST(Render, RefineJudgesAPixelByItsUnbiasedSampleVariance) {
   const double cell = distance * Camera(CameraDesc{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 40.f, 0.f, side, side}, side, side)
                                      .pixel_size() / 2;
   const float mid = float(cell / 2);  // the plane in the middle of a cell along z
-  SceneDesc desc;
-  desc.camera = CameraDesc{{0.f, 0.f, float(mid + distance)}, {0.f, 0.f, mid}, {0.f, 1.f, 0.f}, 40.f, 0.f, side, side};
-  desc.ambient = {1.f, 1.f, 1.f};
-  TextureDesc checks;
-  checks.kind = TextureDesc::Kind::checker3d;
-  checks.color_a = {0.5f, 0.5f, 0.5f};
-  checks.color_b = {0.f, 0.f, 0.f};
-  checks.scale = float(1.0 / cell);
-  desc.textures.push_back(checks);
-  MaterialDesc flat;
-  flat.ka = 1.f;
-  flat.kd = 0.f;
-  flat.texture = 0;
-  desc.materials.push_back(flat);
-  desc.planes.push_back({{{0.f, 0.f, mid}, {0.f, 0.f, 1.f}}, 0});
+  const SceneDesc desc = ambient_checker_plane(side, {0.f, 0.f}, mid, distance, cell, {0.5f, 0.5f, 0.5f}, {0.f, 0.f, 0.f});
   const Scene scene = build_scene(desc, {});
   const auto primary_rays = [&](const char* aa) {
     RenderSettings settings = small_settings(side, side, aa);
