@@ -419,6 +419,15 @@ TEST(Render, JitteredModesFollowTheSeedAndRepeatIt) {
   }
 }
 
+// A material lit by the ambient light alone (ka 1, kd 0) under texture `texture`.
+MaterialDesc ambient_only(std::size_t texture) {
+  MaterialDesc flat;
+  flat.ka = 1.f;
+  flat.kd = 0.f;
+  flat.texture = texture;
+  return flat;
+}
+
 // A plane facing the camera at z = plane_z, seen from `distance` above the
 // point (eye.x, eye.y, plane_z), under a solid checker of `cell`-wide cells
 // (colours a and b) lit by ambient light alone (ka 1, kd 0): each sample is
@@ -435,11 +444,7 @@ SceneDesc ambient_checker_plane(int side, std::array<float, 2> eye, float plane_
   checks.color_b = b;
   checks.scale = float(1.0 / cell);
   desc.textures.push_back(checks);
-  MaterialDesc flat;
-  flat.ka = 1.f;
-  flat.kd = 0.f;
-  flat.texture = 0;
-  desc.materials.push_back(flat);
+  desc.materials.push_back(ambient_only(0));
   desc.planes.push_back({{{0.f, 0.f, plane_z}, {0.f, 0.f, 1.f}}, 0});
   return desc;
 }
@@ -517,11 +522,7 @@ TEST(Render, ATexturedQuadTakesTheBilinearRootInsideIt) {
   ramp.height = 1;
   ramp.rgb = {0.f, 0.f, 0.f, 1.f, 0.f, 0.f};
   desc.textures.push_back(ramp);
-  MaterialDesc flat;
-  flat.ka = 1.f;
-  flat.kd = 0.f;
-  flat.texture = 0;
-  desc.materials.push_back(flat);
+  desc.materials.push_back(ambient_only(0));
   desc.polygons.push_back({{{{-2.f, -1.f, 0.f}, {2.f, -1.f, 0.f}, {1.f, 1.f, 0.f}, {-1.f, 1.f, 0.f}}}, {}, 0});
   RenderSettings settings = small_settings(1, 1);
   settings.isa = best_supported_isa();
