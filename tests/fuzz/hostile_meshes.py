@@ -4,6 +4,7 @@
     /usr/bin/python3 tests/fuzz/hostile_meshes.py run [--quiver build/bin/quiver] [--count 2000]
         [--timeout 20] [--memory-limit-mb 4096] [--seed 1] [--keep DIR]
     /usr/bin/python3 tests/fuzz/hostile_meshes.py seeds DIR (gltf|glb)
+    /usr/bin/python3 tests/fuzz/hostile_meshes.py inputs DIR [--count 2000] [--seed 1]
 
 `run` generates COUNT hostile files (structural mutations of valid files,
 offsets and counts near 2^64, deep and duplicated node graphs, cycles,
@@ -18,6 +19,11 @@ crash, hang, run above 1 GB or unnamed error was found.
 
 `seeds` writes structure-aware seeds for mesh_fuzzer (tests/fuzz/run.sh):
 each file is the fuzzer's selector byte (2 glTF, 3 GLB), then the file.
+`inputs` writes the campaign's glTF, GLB, STL and PLY files (the same ones
+`run` makes with that seed) as mesh_fuzzer inputs, so that
+`build-fuzz/bin/mesh_fuzzer DIR/*` runs each once under ASan and UBSan
+(quiver's PLY reader and the checks before Assimp; buffer files named by
+URI resolve in tests/data/mesh there, not beside the file).
 Standard library only.
 """
 
@@ -393,6 +399,21 @@ def write_seeds(folder, fmt):
             f.write(selector + data)
 
 
+def write_inputs(folder, count, seed):
+    """The campaign's files but OBJ, each behind mesh_fuzzer's selector byte."""
+    os.makedirs(folder, exist_ok=True)
+    rng = random.Random(seed)
+    selector = {"ply": b"\x00", "stl": b"\x01", "gltf": b"\x02", "glb": b"\x03"}
+    written = 0
+    for index in range(count):
+        fmt, _, name, files, _ = hostile_file(index, rng)
+        if fmt in selector:
+            with open(os.path.join(folder, name), "wb") as f:
+                f.write(selector[fmt] + files[name])
+            written += 1
+    print(f"wrote {written} mesh_fuzzer inputs to {folder}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -406,9 +427,16 @@ def main():
     seeds = sub.add_parser("seeds")
     seeds.add_argument("folder")
     seeds.add_argument("format", choices=["gltf", "glb"])
+    inputs = sub.add_parser("inputs")
+    inputs.add_argument("folder")
+    inputs.add_argument("--count", type=int, default=2000)
+    inputs.add_argument("--seed", type=int, default=1)
     args = parser.parse_args()
     if args.command == "seeds":
         write_seeds(args.folder, args.format)
+        return 0
+    if args.command == "inputs":
+        write_inputs(args.folder, args.count, args.seed)
         return 0
     return campaign(args)
 
