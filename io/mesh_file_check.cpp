@@ -115,27 +115,55 @@ void check_gltf_buffers(const nlohmann::json& buffers, std::string_view file, co
   }
 }
 
+// Counts a JSON text's values (scalars, arrays, objects) as a SAX parser
+// meets them, stopping past kMaxGltfJsonValues. (nlohmann/json's parse with
+// a callback rescans an array after each object in it, quadratic in its
+// length, so the count is a pass of its own.) Syntax errors end the count
+// quietly: the parse that follows reports them with their position.
+class JsonValueCounter : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  bool exceeded() const { return values_ > kMaxGltfJsonValues; }
+  bool null() override { return counted(); }
+  bool boolean(bool) override { return counted(); }
+  bool number_integer(number_integer_t) override { return counted(); }
+  bool number_unsigned(number_unsigned_t) override { return counted(); }
+  bool number_float(number_float_t, const string_t&) override { return counted(); }
+  bool string(string_t&) override { return counted(); }
+  bool binary(binary_t&) override { return counted(); }
+  bool start_object(std::size_t) override { return counted(); }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return counted(); }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+ private:
+  bool counted() { return ++values_ <= kMaxGltfJsonValues; }
+  std::size_t values_ = 0;
+};
+
+bool too_many_json_values(std::string_view json_text) {
+  JsonValueCounter counter;
+  try {
+    nlohmann::json::sax_parse(json_text.begin(), json_text.end(), &counter);
+  } catch (const nlohmann::json::exception&) {
+    // A number beyond double's range: the parse that follows reports it.
+  }
+  return counter.exceeded();
+}
+
 GltfContents check_gltf_json(std::string_view json_text, std::string_view file, const fs::path& directory,
                              const PathRule& paths, std::optional<std::size_t> binary_chunk_bytes,
                              std::size_t total_bytes, std::size_t max_total_bytes, std::size_t triangle_budget) {
-  nlohmann::json document;
   // nlohmann/json takes 16 bytes and more per value: their count is bounded
-  // as they are parsed, before the document grows past it.
-  struct TooManyValues {};
-  std::size_t values = 0;
-  const auto count_values = [&values](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
-    using Event = nlohmann::json::parse_event_t;
-    if ((event == Event::value || event == Event::object_start || event == Event::array_start) &&
-        ++values > kMaxGltfJsonValues) {
-      throw TooManyValues{};
-    }
-    return true;
-  };
-  try {
-    document = nlohmann::json::parse(json_text.begin(), json_text.end(), count_values);
-  } catch (const TooManyValues&) {
+  // by a counting pass before the document is built.
+  if (too_many_json_values(json_text)) {
     throw ParseError::whole_file(file, joined({"expected glTF's JSON of at most ", std::to_string(kMaxGltfJsonValues),
                                                " values (numbers, strings, arrays, objects ...), found more"}));
+  }
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(json_text.begin(), json_text.end());
   } catch (const nlohmann::json::parse_error& error) {
     const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
     const TextPosition at = position_at(json_text, offset);
