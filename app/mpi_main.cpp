@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   quiver::cli::add_render_flags(app, args.render, raw);
   app.add_option("--checkpoint", args.checkpoint,
                  "The side file rank 0 keeps the finished tiles in, every --checkpoint-interval seconds; removed "
-                 "once the outputs are written. Default: <output>.checkpoint")
+                 "once the outputs are written; a regular file, never a file the render reads or another output. "
+                 "Default: <output>.checkpoint")
       ->type_name("FILE")
       ->check(quiver::cli::kNonEmptyFileName);
   app.add_option("--checkpoint-interval", args.checkpoint_interval_s,

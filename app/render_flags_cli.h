@@ -102,7 +102,9 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
   render.add_option("-o,--output", args.output,
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "
                     "Default: <scene name>.png in the current directory, quiver.png for the built-in scene. "
-                    "Checked before the scene is read; written only when everything succeeds")
+                    "Checked before the scene is read; written only when everything succeeds, by renaming a finished "
+                    "file into place, so it must name a regular file (not a device such as /dev/null or a FIFO), and "
+                    "never a file the render reads or another output")
       ->type_name("FILE")
       ->check(kNonEmptyFileName);
   raw.width_option = render.add_option("--width", raw.width,
@@ -149,7 +151,8 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
       ->type_name("UINT64");
   render.add_option("--stats", args.stats,
                     "Also write render statistics as JSON: timings (ms), settings, ray counts by kind, Mrays/s, "
-                    "lane utilisation per wave, memory (bytes). Written only when everything succeeds")
+                    "lane utilisation per wave, memory (bytes). Written only when everything succeeds, as --output "
+                    "(a regular file)")
       ->type_name("FILE.json")
       ->check(kNonEmptyFileName);
   raw.aov_option = render.add_option("--aov", raw.aov,
