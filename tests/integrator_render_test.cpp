@@ -691,6 +691,36 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
   EXPECT_EQ(centre_red(opaque), 0.f);
 }
 
+// A smooth triangle whose shading normals lean towards a light that lies
+// behind its geometric surface: the light cannot reach the surface, so it
+// adds nothing (no shadow ray is cast: one would leave from the back and,
+// meeting nothing, light the front). The same light in front lights it.
+TEST(Render, ALightBehindTheGeometricSurfaceLightsNothingWhateverTheShadingNormals) {
+  const auto centre_red = [](float light_z) {
+    SceneDesc desc;
+    desc.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 20.f, 0.f, 9, 9};
+    desc.ambient = {0.2f, 0.2f, 0.2f};
+    MaterialDesc matte;
+    matte.ka = 1.f;
+    matte.kd = 1.f;
+    desc.materials.push_back(matte);
+    SceneTriangle t{};
+    t.triangle.p = {Vec3<float>{-4.f, -4.f, 0.f}, Vec3<float>{4.f, -4.f, 0.f}, Vec3<float>{0.f, 4.f, 0.f}};
+    const Vec3<float> leaning = normalize(Vec3<float>{1.f, 0.f, 0.2f});
+    t.triangle.normals = std::array<Vec3<float>, 3>{leaning, leaning, leaning};
+    desc.triangles.push_back(t);
+    LightDesc light;
+    light.position = {10.f, 0.f, light_z};
+    desc.lights.push_back(light);
+    RenderSettings settings = small_settings(9, 9);
+    settings.isa = best_supported_isa();
+    const Framebuffer image = render(build_scene(desc, {}), settings).image;
+    return image.rgb[(4 * 9 + 4) * 3];
+  };
+  EXPECT_EQ(centre_red(-1.f), 0.2f);  // ambient alone
+  EXPECT_GT(centre_red(1.f), 0.3f);   // the same light in front of the surface
+}
+
 // A shadow ray toward a point light ends at the light: an opaque sphere on
 // the far side of the light (above it, the floor below) casts no shadow,
 // while the same sphere between the floor and the light does.
