@@ -92,6 +92,14 @@ TEST(AntiAliasing, ParsesEveryModeAndRejectsTheRest) {
   for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3", "refine:0.02:8"}) {
     EXPECT_EQ(to_string(parse_anti_aliasing(text)), text);
   }
+  // Each range's ends are accepted (the values just past them are among the refusals above).
+  EXPECT_EQ(parse_anti_aliasing("grid:1").n, 1);
+  EXPECT_EQ(parse_anti_aliasing("grid:64").n, AntiAliasing::kMaxRaysPerSide);
+  EXPECT_EQ(parse_anti_aliasing("jitter:64").n, AntiAliasing::kMaxRaysPerSide);
+  EXPECT_EQ(parse_anti_aliasing("adaptive:0.1:0").depth, 0);
+  EXPECT_EQ(parse_anti_aliasing("adaptive:0.1:6").depth, AntiAliasing::kMaxDepth);
+  EXPECT_EQ(parse_anti_aliasing("refine:0.1:2").n, 2);
+  EXPECT_EQ(parse_anti_aliasing("refine:0.1:16").n, AntiAliasing::kMaxRefineSide);
 }
 
 }  // namespace
