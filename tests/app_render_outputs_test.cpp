@@ -39,6 +39,8 @@ TEST_F(RenderOutputs, OneFileUnderEveryName) {
   EXPECT_FALSE(same_file(at("other.nff"), at("scene.nff")));
   EXPECT_FALSE(same_file(at("missing.png"), at("scene.nff")));
   EXPECT_TRUE(same_file(at("missing.png"), dir_.path() / "sub" / ".." / "missing.png"));  // neither exists
+  EXPECT_FALSE(same_file(at("missing.png"), dir_.path() / "sub" / "missing.png"));  // one name, two folders
+  EXPECT_FALSE(same_file(at("scene.nff"), dir_.path() / "sub" / "scene.nff"));
 }
 
 TEST_F(RenderOutputs, AnOutputNamingAnInputIsAUsageErrorNamingBoth) {

@@ -3,6 +3,8 @@
 // targets put back when a rename fails part-way.
 #include "io/output_file.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -57,6 +59,20 @@ TEST_F(Staged, NothingReplacesATargetBeforeTheCommit) {
   EXPECT_EQ(read_text(at("a.png")), "NEW");
   EXPECT_EQ(read_text(at("b.json")), "{}");
   EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "b.json"}));
+}
+
+// A FIFO (or device) target fails the whole commit before any rename: the
+// FIFO stays, the other target keeps its old file, no temporary is left.
+TEST_F(Staged, ACommitNeverRenamesOverAFifo) {
+  std::ofstream(at("a.png")) << "OLD";
+  ASSERT_EQ(::mkfifo(at("pipe.json").c_str(), 0600), 0);
+  StagedOutputs outputs;
+  outputs.stage(at("a.png"), writing("NEW"));
+  outputs.stage(at("pipe.json"), writing("{}"));
+  EXPECT_THROW(outputs.commit(), std::runtime_error);
+  EXPECT_TRUE(fs::is_fifo(at("pipe.json")));
+  EXPECT_EQ(read_text(at("a.png")), "OLD");
+  EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "pipe.json"}));
 }
 
 TEST_F(Staged, AFailedWriteLeavesEveryTargetAndNoTemporary) {
