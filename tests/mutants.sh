@@ -70,6 +70,12 @@ mkdir -p "$tree" "$logs"
 # out), with their times kept so an unchanged file is not rebuilt.
 echo "copying $repo to $tree"
 (cd "$repo" && git ls-files -z -co --exclude-standard | tar --null -T - -cf -) | tar -xf - -C "$tree"
+# The file mutated last was restored after the copy's build last ran: the
+# copy above gives it back its old time, so make would keep the mutant's
+# objects. Touch it so that it is rebuilt.
+if [[ -f $scratch/last-mutated ]]; then
+  touch "$tree/$(cat "$scratch/last-mutated")"
+fi
 
 build_args=(--build "$tree/build" -j "$jobs")
 for t in "${targets[@]}"; do build_args+=(--target "$t"); done
@@ -141,6 +147,7 @@ while IFS= read -r raw; do
     printf '%s\tdoes-not-apply\tmalformed line\n' "$id" | tee -a "$results"; stale=$((stale + 1)); continue
   fi
   cp -p "$tree/$file" "$scratch/original" 2>/dev/null || true
+  printf '%s\n' "$file" >"$scratch/last-mutated"
   if ! where=$(apply_mutant "$file" "$text" "$replacement" "$nth" 2>&1); then
     printf '%s\tdoes-not-apply\t%s: %s\n' "$id" "$file" "$where" | tee -a "$results"; stale=$((stale + 1)); continue
   fi
