@@ -693,8 +693,8 @@ TEST(Render, TransparentShadowsMultiplyKtTimesColourPerSurface) {
 
 // A smooth triangle whose shading normals lean towards a light that lies
 // behind its geometric surface: the light cannot reach the surface, so it
-// adds nothing (no shadow ray is cast: one would leave from the back and,
-// meeting nothing, light the front). The same light in front lights it.
+// adds nothing, however the shading normal leans. The same light in front
+// lights it.
 TEST(Render, ALightBehindTheGeometricSurfaceLightsNothingWhateverTheShadingNormals) {
   const auto centre_red = [](float light_z) {
     SceneDesc desc;
