@@ -4,23 +4,13 @@
 
 #include "app/render_options.h"
 #include "io/file_extension.h"
+#include "io/path_rule.h"
 
 namespace quiver {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// The file a write to `path` replaces, spelled one way: absolute, "." and
-// ".." folded, and every symlink of its existing part resolved (the target
-// itself need not exist yet).
-fs::path resolved(const fs::path& path) {
-  std::error_code error;
-  const fs::path absolute = fs::absolute(path, error);
-  if (error) return path.lexically_normal();
-  fs::path result = fs::weakly_canonical(absolute, error);
-  return error ? absolute.lexically_normal() : result;
-}
 
 // What an existing file is, for messages: "a directory", "a FIFO", ...
 const char* kind_of(fs::file_type type) {
@@ -39,7 +29,7 @@ const char* kind_of(fs::file_type type) {
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code error;
   if (fs::equivalent(a, b, error)) return true;  // false, with an error, unless both exist
-  const fs::path resolved_a = resolved(a), resolved_b = resolved(b);
+  const fs::path resolved_a = resolved_path(a), resolved_b = resolved_path(b);
   if (resolved_a == resolved_b) return true;
   // One folder reached two ways (a bind mount): the same name in it.
   return resolved_a.filename() == resolved_b.filename() &&

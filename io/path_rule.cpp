@@ -7,18 +7,13 @@ namespace quiver {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// Absolute, with "." and ".." folded and the symlinks of its existing part resolved.
-fs::path resolved(const fs::path& path) {
+fs::path resolved_path(const fs::path& path) {
   std::error_code error;
   const fs::path absolute = fs::absolute(path.empty() ? fs::path(".") : path, error);
   if (error) return path.lexically_normal();
   const fs::path result = fs::weakly_canonical(absolute, error);
   return error ? absolute.lexically_normal() : result;
 }
-
-}  // namespace
 
 PathRule PathRule::for_folder(const fs::path& folder) const {
   PathRule rule = *this;
@@ -28,7 +23,7 @@ PathRule PathRule::for_folder(const fs::path& folder) const {
 
 bool PathRule::admits(const fs::path& path) const {
   if (allow_outside) return true;
-  const fs::path folder = resolved(root), file = resolved(path);
+  const fs::path folder = resolved_path(root), file = resolved_path(path);
   // Inside when the folder's components are a proper prefix of the file's.
   const auto folder_end = folder.end(), file_end = file.end();
   const auto [in_folder, in_file] = std::mismatch(folder.begin(), folder_end, file.begin(), file_end);
@@ -37,7 +32,7 @@ bool PathRule::admits(const fs::path& path) const {
 }
 
 std::string PathRule::expected() const {
-  return "a file inside the scene's folder '" + resolved(root).string() +
+  return "a file inside the scene's folder '" + resolved_path(root).string() +
          "' (--allow-outside-paths reads files elsewhere)";
 }
 

@@ -12,6 +12,10 @@
 
 namespace quiver {
 
+// The file `path` names, spelled one way: absolute, "." and ".." folded, and
+// every symlink of its existing part resolved (the file need not exist).
+std::filesystem::path resolved_path(const std::filesystem::path& path);
+
 struct PathRule {
   bool allow_outside = false;
   // The folder named files must lie in; empty: the folder of the file that names them.
