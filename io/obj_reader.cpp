@@ -7,9 +7,8 @@
 // counts against the bounds of obj_reader.h (checked before each element is
 // stored, so nothing grows past them). Each face becomes triangles as soon
 // as it is read; materials and textures are added when a face first uses them.
-// No OBJ library: tinyobjloader (used before) accepts malformed numbers
-// silently and reports no positions, so a strict reader that reports
-// file:line:column is the only parse.
+// The text is read here rather than by an OBJ library, so that malformed
+// numbers are errors reported at file:line:column.
 #include "io/obj_reader.h"
 
 #include <algorithm>

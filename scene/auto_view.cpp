@@ -195,6 +195,22 @@ DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3
   return view;
 }
 
+namespace {
+
+// The default eye and the light beside it lie up to about 2.5 view
+// distances from the centre: both must stay finite in float, or the error
+// names the scene's file.
+void check_camera_fits_float(const SceneDesc& scene, const double center[3], double radius, double distance) {
+  if (distance * 2.5 + length(center) < double(std::numeric_limits<float>::max())) return;
+  const std::string name = scene.source_files.empty() ? std::string("the scene") : scene.source_files.front();
+  std::ostringstream size;
+  size << std::setprecision(3) << 2.0 * radius;
+  throw std::invalid_argument(name + ": expected a model that a default view can frame, found one " + size.str() +
+                              " across, too large for a camera in float; give the scene a camera, or scale it");
+}
+
+}  // namespace
+
 std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
                                             const std::optional<Vec3<double>>& up) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
@@ -240,14 +256,7 @@ std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int hei
 
   double eye[3];
   for (int a = 0; a < 3; ++a) eye[a] = center[a] + distance * toward_eye[a];
-  // The eye and the light beside it lie up to about 2.5 view distances out: both must stay finite in float.
-  if (!scene.camera && !(distance * 2.5 + length(center) < double(std::numeric_limits<float>::max()))) {
-    const std::string name = scene.source_files.empty() ? std::string("the scene") : scene.source_files.front();
-    std::ostringstream size;
-    size << std::setprecision(3) << 2.0 * radius;
-    throw std::invalid_argument(name + ": expected a model that a default view can frame, found one " + size.str() +
-                                " across, too large for a camera in float; give the scene a camera, or scale it");
-  }
+  if (!scene.camera) check_camera_fits_float(scene, center, radius, distance);
   if (!scene.camera) {
     CameraDesc camera{};
     camera.from = to_float(eye);
