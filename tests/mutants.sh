@@ -70,11 +70,13 @@ mkdir -p "$tree" "$logs"
 # out), with their times kept so an unchanged file is not rebuilt.
 echo "copying $repo to $tree"
 (cd "$repo" && git ls-files -z -co --exclude-standard | tar --null -T - -cf -) | tar -xf - -C "$tree"
-# The file mutated last was restored after the copy's build last ran: the
-# copy above gives it back its old time, so make would keep the mutant's
-# objects. Touch it so that it is rebuilt.
-if [[ -f $scratch/last-mutated ]]; then
-  touch "$tree/$(cat "$scratch/last-mutated")"
+# Files mutated since the copy's build last ran unmutated were restored
+# after it: the copy above gives them back their old times, so make would
+# keep a mutant's objects. Touch them so that they are rebuilt; the record
+# is cleared once the unmutated copy has built again.
+mutated=$scratch/mutated-files
+if [[ -f $mutated ]]; then
+  while IFS= read -r path; do [[ -f $tree/$path ]] && touch "$tree/$path"; done <"$mutated"
 fi
 
 build_args=(--build "$tree/build" -j "$jobs")
@@ -98,6 +100,7 @@ fi
 if ((check == 0)); then
 echo "building and testing the unmutated copy"
 if ! build >"$logs/baseline.log" 2>&1; then echo "the unmutated copy does not build: $logs/baseline.log" >&2; exit 1; fi
+rm -f "$mutated"
 start=$SECONDS
 if ! run_tests >>"$logs/baseline.log" 2>&1; then
   echo "the unmutated copy fails its tests, so no mutant can be judged: $logs/baseline.log" >&2
@@ -147,7 +150,7 @@ while IFS= read -r raw; do
     printf '%s\tdoes-not-apply\tmalformed line\n' "$id" | tee -a "$results"; stale=$((stale + 1)); continue
   fi
   cp -p "$tree/$file" "$scratch/original" 2>/dev/null || true
-  printf '%s\n' "$file" >"$scratch/last-mutated"
+  ((check == 0)) && printf '%s\n' "$file" >>"$mutated"
   if ! where=$(apply_mutant "$file" "$text" "$replacement" "$nth" 2>&1); then
     printf '%s\tdoes-not-apply\t%s: %s\n' "$id" "$file" "$where" | tee -a "$results"; stale=$((stale + 1)); continue
   fi
