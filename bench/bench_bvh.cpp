@@ -22,6 +22,7 @@
 #include "integrator/scene_intersector.h"
 #include "scene/auto_view.h"
 #include "io/scene_loader.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -55,7 +56,8 @@ void trace(benchmark::State& state, const BvhCase& lazy, KernelUnit unit, BvhTra
     const Scene* scene;
     const SceneRays* rays;
   } c{&lazy.scene->get(), &lazy.rays->get()};
-  SceneIntersector intersector(unit);
+  // The study's streams walk every node width (the product's, width 8 only).
+  SceneIntersector intersector(unit, SphereMethod::robust, study_scene_streams(unit, SphereMethod::robust));
   intersector.set_traversal(traversal);
   const RaySoA& rays = kind == "primary"      ? c.rays->primary
                        : kind == "reflection" ? c.rays->reflection

@@ -1,6 +1,7 @@
 #include "bench/bench_support.h"
 #include "geometry/cone_streams.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -31,7 +32,7 @@ const bool registered = [] {
   rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto u, ConeMethod m) { return cone_streams<decltype(u)::value>(m); };
+  auto streams_of = [](auto u, ConeMethod m) { return study_cone_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<ConeSoA>("cone/quadric", streams_by_unit<ConeSoA>(ConeMethod::quadric, streams_of),
                                       cones, rays);
   return true;

@@ -1,6 +1,7 @@
 #include "bench/bench_support.h"
 #include "geometry/plane_streams.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -25,7 +26,7 @@ const bool registered = [] {
   rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto u, PlaneMethod m) { return plane_streams<decltype(u)::value>(m); };
+  auto streams_of = [](auto u, PlaneMethod m) { return study_plane_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<PlaneSoA>("plane/seed", streams_by_unit<PlaneSoA>(PlaneMethod::seed, streams_of),
                                        planes, rays);
   register_kernel_benchmarks<PlaneSoA>("plane/anchored",

@@ -11,7 +11,8 @@
 #include "bench/bench_support.h"
 #include "geometry/polygon_streams.h"
 #include "geometry/triangle_streams.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -59,7 +60,7 @@ const bool registered = [] {
     hit_rays.push_back(s.toward(s.in_box({-2, -2, -2}, {2, 2, 2}), target));
   }
   // Rays through the cluster, kept when they miss every polygon (scalar check).
-  const auto scalar = polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing);
+  const auto scalar = study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing);
   while (miss_rays.size() < kBenchRays) {
     std::vector<Ray<float>> batch;
     for (int i = 0; i < 1024; ++i) batch.push_back(s.toward(s.in_box({-3, -3, -3}, {3, 3, 3}), s.in_box({-1, -1, -1}, {1, 1, 1})));
@@ -74,10 +75,10 @@ const bool registered = [] {
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
 
-  auto polygon_streams_of = [](auto u, PolygonMethod m) { return polygon_streams<decltype(u)::value>(m); };
+  auto polygon_streams_of = [](auto u, PolygonMethod m) { return study_polygon_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<PolygonSoA>(
       "polygon/crossing", streams_by_unit<PolygonSoA>(PolygonMethod::crossing, polygon_streams_of), polygons, rays);
-  auto triangle_streams_of = [](auto u, TriangleMethod m) { return triangle_streams<decltype(u)::value>(m); };
+  auto triangle_streams_of = [](auto u, TriangleMethod m) { return study_triangle_streams<decltype(u)::value>(m); };
   register_kernel_benchmarks<TriangleSoA>("polygon/triangulated",
                                     streams_by_unit<TriangleSoA>(TriangleMethod::watertight, triangle_streams_of),
                                     triangles, rays, polygons->size());

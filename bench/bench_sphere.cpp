@@ -1,6 +1,7 @@
 #include "bench/bench_support.h"
 #include "geometry/sphere_streams.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -26,7 +27,7 @@ const bool registered = [] {
   rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto u, SphereMethod m) { return sphere_streams<decltype(u)::value>(m); };
+  auto streams_of = [](auto u, SphereMethod m) { return study_sphere_streams<decltype(u)::value>(m); };
   for (auto [name, method] : {std::pair{"sphere/algebraic", SphereMethod::algebraic},
                               std::pair{"sphere/geometric", SphereMethod::geometric},
                               std::pair{"sphere/robust", SphereMethod::robust}}) {

@@ -91,7 +91,7 @@ void register_kernel_benchmarks(const std::string& kind_and_method,
   }
 }
 
-// Dispatches a kind's streams template (e.g. plane_streams<U>) on a run-time unit.
+// Dispatches a kind's streams template (e.g. study_plane_streams<U>) on a run-time unit.
 template <class S, class Method, class StreamsOf>
 std::function<KernelStreams<S>(KernelUnit)> streams_by_unit(Method method, StreamsOf streams_of) {
   return [=](KernelUnit unit) {

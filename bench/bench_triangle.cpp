@@ -1,6 +1,7 @@
 #include "bench/bench_support.h"
 #include "geometry/triangle_streams.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver::bench {
 namespace {
@@ -32,7 +33,7 @@ const bool registered = [] {
   rays->camera = camera_rays({0, 0, 0}, 1.f);
   rays->hits = testing::to_soa(hit_rays);
   rays->misses = testing::to_soa(miss_rays);
-  auto streams_of = [](auto u, TriangleMethod m) { return triangle_streams<decltype(u)::value>(m); };
+  auto streams_of = [](auto u, TriangleMethod m) { return study_triangle_streams<decltype(u)::value>(m); };
   for (auto [name, method] : {std::pair{"triangle/moller_trumbore", TriangleMethod::moller_trumbore},
                               std::pair{"triangle/watertight", TriangleMethod::watertight}}) {
     register_kernel_benchmarks<TriangleSoA>(name, streams_by_unit<TriangleSoA>(method, streams_of), triangles,

@@ -46,8 +46,13 @@ constexpr std::int32_t leaf_store(std::int32_t child) { return (-1 - child) / 16
 // 1) * 16 + 15 must fit an int32).
 inline constexpr std::size_t kMaxBvhPrimitives = std::size_t(1) << 26;
 
+// The node width the product walks (geometry/bvh/bvh_streams.h): a shallower
+// tree, a node's children tested together. The builder also makes 2 and 4,
+// which the study streams walk (tests/support/study_streams.h).
+inline constexpr int kProductNodeWidth = 8;
+
 struct BvhBuildOptions {
-  int width = 8;               // children per node: 2, 4 or 8 (8: a shallower tree, a node's children tested together)
+  int width = kProductNodeWidth;  // children per node: 2, 4 or 8
   int max_leaf_size = 8;       // at most kMaxLeafSize
   int bins = 16;               // SAH bins per axis
   float traversal_cost = 4.f;  // relative to one primitive test

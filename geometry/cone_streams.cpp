@@ -8,7 +8,7 @@ KernelStreams<ConeSoA> cone_streams(ConeMethod method) {
   switch (method) {
     case ConeMethod::quadric: break;
   }
-  return make_streams<U, ConeQuadric, ConeSoA>();
+  return make_packet_streams<U, ConeQuadric, ConeSoA>();
 }
 
 template <KernelUnit U>

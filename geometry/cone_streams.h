@@ -13,7 +13,8 @@ enum class ConeMethod { quadric };
 template <KernelUnit U>
 KernelStreams<ConeSoA> cone_streams(ConeMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
+// Traversal of a BVH of node width kProductNodeWidth over the store
+// (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<ConeSoA> cone_bvh_streams(ConeMethod method);
 

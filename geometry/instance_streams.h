@@ -7,8 +7,8 @@
 
 namespace quiver {
 
-// The walks of a BVH over instances (geometry/instance_leaves.h), per node
-// width, through a tree over one store.
+// The walks of a BVH of node width kProductNodeWidth over instances
+// (geometry/instance_leaves.h).
 template <KernelUnit U>
 BvhStreams<InstanceLeaves> instance_bvh_streams();
 

@@ -6,10 +6,10 @@ namespace quiver {
 template <KernelUnit U>
 KernelStreams<PlaneSoA> plane_streams(PlaneMethod method) {
   switch (method) {
-    case PlaneMethod::seed: return make_streams<U, PlaneSeed, PlaneSoA>();
-    case PlaneMethod::anchored: break;
+    case PlaneMethod::anchored: return make_packet_streams<U, PlaneAnchored, PlaneSoA>();
+    case PlaneMethod::seed: break;
   }
-  return make_streams<U, PlaneAnchored, PlaneSoA>();
+  throw_study_method("plane", "seed");
 }
 
 // This unit's instances.

@@ -15,7 +15,8 @@ enum class PolygonMethod { crossing };
 template <KernelUnit U>
 KernelStreams<PolygonSoA> polygon_streams(PolygonMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
+// Traversal of a BVH of node width kProductNodeWidth over the store
+// (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<PolygonSoA> polygon_bvh_streams(PolygonMethod method);
 

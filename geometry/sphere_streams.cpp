@@ -6,21 +6,21 @@ namespace quiver {
 template <KernelUnit U>
 KernelStreams<SphereSoA> sphere_streams(SphereMethod method) {
   switch (method) {
-    case SphereMethod::algebraic: return make_streams<U, SphereAlgebraic, SphereSoA>();
-    case SphereMethod::geometric: return make_streams<U, SphereGeometric, SphereSoA>();
-    case SphereMethod::robust: break;
+    case SphereMethod::algebraic: return make_packet_streams<U, SphereAlgebraic, SphereSoA>();
+    case SphereMethod::robust: return make_packet_streams<U, SphereRobust, SphereSoA>();
+    case SphereMethod::geometric: break;
   }
-  return make_streams<U, SphereRobust, SphereSoA>();
+  throw_study_method("sphere", "geometric");
 }
 
 template <KernelUnit U>
 BvhStreams<SphereSoA> sphere_bvh_streams(SphereMethod method) {
   switch (method) {
     case SphereMethod::algebraic: return make_bvh_streams<U, SphereAlgebraic, SphereSoA>();
-    case SphereMethod::geometric: return make_bvh_streams<U, SphereGeometric, SphereSoA>();
-    case SphereMethod::robust: break;
+    case SphereMethod::robust: return make_bvh_streams<U, SphereRobust, SphereSoA>();
+    case SphereMethod::geometric: break;
   }
-  return make_bvh_streams<U, SphereRobust, SphereSoA>();
+  throw_study_method("sphere", "geometric");
 }
 
 // This unit's instances.

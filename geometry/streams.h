@@ -22,7 +22,10 @@
 //
 // Each kind's <kind>_streams.cpp is compiled once per kernel unit and
 // instantiates these loops for it, in the unit's namespace
-// (simd/kernel_units.h); the loops are flattened.
+// (simd/kernel_units.h); the loops are flattened. The product instantiates
+// what quiver runs: its methods, packets only, BVH node width
+// kProductNodeWidth; the alternatives the tests, benchmarks and accuracy
+// study compare are instantiated in tests/support/study_streams.cpp.
 #pragma once
 
 #include <cstddef>
@@ -34,11 +37,17 @@
 
 namespace quiver {
 
+// Thrown by a product streams function asked for a method only the study
+// builds: std::invalid_argument naming it. Out of line (geometry/streams.cpp),
+// so no kernel unit's flags compile the library code it calls.
+[[noreturn]] void throw_study_method(const char* kind, const char* method);
+
 template <class S>
 struct KernelStreams {
   void (*closest_packets)(const RaySoA&, const S&, HitSoA&) = nullptr;
   void (*occluded_packets)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
-  // nullptr where a kind has no scan orientation (it does not pay).
+  // nullptr in the product, which runs packets, and where a kind has no
+  // scan orientation (it does not pay).
   void (*closest_scan)(const RaySoA&, const S&, HitSoA&) = nullptr;
   void (*occluded_scan)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
 };
@@ -110,7 +119,8 @@ KernelStreams<S> make_streams() {
   return s;
 }
 
-// Packets only, for kinds whose scan orientation does not pay.
+// Packets only: what the product runs, and all a kind without a scan
+// orientation has.
 template <KernelUnit U, class Method, class S>
 KernelStreams<S> make_packet_streams() {
   KernelStreams<S> s;

@@ -6,19 +6,19 @@ namespace quiver {
 template <KernelUnit U>
 KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method) {
   switch (method) {
-    case TriangleMethod::moller_trumbore: return make_streams<U, TriangleMollerTrumbore, TriangleSoA>();
-    case TriangleMethod::watertight: return make_streams<U, TriangleWatertight, TriangleSoA>();
+    case TriangleMethod::watertight: return make_packet_streams<U, TriangleWatertight, TriangleSoA>();
+    case TriangleMethod::moller_trumbore: break;
   }
-  return make_streams<U, TriangleMollerTrumbore, TriangleSoA>();
+  throw_study_method("triangle", "moller_trumbore");
 }
 
 template <KernelUnit U>
 BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method) {
   switch (method) {
-    case TriangleMethod::moller_trumbore: return make_bvh_streams<U, TriangleMollerTrumbore, TriangleSoA>();
-    case TriangleMethod::watertight: break;
+    case TriangleMethod::watertight: return make_bvh_streams<U, TriangleWatertight, TriangleSoA>();
+    case TriangleMethod::moller_trumbore: break;
   }
-  return make_bvh_streams<U, TriangleWatertight, TriangleSoA>();
+  throw_study_method("triangle", "moller_trumbore");
 }
 
 // This unit's instances.

@@ -10,10 +10,14 @@ namespace quiver {
 
 enum class TriangleMethod { moller_trumbore, watertight };
 
+// The product's method, watertight, as packets (moller_trumbore:
+// tests/support/study_streams.h; the product's functions throw
+// std::invalid_argument for it).
 template <KernelUnit U>
 KernelStreams<TriangleSoA> triangle_streams(TriangleMethod method);
 
-// Traversal of a BVH over the store, per node width (geometry/bvh/bvh_streams.h).
+// Traversal of a BVH of node width kProductNodeWidth over the store
+// (geometry/bvh/bvh_streams.h).
 template <KernelUnit U>
 BvhStreams<TriangleSoA> triangle_bvh_streams(TriangleMethod method);
 

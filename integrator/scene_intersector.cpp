@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace quiver {
 
@@ -44,21 +45,29 @@ SphereMethod choose_sphere_method(const Scene& scene, MethodChoice choice) {
   return choice == MethodChoice::per_scene && has_spheres && safe ? SphereMethod::algebraic : SphereMethod::robust;
 }
 
-SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere) : unit_(unit), sphere_method_(sphere) {
-  with_kernel_unit(unit, [this](auto u) {
+SceneStreams product_scene_streams(KernelUnit unit, SphereMethod sphere) {
+  return with_kernel_unit(unit, [sphere](auto u) {
     constexpr KernelUnit U = decltype(u)::value;
-    spheres_ = sphere_streams<U>(sphere_method_);
-    planes_ = plane_streams<U>(PlaneMethod::anchored);
-    triangles_ = triangle_streams<U>(TriangleMethod::watertight);
-    polygons_ = polygon_streams<U>(PolygonMethod::crossing);
-    cones_ = cone_streams<U>(ConeMethod::quadric);
-    sphere_bvh_ = sphere_bvh_streams<U>(sphere_method_);
-    triangle_bvh_ = triangle_bvh_streams<U>(TriangleMethod::watertight);
-    polygon_bvh_ = polygon_bvh_streams<U>(PolygonMethod::crossing);
-    cone_bvh_ = cone_bvh_streams<U>(ConeMethod::quadric);
-    instance_bvh_ = instance_bvh_streams<U>();
+    SceneStreams s;
+    s.spheres = sphere_streams<U>(sphere);
+    s.planes = plane_streams<U>(PlaneMethod::anchored);
+    s.triangles = triangle_streams<U>(TriangleMethod::watertight);
+    s.polygons = polygon_streams<U>(PolygonMethod::crossing);
+    s.cones = cone_streams<U>(ConeMethod::quadric);
+    s.sphere_bvh = sphere_bvh_streams<U>(sphere);
+    s.triangle_bvh = triangle_bvh_streams<U>(TriangleMethod::watertight);
+    s.polygon_bvh = polygon_bvh_streams<U>(PolygonMethod::crossing);
+    s.cone_bvh = cone_bvh_streams<U>(ConeMethod::quadric);
+    s.instance_bvh = instance_bvh_streams<U>();
+    return s;
   });
 }
+
+SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere)
+    : SceneIntersector(unit, sphere, product_scene_streams(unit, sphere)) {}
+
+SceneIntersector::SceneIntersector(KernelUnit unit, SphereMethod sphere, SceneStreams streams)
+    : unit_(unit), sphere_method_(sphere), streams_(std::move(streams)) {}
 
 namespace {
 
@@ -114,41 +123,41 @@ template <class Fn>
 void SceneIntersector::for_each_bounded_kind(const Scene& scene, Fn fn) const {
   const GeometryLayer& o = scene.opaque;
   const GeometryLayer& t = scene.transmissive;
-  fn(kind_query(o.spheres, t.spheres, scene.sphere_bvh, spheres_, sphere_bvh_));
-  fn(kind_query(o.triangles, t.triangles, scene.triangle_bvh, triangles_, triangle_bvh_));
-  fn(kind_query(o.polygons, t.polygons, scene.polygon_bvh, polygons_, polygon_bvh_));
-  fn(kind_query(o.cones, t.cones, scene.cone_bvh, cones_, cone_bvh_));
+  fn(kind_query(o.spheres, t.spheres, scene.sphere_bvh, streams_.spheres, streams_.sphere_bvh));
+  fn(kind_query(o.triangles, t.triangles, scene.triangle_bvh, streams_.triangles, streams_.triangle_bvh));
+  fn(kind_query(o.polygons, t.polygons, scene.polygon_bvh, streams_.polygons, streams_.polygon_bvh));
+  fn(kind_query(o.cones, t.cones, scene.cone_bvh, streams_.cones, streams_.cone_bvh));
 }
 
 InstanceLeaves SceneIntersector::instance_leaves(const Scene& scene, Layers layers) const {
-  return {&scene.instances, scene.meshes.data(), &triangle_bvh_, static_cast<unsigned>(layers), traversal_};
+  return {&scene.instances, scene.meshes.data(), &streams_.triangle_bvh, static_cast<unsigned>(layers), traversal_};
 }
 
 void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& hits, Layers layers) const {
   if (rays.count == 0) return;
   for_each_tested_plane_store(scene, layers,
-                              [&](const PlaneSoA& planes) { planes_.closest_packets(rays, planes, hits); });
+                              [&](const PlaneSoA& planes) { streams_.planes.closest_packets(rays, planes, hits); });
   for_each_bounded_kind(scene, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.tree.closest_hits(rays, stores, kind.bvh, hits, traversal_); },
         [&](const auto& store) { kind.scan.closest_packets(rays, store, hits); });
   });
   if (!scene.instance_bvh.empty()) {
-    instance_bvh_.closest_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, hits, traversal_);
+    streams_.instance_bvh.closest_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, hits, traversal_);
   }
 }
 
 void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const {
   if (rays.count == 0) return;
   for_each_tested_plane_store(scene, layers,
-                              [&](const PlaneSoA& planes) { planes_.occluded_packets(rays, planes, result); });
+                              [&](const PlaneSoA& planes) { streams_.planes.occluded_packets(rays, planes, result); });
   for_each_bounded_kind(scene, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.tree.any_hits(rays, stores, kind.bvh, result, traversal_); },
         [&](const auto& store) { kind.scan.occluded_packets(rays, store, result); });
   });
   if (!scene.instance_bvh.empty()) {
-    instance_bvh_.any_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, result, traversal_);
+    streams_.instance_bvh.any_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, result, traversal_);
   }
 }
 

@@ -2,7 +2,7 @@
 // through the kind's BVH over both layers where it has one
 // (geometry/bvh/bvh_streams.h; leaves of untested layers are skipped), else
 // through each tested layer's packet streams (W rays against one primitive),
-// with the watertight triangle, crossing polygon, seed plane and quadric cone
+// with the watertight triangle, crossing polygon, anchored plane and quadric cone
 // methods, and the sphere method chosen per scene: the seed's algebraic test
 // where no ray origin is more than kAlgebraicSphereMaxDistanceRatio radii from
 // a sphere's centre (kAlgebraicSphereMaxDistanceRatio says why), else the
@@ -43,9 +43,29 @@ inline constexpr double kAlgebraicSphereMaxDistanceRatio = 10.0;
 // ratio above (per_scene); robust otherwise.
 SphereMethod choose_sphere_method(const Scene& scene, MethodChoice choice);
 
+// The streams a SceneIntersector runs, one set per kind, all of one unit.
+struct SceneStreams {
+  KernelStreams<SphereSoA> spheres;
+  KernelStreams<PlaneSoA> planes;
+  KernelStreams<TriangleSoA> triangles;
+  KernelStreams<PolygonSoA> polygons;
+  KernelStreams<ConeSoA> cones;
+  BvhStreams<SphereSoA> sphere_bvh;
+  BvhStreams<TriangleSoA> triangle_bvh;
+  BvhStreams<PolygonSoA> polygon_bvh;
+  BvhStreams<ConeSoA> cone_bvh;
+  BvhStreams<InstanceLeaves> instance_bvh;
+};
+
+// The product's streams in unit: the methods above, BVHs of node width
+// kProductNodeWidth (tests/support/study_streams.h has every width).
+SceneStreams product_scene_streams(KernelUnit unit, SphereMethod sphere);
+
 class SceneIntersector {
  public:
   explicit SceneIntersector(KernelUnit unit, SphereMethod sphere = SphereMethod::robust);
+  // streams: unit's streams, with sphere's method for spheres.
+  SceneIntersector(KernelUnit unit, SphereMethod sphere, SceneStreams streams);
 
   KernelUnit unit() const { return unit_; }
   SphereMethod sphere_method() const { return sphere_method_; }
@@ -67,16 +87,7 @@ class SceneIntersector {
   KernelUnit unit_;
   SphereMethod sphere_method_;
   BvhTraversal traversal_ = BvhTraversal::automatic;
-  BvhStreams<SphereSoA> sphere_bvh_;
-  BvhStreams<TriangleSoA> triangle_bvh_;
-  BvhStreams<PolygonSoA> polygon_bvh_;
-  BvhStreams<ConeSoA> cone_bvh_;
-  BvhStreams<InstanceLeaves> instance_bvh_;
-  KernelStreams<SphereSoA> spheres_;
-  KernelStreams<PlaneSoA> planes_;
-  KernelStreams<TriangleSoA> triangles_;
-  KernelStreams<PolygonSoA> polygons_;
-  KernelStreams<ConeSoA> cones_;
+  SceneStreams streams_;
 };
 
 }  // namespace quiver

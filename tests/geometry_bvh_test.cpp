@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -21,7 +22,8 @@
 #include "geometry/sphere_streams.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 namespace {
@@ -444,13 +446,14 @@ void expect_two_store_bvh_matches_scan(const KernelStreams<S>& scan, const BvhSt
 }
 
 // Builds the kind's store in BVH order for each node width and compares;
-// then the even and odd descs as two stores under one BVH.
+// then the even and odd descs as two stores under one BVH. The study walks
+// a method the product leaves out at the product's node width only.
 template <KernelUnit U, class Desc, class Builder, class Scan, class Tree>
 void check_kind(const std::vector<Desc>& descs, Builder builder, const Scan& scan, const Tree& tree,
-                const RaySoA& rays) {
+                const RaySoA& rays, std::span<const int> widths = kStudyNodeWidths) {
   std::array<std::vector<Desc>, 2> halves;
   for (std::size_t i = 0; i < descs.size(); ++i) halves[i % 2].push_back(descs[i]);
-  for (int width : {2, 4, 8}) {
+  for (int width : widths) {
     SCOPED_TRACE(::testing::Message() << "node width " << width);
     BuildReport report;
     auto store = builder(std::span<const Desc>(descs), report);
@@ -478,18 +481,22 @@ TYPED_TEST(BvhTraversalTest, SpheresMatchTheScanBitForBit) {
   constexpr KernelUnit kUnit = TestFixture::kUnit;
   RaySampler s(21);
   const RaySoA rays = traversal_rays(s);
-  check_kind<kUnit>(random_spheres(s, 400), build_spheres, sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
-                    sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
+  check_kind<kUnit>(random_spheres(s, 400), build_spheres,
+                    study_sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
+                    study_sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
 }
 
 TYPED_TEST(BvhTraversalTest, TrianglesMatchTheScanBitForBit) {
   constexpr KernelUnit kUnit = TestFixture::kUnit;
   RaySampler s(22);
   const RaySoA rays = traversal_rays(s);
-  for (TriangleMethod m : {TriangleMethod::watertight, TriangleMethod::moller_trumbore}) {
-    check_kind<kUnit>(random_triangles(s, 400), build_triangles, triangle_streams<KernelUnit::scalar>(m),
-                      triangle_bvh_streams<kUnit>(m), rays);
-  }
+  check_kind<kUnit>(random_triangles(s, 400), build_triangles,
+                    study_triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    study_triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays);
+  constexpr int kProductWidth[] = {kProductNodeWidth};
+  check_kind<kUnit>(random_triangles(s, 400), build_triangles,
+                    study_triangle_streams<KernelUnit::scalar>(TriangleMethod::moller_trumbore),
+                    study_triangle_bvh_streams<kUnit>(TriangleMethod::moller_trumbore), rays, kProductWidth);
 }
 
 // A bumpy sheet of small triangles far from the world origin (cells of
@@ -534,8 +541,8 @@ TYPED_TEST(BvhTraversalTest, TrianglesFarFromTheOriginMatchTheScanBitForBit) {
   constexpr KernelUnit kUnit = TestFixture::kUnit;
   RaySampler s(25);
   const std::vector<TriangleDesc> sheet = far_sheet(s, {7000.f, -6000.f, 8000.f}, 24, 0.02f);
-  check_kind<kUnit>(sheet, build_triangles, triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
-                    triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays_leaving(s, sheet, 3000));
+  check_kind<kUnit>(sheet, build_triangles, study_triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    study_triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays_leaving(s, sheet, 3000));
 }
 
 // Rays from inside the scene whose interval reaches behind their origin
@@ -558,10 +565,11 @@ TYPED_TEST(BvhTraversalTest, RaysReachingBehindTheirOriginMatchTheScanBitForBit)
   RaySampler s(26);
   const RaySoA rays = rays_reaching_behind(s, 1500);
   check_kind<kUnit>(random_triangles(s, 400), build_triangles,
-                    triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
-                    triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays);
-  check_kind<kUnit>(random_spheres(s, 400), build_spheres, sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
-                    sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
+                    study_triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    study_triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays);
+  check_kind<kUnit>(random_spheres(s, 400), build_spheres,
+                    study_sphere_streams<KernelUnit::scalar>(SphereMethod::robust),
+                    study_sphere_bvh_streams<kUnit>(SphereMethod::robust), rays);
 }
 
 TYPED_TEST(BvhTraversalTest, PolygonsMatchTheScanBitForBit) {
@@ -569,16 +577,16 @@ TYPED_TEST(BvhTraversalTest, PolygonsMatchTheScanBitForBit) {
   RaySampler s(23);
   const RaySoA rays = traversal_rays(s);
   check_kind<kUnit>(random_polygons(s, 300), build_polygons,
-                    polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
-                    polygon_bvh_streams<kUnit>(PolygonMethod::crossing), rays);
+                    study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
+                    study_polygon_bvh_streams<kUnit>(PolygonMethod::crossing), rays);
 }
 
 TYPED_TEST(BvhTraversalTest, ConesMatchTheScanBitForBit) {
   constexpr KernelUnit kUnit = TestFixture::kUnit;
   RaySampler s(24);
   const RaySoA rays = traversal_rays(s);
-  check_kind<kUnit>(random_cones(s, 300), build_cones, cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
-                    cone_bvh_streams<kUnit>(ConeMethod::quadric), rays);
+  check_kind<kUnit>(random_cones(s, 300), build_cones, study_cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
+                    study_cone_bvh_streams<kUnit>(ConeMethod::quadric), rays);
 }
 
 }  // namespace

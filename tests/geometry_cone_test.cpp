@@ -9,7 +9,8 @@
 
 #include "geometry/cone_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 namespace {
@@ -27,7 +28,7 @@ ConeSoA cones_of(std::vector<ConeDesc> descs, BuildReport* out = nullptr) {
 }
 
 Hit<float> closest(const Ray<float>& ray, const ConeSoA& cones) {
-  return testing::closest_hit(cone_streams<KernelUnit::scalar>(ConeMethod::quadric), ray, cones);
+  return testing::closest_hit(study_cone_streams<KernelUnit::scalar>(ConeMethod::quadric), ray, cones);
 }
 
 // ---- double-precision reference (same surface, straight from the ConeDesc) --
@@ -481,8 +482,9 @@ TYPED_TEST(ConeWidths, MatchesScalarBitForBit) {
   ASSERT_NE(rays.size() % 8, 0u);
   ASSERT_GE(rays.size(), 100'000u);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
-                                                        cone_streams<TestFixture::kUnit>(ConeMethod::quadric), soa, cones);
+  const auto ref =
+      testing::expect_streams_match_scalar(study_cone_streams<KernelUnit::scalar>(ConeMethod::quadric),
+                                           study_cone_streams<TestFixture::kUnit>(ConeMethod::quadric), soa, cones);
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 4);  // the test exercises hits
 }
 

@@ -6,7 +6,8 @@
 
 #include "geometry/plane_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 namespace {
@@ -26,9 +27,9 @@ constexpr PlaneMethod kMethods[] = {PlaneMethod::seed, PlaneMethod::anchored};
 
 // The closest hit, the same from both methods on these exact cases.
 Hit<float> closest(const Ray<float>& ray, const PlaneSoA& planes) {
-  const Hit<float> seed = testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::seed), ray, planes);
+  const Hit<float> seed = testing::closest_hit(study_plane_streams<KernelUnit::scalar>(PlaneMethod::seed), ray, planes);
   const Hit<float> anchored =
-      testing::closest_hit(plane_streams<KernelUnit::scalar>(PlaneMethod::anchored), ray, planes);
+      testing::closest_hit(study_plane_streams<KernelUnit::scalar>(PlaneMethod::anchored), ray, planes);
   EXPECT_EQ(seed.id, anchored.id);
   if (seed.id != kNoHit) {
     EXPECT_EQ(seed.t, anchored.t);
@@ -115,7 +116,7 @@ TEST(PlaneKernel, AnchoredKeepsItsDigitsFarFromTheOrigin) {
       const double t = dot(n, p - o) / dot(n, d);
       ASSERT_GT(t, 0.0);
       for (int m = 0; m < 2; ++m) {
-        const Hit<float> h = testing::closest_hit(plane_streams<KernelUnit::scalar>(kMethods[m]), ray, plane);
+        const Hit<float> h = testing::closest_hit(study_plane_streams<KernelUnit::scalar>(kMethods[m]), ray, plane);
         ASSERT_EQ(h.id, 0) << far;
         worst[m] = std::max(worst[m], std::fabs(h.t - t) / t);
       }
@@ -152,8 +153,8 @@ TYPED_TEST(PlaneWidths, MatchesScalarBitForBit) {
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
   for (const PlaneMethod method : kMethods) {
-    const auto ref = testing::expect_streams_match_scalar(plane_streams<KernelUnit::scalar>(method),
-                                                          plane_streams<TestFixture::kUnit>(method), soa, planes);
+    const auto ref = testing::expect_streams_match_scalar(study_plane_streams<KernelUnit::scalar>(method),
+                                                          study_plane_streams<TestFixture::kUnit>(method), soa, planes);
     EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 2);  // the test exercises hits
   }
 }
@@ -170,7 +171,7 @@ TYPED_TEST(PlaneWidths, OccludedStreamsKeepEarlierOcclusion) {
   for (const PlaneMethod method : kMethods) {
     OcclusionSoA result(soa);
     for (std::size_t i = 0; i < rays.size(); i += 3) result.occluded[i] = 1;
-    plane_streams<TestFixture::kUnit>(method).occluded_packets(soa, planes, result);
+    study_plane_streams<TestFixture::kUnit>(method).occluded_packets(soa, planes, result);
     for (std::size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(result.occluded[i], i % 3 == 0 ? 1 : 0) << "ray " << i;
   }
 }

@@ -11,7 +11,8 @@
 #include "geometry/polygon_streams.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 namespace {
@@ -32,7 +33,7 @@ PolygonSoA polygons_of(const std::vector<PolygonDesc>& descs, BuildReport* out =
 }
 
 Hit<float> closest(const Ray<float>& ray, const PolygonSoA& polygons) {
-  return testing::closest_hit(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), ray, polygons);
+  return testing::closest_hit(study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), ray, polygons);
 }
 
 // 2D outline (x, y) placed in the plane z = z0 + sx x + sy y.
@@ -502,8 +503,9 @@ TEST(PolygonStability, AgreesWithWatertightTriangulation) {
     }
     const RaySoA soa = testing::to_soa(rays);
     HitSoA by_polygon(soa), by_triangles(soa);
-    polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing).closest_packets(soa, polygon, by_polygon);
-    triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight).closest_packets(soa, triangles, by_triangles);
+    study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing).closest_packets(soa, polygon, by_polygon);
+    study_triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight)
+        .closest_packets(soa, triangles, by_triangles);
     // The outline projected like the kernel (drop the dominant axis).
     const PlaneD plane = plane_of(desc);
     const int au = (plane.drop + 1) % 3, av = (plane.drop + 2) % 3;
@@ -714,9 +716,9 @@ TYPED_TEST(PolygonWidths, MatchesScalarBitForBit) {
   RaySoA soa = testing::to_soa(rays);
   ASSERT_NE(soa.count % 8, 0u);
   testing::poison_padding(soa);
-  const auto ref = testing::expect_streams_match_scalar(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
-                                                        polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing),
-                                                        soa, polygons);
+  const auto ref = testing::expect_streams_match_scalar(
+      study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing),
+      study_polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing), soa, polygons);
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
 }
 
@@ -770,9 +772,9 @@ TYPED_TEST(PolygonWidths, EdgeBandsGiveTheFullLoopsBits) {
   RaySoA soa = testing::to_soa(rays);
   testing::poison_padding(soa);
   const testing::StreamResults ref =
-      testing::run_streams(polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), soa, plain);
+      testing::run_streams(study_polygon_streams<KernelUnit::scalar>(PolygonMethod::crossing), soa, plain);
   testing::expect_results_match_scalar(
-      ref, testing::run_streams(polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing), soa, banded));
+      ref, testing::run_streams(study_polygon_streams<TestFixture::kUnit>(PolygonMethod::crossing), soa, banded));
   EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 4);  // the test exercises hits
 }
 

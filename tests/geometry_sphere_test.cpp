@@ -9,7 +9,8 @@
 
 #include "geometry/sphere_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 
@@ -46,7 +47,7 @@ SphereSoA spheres_of(std::vector<SphereDesc> descs, BuildReport* out = nullptr) 
 HitSoA closest_all(SphereMethod m, const std::vector<Ray<float>>& rays, const SphereSoA& spheres) {
   const RaySoA soa = testing::to_soa(rays);
   HitSoA hits(soa);
-  sphere_streams<KernelUnit::scalar>(m).closest_packets(soa, spheres, hits);
+  study_sphere_streams<KernelUnit::scalar>(m).closest_packets(soa, spheres, hits);
   return hits;
 }
 
@@ -252,7 +253,8 @@ const std::vector<Ray<float>>& equivalence_rays() {
     const SphereSoA& spheres = test_spheres();
     RaySampler s(21);
     std::vector<Ray<float>> out = testing::adversarial_rays(s, 40'003, {0, 0, 0}, 4.f);
-    for (int i = 0; i < 40'000; ++i) out.push_back(s.toward(s.in_box({-9, -9, -9}, {9, 9, 9}), s.in_box({-4, -4, -4}, {4, 4, 4})));
+    for (int i = 0; i < 40'000; ++i)
+      out.push_back(s.toward(s.in_box({-9, -9, -9}, {9, 9, 9}), s.in_box({-4, -4, -4}, {4, 4, 4})));
     for (int i = 0; i < 24'000; ++i) {
       const std::size_t k = std::size_t(s.uniform_int(0, int(spheres.size()) - 1));
       const Vec3<double> c{spheres.cx[k], spheres.cy[k], spheres.cz[k]};
@@ -296,8 +298,8 @@ TYPED_TEST(SphereWidths, MatchesScalarBitForBit) {
   testing::poison_padding(soa);
   for (SphereMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
-    const auto ref = testing::expect_streams_match_scalar(sphere_streams<KernelUnit::scalar>(m), sphere_streams<TestFixture::kUnit>(m),
-                                                          soa, spheres);
+    const auto ref = testing::expect_streams_match_scalar(study_sphere_streams<KernelUnit::scalar>(m),
+                                                          study_sphere_streams<TestFixture::kUnit>(m), soa, spheres);
     EXPECT_GT(ref.closest_packets.hit_count(), rays.size() / 3);  // the test exercises hits
   }
 }
@@ -317,7 +319,7 @@ TYPED_TEST(SphereWidths, HitAtTmaxNeitherHitsNorOccludesAndTieGoesToFirst) {
   testing::poison_padding(soa);
   for (SphereMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
-    const testing::StreamResults got = testing::run_streams(sphere_streams<TestFixture::kUnit>(m), soa, spheres);
+    const testing::StreamResults got = testing::run_streams(study_sphere_streams<TestFixture::kUnit>(m), soa, spheres);
     for (std::size_t k = 0; k < rays.size(); ++k) {
       const bool inside = k % 3 != 0;
       const std::int32_t expected_id = inside ? 0 : kNoHit;
@@ -345,7 +347,7 @@ TEST(SphereStability, NoNaNInReportedHits) {
     if (!kernel_unit_supported(unit)) continue;
     for (SphereMethod m : kMethods) {
       const KernelStreams<SphereSoA> streams =
-          with_kernel_unit(unit, [&](auto u) { return sphere_streams<decltype(u)::value>(m); });
+          with_kernel_unit(unit, [&](auto u) { return study_sphere_streams<decltype(u)::value>(m); });
       for (auto stream : {streams.closest_packets, streams.closest_scan}) {
         HitSoA hits(soa);
         stream(soa, spheres, hits);

@@ -17,7 +17,8 @@
 #include "geometry/bvh_store.h"
 #include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
+#include "tests/support/study_streams.h"
 
 namespace quiver {
 namespace {
@@ -43,13 +44,13 @@ TriangleSoA triangles_of(const std::vector<TriangleDesc>& descs, BuildReport* ou
 TriangleDesc tri(const Vec3<float>& a, const Vec3<float>& b, const Vec3<float>& c) { return {{a, b, c}, {}, {}}; }
 
 Hit<float> closest(TriangleMethod m, const Ray<float>& ray, const TriangleSoA& tris) {
-  return testing::closest_hit(triangle_streams<KernelUnit::scalar>(m), ray, tris);
+  return testing::closest_hit(study_triangle_streams<KernelUnit::scalar>(m), ray, tris);
 }
 
 // The widest streams this CPU runs (equal to scalar bit for bit, tested below).
 KernelStreams<TriangleSoA> fastest_streams(TriangleMethod m) {
   return with_kernel_unit(kernel_unit_for(best_supported_isa()),
-                          [&](auto u) { return triangle_streams<decltype(u)::value>(m); });
+                          [&](auto u) { return study_triangle_streams<decltype(u)::value>(m); });
 }
 
 Vec3<float> on_triangle(const std::array<Vec3<float>, 3>& p, float u, float v) {
@@ -449,7 +450,8 @@ const WidthCase& width_case() {
     w.tris = build_triangles(mixed_triangles(s), report);
     w.rays = testing::to_soa(triangle_rays(s, w.tris));
     testing::poison_padding(w.rays);
-    for (TriangleMethod m : kMethods) w.scalar[m] = testing::run_streams(triangle_streams<KernelUnit::scalar>(m), w.rays, w.tris);
+    for (TriangleMethod m : kMethods)
+      w.scalar[m] = testing::run_streams(study_triangle_streams<KernelUnit::scalar>(m), w.rays, w.tris);
     return w;
   }();
   return c;
@@ -464,7 +466,9 @@ TYPED_TEST(TriangleWidths, MatchesScalarBitForBit) {
     const testing::StreamResults& ref = c.scalar.at(m);
     // The scalar unit is the reference itself: only its scan-vs-packets check is new.
     const testing::StreamResults got =
-        TestFixture::kUnit == KernelUnit::scalar ? ref : testing::run_streams(triangle_streams<TestFixture::kUnit>(m), c.rays, c.tris);
+        TestFixture::kUnit == KernelUnit::scalar
+            ? ref
+            : testing::run_streams(study_triangle_streams<TestFixture::kUnit>(m), c.rays, c.tris);
     testing::expect_results_match_scalar(ref, got);
     EXPECT_GT(ref.closest_packets.hit_count(), c.rays.count * 2 / 5);  // the test exercises hits
   }
@@ -589,7 +593,7 @@ TEST(TriangleStability, WatertightNeverLeaksThroughTheBvh) {
   // The same rays through a BVH over the mesh (conservative slab tests),
   // every node width, packets and single rays, on the widest unit here.
   const BvhStreams<TriangleSoA> tree = with_kernel_unit(kernel_unit_for(best_supported_isa()), [](auto u) {
-    return triangle_bvh_streams<decltype(u)::value>(TriangleMethod::watertight);
+    return study_triangle_bvh_streams<decltype(u)::value>(TriangleMethod::watertight);
   });
   const Mesh mesh = icosphere(3);
   const std::vector<TriangleDesc> descs = mesh.triangles();
@@ -805,7 +809,8 @@ TEST(TriangleStability, DegenerateTrianglesNeverHitEvenPastTheBuilder) {
   testing::poison_padding(soa);
   for (TriangleMethod m : kMethods) {
     SCOPED_TRACE(method_name(m));
-    const testing::StreamResults r = testing::expect_streams_match_scalar(triangle_streams<KernelUnit::scalar>(m), fastest_streams(m), soa, raw);
+    const testing::StreamResults r = testing::expect_streams_match_scalar(study_triangle_streams<KernelUnit::scalar>(m),
+                                                                          fastest_streams(m), soa, raw);
     EXPECT_EQ(r.closest_packets.hit_count(), 0u);
     EXPECT_EQ(r.closest_scan.hit_count(), 0u);
     for (std::size_t i = 0; i < rays.size(); ++i) {

@@ -1,6 +1,7 @@
 // Runs a method on a case: kernel units through their streams, and the oracle
 // (the double-lane evaluation is in double_lanes.cpp).
 #include "bench/accuracy/methods.h"
+#include "tests/support/study_streams.h"
 
 #include <stdexcept>
 #include <string>
@@ -24,11 +25,11 @@ decltype(auto) with_store(const Primitives& prims, Fn&& fn) {
 // The stream set of a method in kernel unit U, for store type S.
 template <KernelUnit U, class S>
 KernelStreams<S> streams_of(const Method& m) {
-  if constexpr (std::is_same_v<S, SphereSoA>) return sphere_streams<U>(SphereMethod(m.method));
-  if constexpr (std::is_same_v<S, PlaneSoA>) return plane_streams<U>(PlaneMethod(m.method));
-  if constexpr (std::is_same_v<S, TriangleSoA>) return triangle_streams<U>(TriangleMethod(m.method));
-  if constexpr (std::is_same_v<S, PolygonSoA>) return polygon_streams<U>(PolygonMethod(m.method));
-  if constexpr (std::is_same_v<S, ConeSoA>) return cone_streams<U>(ConeMethod(m.method));
+  if constexpr (std::is_same_v<S, SphereSoA>) return study_sphere_streams<U>(SphereMethod(m.method));
+  if constexpr (std::is_same_v<S, PlaneSoA>) return study_plane_streams<U>(PlaneMethod(m.method));
+  if constexpr (std::is_same_v<S, TriangleSoA>) return study_triangle_streams<U>(TriangleMethod(m.method));
+  if constexpr (std::is_same_v<S, PolygonSoA>) return study_polygon_streams<U>(PolygonMethod(m.method));
+  if constexpr (std::is_same_v<S, ConeSoA>) return study_cone_streams<U>(ConeMethod(m.method));
 }
 
 template <class S>

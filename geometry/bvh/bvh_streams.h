@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 
+#include "geometry/bvh.h"
 #include "geometry/bvh/lane_walk.h"
 #include "geometry/bvh/packet_walk.h"
 #include "geometry/bvh/single_walk.h"
@@ -20,8 +21,15 @@
 
 namespace quiver {
 
-// The BVH streams of one method for node widths 2, 4 and 8, through a tree
-// over one store or through the tested stores of a tree over two.
+// Thrown by a BVH stream asked to walk a node width it lacks:
+// std::invalid_argument naming it. Out of line (geometry/streams.cpp), so no
+// kernel unit's flags compile the library code it calls.
+[[noreturn]] void throw_missing_node_width(int width);
+
+// The BVH streams of one method per node width (2, 4, 8), through a tree
+// over one store or through the tested stores of a tree over two. The
+// product fills width kProductNodeWidth only; a walk asked of a width
+// left empty throws std::invalid_argument.
 template <class S>
 struct BvhStreams {
   template <int K>
@@ -34,6 +42,7 @@ struct BvhStreams {
   std::array<Occluded<2>, 3> occluded_of_two{};
 
   static constexpr int slot(int width) { return width == 2 ? 0 : (width == 4 ? 1 : 2); }
+  bool walks(int width) const { return closest[static_cast<std::size_t>(slot(width))] != nullptr; }
   void closest_hits(const RaySoA& rays, const S& prims, const Bvh& bvh, HitSoA& hits,
                     BvhTraversal traversal = BvhTraversal::automatic) const {
     closest_hits(rays, BvhStores<S, 1>{&prims}, bvh, hits, traversal);
@@ -45,6 +54,7 @@ struct BvhStreams {
   template <int K>
   void closest_hits(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, HitSoA& hits,
                     BvhTraversal traversal = BvhTraversal::automatic) const {
+    require_width(bvh.width);
     if constexpr (K == 1) {
       closest[slot(bvh.width)](rays, stores, bvh, hits, traversal);
     } else {
@@ -54,11 +64,15 @@ struct BvhStreams {
   template <int K>
   void any_hits(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, OcclusionSoA& result,
                 BvhTraversal traversal = BvhTraversal::automatic) const {
+    require_width(bvh.width);
     if constexpr (K == 1) {
       occluded[slot(bvh.width)](rays, stores, bvh, result, traversal);
     } else {
       occluded_of_two[slot(bvh.width)](rays, stores, bvh, result, traversal);
     }
+  }
+  void require_width(int width) const {
+    if (!walks(width)) throw_missing_node_width(width);
   }
 };
 
@@ -168,16 +182,21 @@ template <KernelUnit U, class Method, class S, int N, int K>
   }
 }
 
+// Fills node width N's walks: over one store and over two.
+template <KernelUnit U, class Method, class S, int N>
+void add_bvh_width(BvhStreams<S>& s) {
+  constexpr std::size_t k = static_cast<std::size_t>(BvhStreams<S>::slot(N));
+  s.closest[k] = &closest_bvh<U, Method, S, N, 1>;
+  s.occluded[k] = &occluded_bvh<U, Method, S, N, 1>;
+  s.closest_of_two[k] = &closest_bvh<U, Method, S, N, 2>;
+  s.occluded_of_two[k] = &occluded_bvh<U, Method, S, N, 2>;
+}
+
+// The product's walks: node width kProductNodeWidth.
 template <KernelUnit U, class Method, class S>
 BvhStreams<S> make_bvh_streams() {
   BvhStreams<S> s;
-  s.closest = {&closest_bvh<U, Method, S, 2, 1>, &closest_bvh<U, Method, S, 4, 1>, &closest_bvh<U, Method, S, 8, 1>};
-  s.occluded = {&occluded_bvh<U, Method, S, 2, 1>, &occluded_bvh<U, Method, S, 4, 1>,
-                &occluded_bvh<U, Method, S, 8, 1>};
-  s.closest_of_two = {&closest_bvh<U, Method, S, 2, 2>, &closest_bvh<U, Method, S, 4, 2>,
-                      &closest_bvh<U, Method, S, 8, 2>};
-  s.occluded_of_two = {&occluded_bvh<U, Method, S, 2, 2>, &occluded_bvh<U, Method, S, 4, 2>,
-                       &occluded_bvh<U, Method, S, 8, 2>};
+  add_bvh_width<U, Method, S, kProductNodeWidth>(s);
   return s;
 }
 

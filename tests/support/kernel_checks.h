@@ -8,7 +8,7 @@
 
 #include "geometry/streams.h"
 #include "simd/isa.h"
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
 
 namespace quiver::testing {
 

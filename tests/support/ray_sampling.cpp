@@ -1,4 +1,4 @@
-#include "bench/support/ray_sampling.h"
+#include "tests/support/ray_sampling.h"
 
 #include <cmath>
 #include <limits>
