@@ -131,12 +131,14 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                         " (the best quality for its cost in bench/ACCURACY.md's study)")
                       ->type_name("MODE");
   raw.max_depth_option = render.add_option("--max-depth", raw.max_depth,
-                                           "Bounces after the primary ray, 0..64 (0: ray casting, no reflection or "
-                                           "refraction). Default: the scene file's setting, else 5")
+                                           "Bounces after the primary ray, 0.." + std::to_string(quiver::kMaxMaxDepth) +
+                                               " (0: ray casting, no reflection or refraction). Default: the scene "
+                                               "file's setting, else " +
+                                               std::to_string(quiver::kDefaultMaxDepth))
                              ->type_name("BOUNCES");
   raw.min_weight_option = render.add_option("--min-weight", raw.min_weight,
                                             "A reflection or refraction ray whose largest RGB weight is below this "
-                                            "is not cast; finite, >= 0; 0 disables the cut-off. Default: the scene "
+                                            "is not cast; 0..1; 0 disables the cut-off. Default: the scene "
                                             "file's setting, else 0.001")
                               ->type_name("WEIGHT");
   render.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")

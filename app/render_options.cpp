@@ -48,14 +48,6 @@ AntiAliasing parse_aa_flag(const std::string& text) {
   }
 }
 
-void check_max_depth(int depth, const char* what) {
-  if (depth < 0 || depth > kMaxMaxDepth) {
-    throw UsageError(std::string(what) + ": expected an integer in [0, " + std::to_string(kMaxMaxDepth) +
-                     "], found " + std::to_string(depth));
-  }
-}
-
-bool valid_min_weight(double weight) { return std::isfinite(weight) && weight >= 0.0 && std::isfinite(float(weight)); }
 
 // The other side for one given side, keeping aspect = other / given.
 int scaled_side(int given, double aspect) {
@@ -118,9 +110,12 @@ void check_render_options(const RenderOptions& options) {
   if (options.width) check_side(*options.width, "--width");
   if (options.height) check_side(*options.height, "--height");
   if (options.width && options.height) check_size(*options.width, *options.height);
-  if (options.max_depth) check_max_depth(*options.max_depth, "--max-depth");
+  if (options.max_depth && !valid_max_depth(*options.max_depth)) {
+    throw UsageError("--max-depth: expected an integer in [0, " + std::to_string(kMaxMaxDepth) + "], found " +
+                     std::to_string(*options.max_depth));
+  }
   if (options.min_weight && !valid_min_weight(*options.min_weight)) {
-    throw UsageError("--min-weight: expected a finite number >= 0, found " + std::to_string(*options.min_weight));
+    throw UsageError("--min-weight: expected a number from 0 to 1, found " + format_flag_number(*options.min_weight));
   }
   if (options.threads < 0 || options.threads > kMaxThreads) {
     throw UsageError("--threads: expected an integer in [0, " + std::to_string(kMaxThreads) + "], found " +
@@ -230,11 +225,7 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   } else if (options.aa) {
     s.aa = parse_aa_flag(*options.aa);
   } else if (scene.render.aa) {
-    try {
-      s.aa = parse_anti_aliasing(*scene.render.aa);
-    } catch (const std::invalid_argument& error) {
-      throw std::runtime_error(std::string("the scene's render settings: ") + error.what());
-    }
+    s.aa = *scene.render.aa;
   } else {
     s.aa = parse_anti_aliasing(kDefaultAntiAliasing);
   }
@@ -244,12 +235,11 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   } else if (options.max_depth) {
     s.trace.max_depth = *options.max_depth;
   } else if (scene.render.max_depth) {
-    const int depth = *scene.render.max_depth;
-    if (depth < 0 || depth > kMaxMaxDepth) {
-      throw std::runtime_error("the scene's render settings: max depth " + std::to_string(depth) +
+    if (!valid_max_depth(*scene.render.max_depth)) {
+      throw std::runtime_error("the scene's render settings: max depth " + std::to_string(*scene.render.max_depth) +
                                " is outside [0, " + std::to_string(kMaxMaxDepth) + "]");
     }
-    s.trace.max_depth = depth;
+    s.trace.max_depth = *scene.render.max_depth;
   } else {
     s.trace.max_depth = kDefaultMaxDepth;
   }
@@ -262,8 +252,8 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   } else if (scene.render.min_weight) {
     const float weight = *scene.render.min_weight;
     if (!valid_min_weight(weight)) {
-      throw std::runtime_error("the scene's render settings: min weight " + std::to_string(weight) +
-                               " is not a finite number >= 0");
+      throw std::runtime_error("the scene's render settings: min weight " + format_flag_number(weight) +
+                               " is not a number from 0 to 1");
     }
     s.trace.min_weight = weight;
   } else {

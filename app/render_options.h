@@ -27,12 +27,10 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Image size bounds: kMaxImageSide, kMaxImagePixels (scene/scene_desc.h). The defaults:
+// Image size bounds: kMaxImageSide, kMaxImagePixels; the render settings'
+// bounds and defaults: kMaxMaxDepth, valid_min_weight, ... (all in
+// scene/scene_desc.h). The defaults of the rest:
 inline constexpr int kDefaultImageSide = 512;  // scenes without a camera
-// Bounces after the primary ray.
-inline constexpr int kDefaultMaxDepth = 5;
-inline constexpr int kMaxMaxDepth = 64;
-inline constexpr float kDefaultMinWeight = 1e-3f;
 inline constexpr int kMaxThreads = 1024;
 // --preset spd: corner sampling, 4 bounces (5 levels with the eye ray), no
 // weight cut-off, every surface two-sided.

@@ -160,7 +160,7 @@ void write_camera(std::ostream& out, const Scene& scene, const std::optional<Def
 void write_render_settings(std::ostream& out, const RenderDesc& render) {
   if (!render.aa && !render.max_depth && !render.min_weight) return;
   out << "render settings";
-  if (render.aa) out << " aa " << *render.aa;
+  if (render.aa) out << " aa " << to_string(*render.aa);
   if (render.max_depth) out << " max_depth " << *render.max_depth;
   if (render.min_weight) out << " min_weight " << number(*render.min_weight);
   out << "\n";

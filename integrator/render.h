@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "integrator/anti_aliasing.h"
+#include "scene/anti_aliasing.h"
 #include "integrator/framebuffer.h"
 #include "scene/scene.h"
 #include "integrator/trace_stats.h"

@@ -33,8 +33,8 @@
 namespace quiver {
 
 struct TraceSettings {
-  int max_depth = 5;         // bounces after the primary ray; 0 = ray casting
-  float min_weight = 1e-3f;  // a secondary ray whose largest weight is below this is not cast; 0 disables
+  int max_depth = kDefaultMaxDepth;        // bounces after the primary ray; 0 = ray casting
+  float min_weight = kDefaultMinWeight;    // a secondary ray whose largest weight is below this is not cast; 0 disables
   std::uint64_t seed = 0;    // area-light sampling
   // The SPD procedure's ray tree (--preset spd): every hit on a reflective
   // (Ks > 0) or transmissive surface spawns a reflection ray, every hit on a

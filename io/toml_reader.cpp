@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "geometry/vertex_normals.h"
-#include "integrator/anti_aliasing.h"
+#include "scene/anti_aliasing.h"
 #include "io/nff_reader.h"
 #include "io/mesh_append.h"
 #include "io/obj_reader.h"
@@ -444,7 +444,7 @@ class TomlSceneReader {
       const std::string_view text = string(*aa, "aa", s);
       if (text.empty() || text.size() > 64) fail(*aa, expected_for("a non-empty string of at most 64 bytes", "aa", s));
       try {
-        parse_anti_aliasing(text);
+        scene_.render.aa = parse_anti_aliasing(text);
       } catch (const std::invalid_argument& error) {
         // "anti-aliasing[ part]: expected ..." without its first word.
         std::string_view why = error.what();
@@ -452,14 +452,13 @@ class TomlSceneReader {
         while (why.starts_with(":") || why.starts_with(" ")) why.remove_prefix(1);
         fail(*aa, expected_for(joined({"an anti-aliasing mode (", why, ")"}), "aa", s));
       }
-      scene_.render.aa = std::string(text);
     }
     if (const toml::node* depth = t.get("max_depth")) {
-      scene_.render.max_depth = static_cast<int>(integer(*depth, "max_depth", s, 0, kMaxRenderDepth));
+      scene_.render.max_depth = static_cast<int>(integer(*depth, "max_depth", s, 0, kMaxMaxDepth));
     }
     if (const toml::node* weight = t.get("min_weight")) {
       const float w = number(*weight, "min_weight", s);
-      if (!(w >= 0.f && w <= 1.f)) fail(*weight, expected_for("a number from 0 to 1", "min_weight", s));
+      if (!valid_min_weight(w)) fail(*weight, expected_for("a number from 0 to 1", "min_weight", s));
       scene_.render.min_weight = w;
     }
   }

@@ -27,9 +27,9 @@ inline constexpr std::size_t kMaxTomlLights = 1024;
 inline constexpr std::size_t kMaxTomlTextures = 1024;
 inline constexpr std::size_t kMaxTomlMaterials = 65'536;
 inline constexpr std::size_t kMaxTomlMeshes = 1024;
-// Largest area-light `samples` (per side) and [render] max_depth.
+// Largest area-light `samples` (per side); [render]'s bounds are the
+// scene description's (scene/scene_desc.h).
 inline constexpr int kMaxLightSamples = 64;
-inline constexpr int kMaxRenderDepth = 64;
 
 // Reads a scene file; relative paths in it (meshes, image textures) are
 // relative to the file's folder. crease_angle_override, when given (in

@@ -36,7 +36,7 @@ SceneDesc default_scene() {
   s.camera = CameraDesc{{0.f, 2.2f, 7.f}, {0.f, 0.9f, 0.f}, {0.f, 1.f, 0.f}, 45.f, 0.f, 640, 480};
   s.background = {0.05f, 0.07f, 0.12f};
   s.ambient = {0.08f, 0.08f, 0.08f};
-  s.render.aa = "adaptive:0.05:2";
+  s.render.aa = parse_anti_aliasing("adaptive:0.05:2");
 
   LightDesc key;
   key.position = {5.f, 8.f, 6.f};

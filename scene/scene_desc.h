@@ -13,6 +13,7 @@
 
 #include "geometry/affine_transform.h"
 #include "geometry/primitive_desc.h"
+#include "scene/anti_aliasing.h"
 #include "simd/vec3.h"
 
 namespace quiver {
@@ -85,11 +86,19 @@ struct MaterialDesc {
 };
 
 // Render settings a scene file may carry; the command line overrides them.
+// One bound and one default per setting, for the readers, the command line,
+// quiver-mpi and Python alike.
 struct RenderDesc {
-  std::optional<std::string> aa;  // as --aa
-  std::optional<int> max_depth;
-  std::optional<float> min_weight;
+  std::optional<AntiAliasing> aa;  // as --aa
+  std::optional<int> max_depth;    // bounces after the primary ray, [0, kMaxMaxDepth]
+  std::optional<float> min_weight;  // a reflection or refraction ray's largest RGB weight below this is not cast
 };
+inline constexpr int kDefaultMaxDepth = 5;
+inline constexpr int kMaxMaxDepth = 64;
+inline constexpr float kDefaultMinWeight = 1e-3f;
+constexpr bool valid_max_depth(long long depth) { return depth >= 0 && depth <= kMaxMaxDepth; }
+// A weight is a fraction of a ray's colour: 0 (every ray cast) to 1.
+constexpr bool valid_min_weight(double weight) { return weight >= 0.0 && weight <= 1.0; }
 
 // Primitives refer to materials by index into SceneDesc::materials.
 struct SceneSphere {

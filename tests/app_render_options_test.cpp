@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "app/render_options.h"
-#include "integrator/anti_aliasing.h"
+#include "scene/anti_aliasing.h"
 
 namespace quiver {
 namespace {
@@ -66,7 +66,7 @@ TEST(RenderOptions, DefaultsWithoutFlagsOrSceneSettings) {
 
 TEST(RenderOptions, SceneRenderDescAppliesWhenNoFlagIsGiven) {
   SceneDesc scene = scene_with_camera(64, 48);
-  scene.render.aa = "jitter:5";
+  scene.render.aa = parse_anti_aliasing("jitter:5");
   scene.render.max_depth = 2;
   scene.render.min_weight = 0.25f;
   const RenderSettings s = plan_render({}, scene, Isa::scalar).settings;
@@ -78,7 +78,7 @@ TEST(RenderOptions, SceneRenderDescAppliesWhenNoFlagIsGiven) {
 
 TEST(RenderOptions, FlagsOverrideTheScene) {
   SceneDesc scene = scene_with_camera(64, 48);
-  scene.render.aa = "grid:3";
+  scene.render.aa = parse_anti_aliasing("grid:3");
   scene.render.max_depth = 2;
   scene.render.min_weight = 0.25f;
   RenderOptions options;
@@ -109,7 +109,7 @@ TEST(RenderOptions, FlagsOverrideTheScene) {
 TEST(RenderOptions, BadSceneSettingsAreSceneErrorsNotUsageErrors) {
   for (int variant = 0; variant < 4; ++variant) {
     SceneDesc scene = scene_with_camera(8, 8);
-    if (variant == 0) scene.render.aa = "grid:0";
+    if (variant == 0) scene.render.min_weight = 1.5f;  // a weight is at most 1
     if (variant == 1) scene.render.max_depth = kMaxMaxDepth + 1;
     if (variant == 2) scene.render.min_weight = -1.f;
     if (variant == 3) scene.render.min_weight = std::numeric_limits<float>::quiet_NaN();
@@ -179,6 +179,7 @@ TEST(RenderOptions, DepthWeightAndThreadBounds) {
   EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.max_depth = 0; })));
   EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.max_depth = kMaxMaxDepth; })));
   EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.min_weight = 0.0; })));
+  EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.min_weight = 1.0; })));
   EXPECT_NO_THROW(check_render_options(with([](RenderOptions& o) { o.threads = kMaxThreads; })));
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   for (const RenderOptions& bad : {with([](RenderOptions& o) { o.max_depth = -1; }),
@@ -186,7 +187,7 @@ TEST(RenderOptions, DepthWeightAndThreadBounds) {
                                    with([&](RenderOptions& o) { o.min_weight = nan; }),
                                    with([&](RenderOptions& o) { o.min_weight = inf; }),
                                    with([](RenderOptions& o) { o.min_weight = -0.5; }),
-                                   with([](RenderOptions& o) { o.min_weight = 1e300; }),  // not a float
+                                   with([](RenderOptions& o) { o.min_weight = 1.5; }),  // a weight is at most 1
                                    with([](RenderOptions& o) { o.threads = -1; }),
                                    with([](RenderOptions& o) { o.threads = kMaxThreads + 1; }),
                                    with([](RenderOptions& o) { o.aa = "grid"; }),
@@ -275,7 +276,7 @@ TEST(RenderOptions, CameraFlagsOverrideTheScenesCamera) {
 
 TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
   SceneDesc scene = scene_with_camera(20, 10);
-  scene.render.aa = "grid:4";
+  scene.render.aa = parse_anti_aliasing("grid:4");
   scene.render.max_depth = 9;
   scene.render.min_weight = 0.5f;
   RenderOptions options;

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "integrator/anti_aliasing.h"
+#include "scene/anti_aliasing.h"
 #include "integrator/camera.h"
 
 namespace quiver {

@@ -90,7 +90,7 @@ TEST(TomlReader, ReadsEveryKeyWithExactValues) {
   EXPECT_EQ(scene.camera->width, 320);
   EXPECT_EQ(scene.camera->height, 200);
 
-  EXPECT_EQ(scene.render.aa, "adaptive:0.05:3");
+  EXPECT_EQ(to_string(*scene.render.aa), "adaptive:0.05:3");
   EXPECT_EQ(scene.render.max_depth, 7);
   EXPECT_EQ(scene.render.min_weight, 0.02f);
 
@@ -342,7 +342,8 @@ TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
   EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));
   EXPECT_TRUE(error_at("[render]\naa = \"adaptive:-1:2\"\n", 2, 6, "threshold: expected a finite number >= 0"));
   for (const char* mode : {"none", "grid:3", "jitter:2", "adaptive:0.05:3", "corners"}) {
-    EXPECT_EQ(parse("[render]\naa = \"" + std::string(mode) + "\"\n" + std::string(kSphere)).render.aa, mode);
+    const SceneDesc scene = parse("[render]\naa = \"" + std::string(mode) + "\"\n" + std::string(kSphere));
+    EXPECT_EQ(to_string(*scene.render.aa), mode);
   }
 }
 

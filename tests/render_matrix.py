@@ -6,13 +6,14 @@ that a refactor left every image, depth, normal and id unchanged.
   render_matrix.py render QUIVER OUT_DIR [--shared DIR]
   render_matrix.py compare DIR_A DIR_B
 
-`render` runs QUIVER (a quiver binary) once per case (64 x 48, seed 7,
+`render` runs QUIVER (a quiver binary) once per case (64 x 48, seed 7;
 every thread count gives the same image) and writes
-OUT_DIR/<scene>.<aa>.<simd>.exr for each SIMD width this CPU has; SPD
-scenes and two meshes from the shared folder join the project's examples
-when --shared (default ../shared beside the repository) has them. `compare` prints each case that differs or is
-missing and exits 1 if any does. Render the matrix with the binary of the
-old tree, then of the new one, then compare.
+OUT_DIR/<scene>.<aa>.<simd>.exr for each SIMD width this CPU has: the
+built-in scene, the project's examples and test scenes, and SPD scenes and
+two meshes from --shared (default ../shared beside the repository) where
+it has them. `compare` prints each case that differs or is missing and
+exits 1 if any does. Render the matrix with the binary of the old tree,
+then of the new one, then compare.
 """
 
 import argparse
@@ -49,7 +50,8 @@ SIMD = ["scalar", "avx2", "avx512"]
 
 
 def scenes(shared):
-    found = [REPO / s for s in PROJECT_SCENES]
+    """The scene files, None standing for the built-in scene."""
+    found = [None] + [REPO / s for s in PROJECT_SCENES]
     for s in SHARED_SCENES:
         path = shared / s
         if path.exists():
@@ -70,8 +72,8 @@ def render(args):
     for scene in scenes(pathlib.Path(args.shared)):
         for aa in AA_MODES:
             for simd in supported:
-                name = f"{scene.name}.{aa.replace(':', '_')}.{simd}.exr"
-                command = [args.quiver, "render", str(scene), "--width", "64", "--height", "48", "--aa", aa,
+                name = f"{scene.name if scene else 'built-in'}.{aa.replace(':', '_')}.{simd}.exr"
+                command = [args.quiver, "render", *([str(scene)] if scene else []), "--width", "64", "--height", "48", "--aa", aa,
                            "--simd", simd, "--seed", "7", "--aov", "depth,normal,id", "-o", str(out / name)]
                 result = subprocess.run(command, capture_output=True, text=True)
                 if result.returncode != 0:

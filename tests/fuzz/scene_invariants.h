@@ -56,9 +56,9 @@ inline void check_scene(const SceneDesc& scene) {
     check(finite(m.ior) && m.ior > 0.f);
     if (m.texture) check(*m.texture < scene.textures.size());
   }
-  if (scene.render.aa) check(!scene.render.aa->empty() && scene.render.aa->size() <= 64);
-  if (scene.render.max_depth) check(*scene.render.max_depth >= 0 && *scene.render.max_depth <= 64);
-  if (scene.render.min_weight) check(*scene.render.min_weight >= 0.f && *scene.render.min_weight <= 1.f);
+  if (scene.render.aa) check(to_string(parse_anti_aliasing(to_string(*scene.render.aa))) == to_string(*scene.render.aa));
+  if (scene.render.max_depth) check(valid_max_depth(*scene.render.max_depth));
+  if (scene.render.min_weight) check(valid_min_weight(*scene.render.min_weight));
   for (const SceneSphere& s : scene.spheres) {
     check(finite(s.sphere.center) && finite(s.sphere.radius) && s.material < materials);
   }

@@ -1,4 +1,4 @@
-#include "integrator/anti_aliasing.h"
+#include "scene/anti_aliasing.h"
 
 #include <charconv>
 #include <cmath>
