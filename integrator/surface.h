@@ -1,6 +1,8 @@
 // What shading needs at a hit: the point, its error bound, normals, texture
 // coordinates and the material, per primitive kind:
-//   sphere: spherical (u, v) = (longitude, latitude) / (2 pi, pi) around +y;
+//   sphere: spherical (u, v) = (longitude, latitude) / (2 pi, pi) around +y,
+//     u = 0.5 at +x growing with a right-handed turn about +y (0.75 at -z),
+//     v = 0.5 at the equator, 1 at +y;
 //   plane: planar (u, v), the point in two axes of the plane;
 //   triangle: per-vertex UVs (or the barycentrics) and normals interpolated
 //     with the kernel's barycentrics;
