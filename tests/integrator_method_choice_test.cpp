@@ -75,6 +75,10 @@ TEST(MethodChoice, RatioIsTheFarthestCornerOfBoundsAndEyeOverTheRadius) {
   // its farthest corner (1, 1, 5) is sqrt(27) away.
   const Scene scene = build_scene(single_sphere(1.f, {0.f, 0.f, 5.f}), {});
   EXPECT_NEAR(sphere_origin_distance_ratio(scene), std::sqrt(27.0), 1e-6);
+  // The eye below the bounds on every axis widens the box's low side:
+  // [-4, 1] x [-3, 1] x [-12, 1], farthest corner (-4, -3, -12), 13 away.
+  const Scene below = build_scene(single_sphere(1.f, {-4.f, -3.f, -12.f}), {});
+  EXPECT_NEAR(sphere_origin_distance_ratio(below), 13.0, 1e-6);
 }
 
 TEST(MethodChoice, CompactSceneGetsTheAlgebraicTest) {
