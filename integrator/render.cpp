@@ -15,462 +15,88 @@
 #include <tbb/parallel_for.h>
 
 #include "integrator/camera.h"
+#include "integrator/corner_sampling.h"
+#include "integrator/refine_sampling.h"
+#include "integrator/supersampling.h"
 #include "integrator/thread_arena.h"
+#include "integrator/tile_sampling.h"
 
 namespace quiver {
 
 namespace {
 
-double largest_channel(const Vec3<double>& a) { return std::max(a.x, std::max(a.y, a.z)); }
-
-float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
-  return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
-}
-
-// refine: a pixel's running sums (its samples, and their channels clamped to
-// [0, 1] for the error estimate) and its strata per side.
-struct RefinedPixel {
-  Vec3<float> sum{0.f, 0.f, 0.f};
-  Vec3<double> clamped_sum{0.0, 0.0, 0.0}, clamped_squares{0.0, 0.0, 0.0};
-  int count = 0;
-  int side = 0;
-  std::uint32_t first = 0;  // its strata's start in Worker::strata
-  // What its first-pass samples met: one material (-1: nothing), or mixed;
-  // the nearest and farthest distance (a miss: infinity).
-  std::int32_t material = -1;
-  bool mixed_materials = false;
-  float nearest = std::numeric_limits<float>::infinity(), farthest = 0.f;
-};
-
-// refine: a pixel's samples meet different surfaces: more than one
-// material (nothing counting as one), or distances a depth jump apart.
-bool meets_several_surfaces(const RefinedPixel& p) {
-  return p.mixed_materials || p.farthest > p.nearest * (1.f + AntiAliasing::kDepthJump);
-}
-
-// refine: two pixels' samples meet different surfaces: either meets
-// several, their materials differ, or their distances lie a jump apart.
-bool surfaces_differ(const RefinedPixel& a, const RefinedPixel& b) {
-  return meets_several_surfaces(a) || meets_several_surfaces(b) || a.material != b.material ||
-         std::max(a.nearest, b.nearest) > std::min(a.farthest, b.farthest) * (1.f + AntiAliasing::kDepthJump);
-}
-
-// refine: one stratum of a pixel at the pixel's side, and its sample's
-// offset in the pixel.
-struct StratumSample {
-  int i, j;
-  double x, y;
-};
-
-// grid, jitter, none: a sub-pixel cell (column i, row j) of N x N and its centre.
-struct SubPixelCell {
-  int i, j;
-  double cx, cy;
-};
-
 // Per-thread state: a tracer and its buffers, reused tile after tile.
 struct Worker {
-  Tracer tracer;
-  TraceStats stats;
-  FilmSamples film;  // the batch being traced
-  std::vector<Vec3<float>> colors;
-  std::vector<Ray<float>> centre_rays;
+  SampleBatch batch;
+  AdaptiveLattice adaptive;
+  RefineBuffers refine;
+  std::vector<Ray<float>> centre_rays;  // the AOVs' rays through pixel centres
   std::vector<FirstHit> first;
-  std::vector<std::int32_t> lattice;  // adaptive: sample index per lattice point, -1 unset
-  std::vector<RefinedPixel> refined;  // refine: per pixel of the tile
-  std::vector<StratumSample> strata, next_strata;  // refine: per pixel, side^2 strata at a time
-  std::vector<std::uint32_t> owner;  // refine: the pixel of each traced sample
-  std::vector<std::uint8_t> uncertain;  // refine: per pixel, refined in the next pass
-  std::vector<SampleSurface> sample_surfaces;  // refine's first pass: per traced sample
   Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
-      : tracer(scene, intersector, settings) {}
+      : batch(scene, intersector, settings) {}
 };
 
+// A tile's pixels by the settings' anti-aliasing strategy, then its AOVs.
 class TileRenderer {
  public:
-  TileRenderer(const Camera& camera, const RenderSettings& settings, Framebuffer& image,
-               std::vector<Vec3<float>>* corners, bool differentials)
-      : camera_(camera), settings_(settings), image_(image), corners_(corners), differentials_(differentials) {
-    // grid, jitter, none: each sub-pixel cell's column, row and centre, once.
-    const AntiAliasing::Mode mode = settings.aa.mode;
-    if (mode == AntiAliasing::Mode::none || mode == AntiAliasing::Mode::grid || mode == AntiAliasing::Mode::jitter) {
-      cells_per_side_ = mode == AntiAliasing::Mode::none ? 1 : settings.aa.n;
-      const int n = cells_per_side_;
-      for (int j = 0; j < n * n; ++j) cells_.push_back({j % n, j / n, (j % n + 0.5) / n, (j / n + 0.5) / n});
-    }
-  }
+  TileRenderer(const TileTarget& target, std::vector<Vec3<float>>* corners)
+      : target_(target), corners_(corners), supersampler_(supersampled_aa(target.settings.aa)) {}
 
   void render(const PixelTile& tile, Worker& w) const {
-    switch (settings_.aa.mode) {
+    switch (target_.settings.aa.mode) {
       case AntiAliasing::Mode::none:
       case AntiAliasing::Mode::grid:
-      case AntiAliasing::Mode::jitter: render_supersampled(tile, w); break;
-      case AntiAliasing::Mode::corners: render_corners(tile, w); break;
-      case AntiAliasing::Mode::adaptive: render_adaptive(tile, w); break;
-      case AntiAliasing::Mode::refine: render_refined(tile, w); break;
+      case AntiAliasing::Mode::jitter: supersampler_.render(target_, tile, w.batch); break;
+      case AntiAliasing::Mode::corners: render_corners(target_, tile, w.batch, *corners_); break;
+      case AntiAliasing::Mode::adaptive: render_adaptive(target_, tile, w.batch, w.adaptive); break;
+      case AntiAliasing::Mode::refine: render_refined(target_, tile, w.batch, w.refine); break;
     }
-    if (settings_.aov_depth || settings_.aov_normal || settings_.aov_id) render_aovs(tile, w);
+    const RenderSettings& settings = target_.settings;
+    if (settings.aov_depth || settings.aov_normal || settings.aov_id) render_aovs(tile, w);
   }
 
  private:
-  // Starts a batch of camera samples; cells are kept when rays carry differentials.
-  void start_batch(Worker& w) const { w.film.clear(differentials_); }
-
-  void trace(Worker& w, std::span<SampleSurface> surfaces = {}) const {
-    w.colors.resize(w.film.size());
-    w.tracer.trace(camera_, w.film, w.colors, w.stats, surfaces);
-  }
-
-  void set_pixel(int x, int y, const Vec3<float>& c) const {
-    float* p = &image_.rgb[(std::size_t(y) * std::size_t(image_.width) + std::size_t(x)) * 3];
-    p[0] = c.x;
-    p[1] = c.y;
-    p[2] = c.z;
-  }
-
-  // none, grid:N, jitter:N: N x N samples per pixel, averaged.
-  void render_supersampled(const PixelTile& tile, Worker& w) const {
-    const bool jitter = settings_.aa.mode == AntiAliasing::Mode::jitter;
-    const int n = cells_per_side_;
-    const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
-    const double spacing = 1.0 / n;
-    start_batch(w);
-    w.film.resize(std::size_t(tile.width) * std::size_t(tile.height) * std::size_t(n * n));
-    std::size_t next = 0;
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
-      const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x);
-      for (int j = 0; j < n * n; ++j) {
-        const SubPixelCell& cell = cells_[std::size_t(j)];
-        double ox = cell.cx, oy = cell.cy;
-        if (jitter) {
-          ox = (cell.i + hash_uniform(settings_.trace.seed, pixel, 2 * j)) / n;
-          oy = (cell.j + hash_uniform(settings_.trace.seed, pixel, 2 * j + 1)) / n;
-        }
-        w.film.set(next++, x + ox, y + oy, x + cell.cx, y + cell.cy, spacing);
-      }
-    });
-    trace(w);
-    const float inv = 1.f / float(n * n);
-    std::size_t k = 0;
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
-      Vec3<float> sum{0.f, 0.f, 0.f};
-      for (int j = 0; j < n * n; ++j) sum = sum + w.colors[k++];
-      set_pixel(x, y, sum * inv);
-    });
-  }
-
-  // The SPD rule, part one: the rays at the corners this tile owns (its
-  // top-left corners, plus the image's right and bottom edges), each traced
-  // once; render() averages them into pixels when every tile is done.
-  void render_corners(const PixelTile& tile, Worker& w) const {
-    const int x1 = tile.x0 + tile.width + (tile.x0 + tile.width == image_.width ? 1 : 0);
-    const int y1 = tile.y0 + tile.height + (tile.y0 + tile.height == image_.height ? 1 : 0);
-    start_batch(w);
-    w.film.resize(std::size_t(x1 - tile.x0) * std::size_t(y1 - tile.y0));
-    std::size_t next = 0;
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) { w.film.set(next++, x, y, x, y, 1.0); });
-    trace(w);
-    std::size_t k = 0;
-    for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
-      (*corners_)[std::size_t(y) * (image_.width + 1) + x] = w.colors[k++];
-    });
-  }
-
-  // Adaptive: corners on a lattice of 2^depth points per pixel side; level by
-  // level, every square whose corners differ by more than the threshold asks
-  // for its centre and edge midpoints, all of a level traced as one batch.
-  void render_adaptive(const PixelTile& tile, Worker& w) const {
-    const int depth = settings_.aa.depth;
-    const int scale = 1 << depth;
-    const int lw = tile.width * scale + 1, lh = tile.height * scale + 1;
-    w.lattice.assign(std::size_t(lw) * std::size_t(lh), -1);
-    std::vector<Vec3<float>> values;
-    // Lattice points of the current batch, each with its spacing (the size
-    // of the squares it is a corner of, in pixels) for texture filtering.
-    std::vector<std::pair<std::int32_t, double>> pending;
-
-    auto request = [&](int X, int Y, int size) {
-      std::int32_t& slot = w.lattice[std::size_t(Y) * lw + X];
-      if (slot != -1) return;
-      slot = -2;  // requested
-      pending.push_back({Y * lw + X, double(size) / scale});
-    };
-    auto run_batch = [&]() {
-      start_batch(w);
-      for (const auto& [p, spacing] : pending) {
-        const int X = p % lw, Y = p / lw;
-        const double x = tile.x0 + double(X) / scale, y = tile.y0 + double(Y) / scale;
-        w.film.push(x, y, x, y, spacing);
-      }
-      trace(w);
-      for (std::size_t k = 0; k < pending.size(); ++k) {
-        w.lattice[pending[k].first] = static_cast<std::int32_t>(values.size());
-        values.push_back(w.colors[k]);
-      }
-      pending.clear();
-    };
-    auto at = [&](int X, int Y) { return values[w.lattice[std::size_t(Y) * lw + X]]; };
-    auto splits = [&](int X, int Y, int size) {
-      if (size <= 1) return false;
-      const Vec3<float> c[4] = {at(X, Y), at(X + size, Y), at(X, Y + size), at(X + size, Y + size)};
-      for (int a = 0; a < 4; ++a) {
-        for (int b = a + 1; b < 4; ++b) {
-          if (max_difference(c[a], c[b]) > settings_.aa.threshold) return true;
-        }
-      }
-      return false;
-    };
-
-    for_each_pixel_in_groups(0, 0, tile.width + 1, tile.height + 1,
-                             [&](int x, int y) { request(x * scale, y * scale, scale); });
-    run_batch();
-    struct Square {
-      int X, Y, size;
-    };
-    std::vector<Square> level, next;
-    for_each_pixel_in_groups(0, 0, tile.width, tile.height,
-                             [&](int x, int y) { level.push_back({x * scale, y * scale, scale}); });
-    while (!level.empty()) {
-      next.clear();
-      for (const Square& s : level) {
-        if (!splits(s.X, s.Y, s.size)) continue;
-        const int h = s.size / 2;
-        request(s.X + h, s.Y, h);
-        request(s.X, s.Y + h, h);
-        request(s.X + h, s.Y + h, h);
-        request(s.X + s.size, s.Y + h, h);
-        request(s.X + h, s.Y + s.size, h);
-        for (const Square& child : {Square{s.X, s.Y, h}, Square{s.X + h, s.Y, h}, Square{s.X, s.Y + h, h},
-                                    Square{s.X + h, s.Y + h, h}}) {
-          next.push_back(child);
-        }
-      }
-      run_batch();
-      std::swap(level, next);
-    }
-    // A square's colour: the mean of its four children if it split, else of its corners.
-    std::vector<Square> stack;
-    for (int y = 0; y < tile.height; ++y) {
-      for (int x = 0; x < tile.width; ++x) {
-        Vec3<float> sum{0.f, 0.f, 0.f};
-        stack.assign(1, {x * scale, y * scale, scale});
-        // Weighted by area: a square of size s counts (s / scale)^2.
-        while (!stack.empty()) {
-          const Square s = stack.back();
-          stack.pop_back();
-          if (splits(s.X, s.Y, s.size)) {
-            const int h = s.size / 2;
-            stack.push_back({s.X + h, s.Y + h, h});
-            stack.push_back({s.X, s.Y + h, h});
-            stack.push_back({s.X + h, s.Y, h});
-            stack.push_back({s.X, s.Y, h});
-            continue;
-          }
-          const float weight = float(s.size) * float(s.size) / (float(scale) * float(scale)) * 0.25f;
-          sum = sum + (at(s.X, s.Y) + at(s.X + s.size, s.Y) + at(s.X, s.Y + s.size) + at(s.X + s.size, s.Y + s.size)) *
-                          weight;
-        }
-        set_pixel(tile.x0 + x, tile.y0 + y, sum);
-      }
-    }
-  }
-
-  // refine:T:N (anti_aliasing.h). A stratum (i, j) at side s of pixel p has
-  // its sample at ((i + u) / s, (j + v) / s), u and v hashed from the seed,
-  // p and the stratum's number (strata of smaller sides first), so a pixel's
-  // rays depend on it alone, not on the tile or the thread.
-  void render_refined(const PixelTile& tile, Worker& w) const {
-    const std::uint64_t seed = settings_.trace.seed;
-    const auto stratum = [&](std::uint64_t pixel, int side, int i, int j) {
-      std::uint64_t number = 0;  // strata of sides 2, 4, ... before this side
-      for (int s = 2; s < side; s *= 2) number += std::uint64_t(s) * std::uint64_t(s);
-      number += std::uint64_t(j) * std::uint64_t(side) + std::uint64_t(i);
-      return StratumSample{i, j, (i + double(hash_uniform(seed, pixel, 2 * number))) / side,
-                           (j + double(hash_uniform(seed, pixel, 2 * number + 1))) / side};
-    };
-    const int x1 = tile.x0 + tile.width, y1 = tile.y0 + tile.height;
-    // The first pass also covers a one-pixel apron around the tile, so every
-    // pixel's neighbours are known whatever the tiles.
-    const int ex0 = std::max(0, tile.x0 - 1), ey0 = std::max(0, tile.y0 - 1);
-    const int ex1 = std::min(image_.width, x1 + 1), ey1 = std::min(image_.height, y1 + 1);
-    const auto local = [&](int x, int y) { return std::size_t(y - ey0) * std::size_t(ex1 - ex0) + std::size_t(x - ex0); };
-    const auto pixel_number = [&](int x, int y) { return std::uint64_t(y) * std::uint64_t(image_.width) + std::uint64_t(x); };
-    w.refined.assign(std::size_t(ex1 - ex0) * std::size_t(ey1 - ey0), RefinedPixel{});
-    w.strata.clear();
-    start_batch(w);
-    w.owner.clear();
-    // First pass: 2 x 2 strata for every pixel.
-    for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
-      RefinedPixel& px = w.refined[local(x, y)];
-      px.side = 2;
-      px.first = static_cast<std::uint32_t>(w.strata.size());
-      for (int j = 0; j < 2; ++j) {
-        for (int i = 0; i < 2; ++i) w.strata.push_back(stratum(pixel_number(x, y), 2, i, j));
-      }
-    });
-    const auto trace_new = [&](bool first_pass) {
-      w.sample_surfaces.resize(first_pass ? w.film.size() : 0);
-      trace(w, w.sample_surfaces);
-      for (std::size_t k = 0; k < w.film.size(); ++k) {
-        RefinedPixel& px = w.refined[w.owner[k]];
-        if (first_pass) {
-          const SampleSurface& met = w.sample_surfaces[k];
-          const float distance = met.material < 0 ? std::numeric_limits<float>::infinity() : met.distance;
-          if (px.count == 0) px.material = met.material;
-          px.mixed_materials = px.mixed_materials || met.material != px.material;
-          px.nearest = std::min(px.nearest, distance);
-          px.farthest = std::max(px.farthest, distance);
-        }
-        const Vec3<float>& c = w.colors[k];
-        px.sum = px.sum + c;
-        const Vec3<double> clamped{std::clamp(double(c.x), 0.0, 1.0), std::clamp(double(c.y), 0.0, 1.0),
-                                   std::clamp(double(c.z), 0.0, 1.0)};
-        px.clamped_sum = px.clamped_sum + clamped;
-        px.clamped_squares = px.clamped_squares + mul(clamped, clamped);
-        ++px.count;
-      }
-      start_batch(w);
-      w.owner.clear();
-    };
-    for_each_pixel_in_groups(ex0, ey0, ex1, ey1, [&](int x, int y) {
-      const RefinedPixel& px = w.refined[local(x, y)];
-      for (int k = 0; k < 4; ++k) {
-        const StratumSample& st = w.strata[px.first + k];
-        w.film.push(x + st.x, y + st.y, x + (st.i + 0.5) / 2, y + (st.j + 0.5) / 2, 0.5);
-        w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
-      }
-    });
-    trace_new(true);
-    const float threshold = settings_.aa.threshold;
-    const auto mean_clamped = [](const RefinedPixel& px) { return px.clamped_sum * (1.0 / px.count); };
-    const auto too_uncertain = [&](const RefinedPixel& px) {
-      const Vec3<double> mean = mean_clamped(px);
-      const Vec3<double> variance = (px.clamped_squares - mul(mean, px.clamped_sum)) * (1.0 / (px.count - 1));
-      const double largest = largest_channel(variance);
-      return largest > 0.0 && largest / px.count > double(threshold) * double(threshold);
-    };
-    // The first pass's verdict: the pixel's own error, its samples meeting
-    // different surfaces, or a neighbour's mean or surfaces.
-    std::vector<std::uint8_t>& refine = w.uncertain;
-    refine.assign(w.refined.size(), 0);
-    for (int y = tile.y0; y < y1; ++y) {
-      for (int x = tile.x0; x < x1; ++x) {
-        const RefinedPixel& px = w.refined[local(x, y)];
-        bool more = too_uncertain(px) || meets_several_surfaces(px);
-        const Vec3<double> mean = mean_clamped(px);
-        const auto differs = [&](int nx, int ny) {
-          if (nx < ex0 || nx >= ex1 || ny < ey0 || ny >= ey1) return false;
-          const RefinedPixel& neighbour = w.refined[local(nx, ny)];
-          const Vec3<double> d = mean - mean_clamped(neighbour);
-          const double contrast = largest_channel(Vec3<double>{std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
-          return contrast > double(AntiAliasing::kNeighbourContrast) * double(threshold) ||
-                 surfaces_differ(px, neighbour);
-        };
-        more = more || differs(x - 1, y) || differs(x + 1, y) || differs(x, y - 1) || differs(x, y + 1);
-        refine[local(x, y)] = more;
-      }
-    }
-    // Refinement passes: side s -> 2s for the pixels still uncertain.
-    for (int side = 2; side < settings_.aa.n; side *= 2) {
-      w.next_strata.clear();
-      bool any = false;
-      for_each_pixel_in_groups(tile.x0, tile.y0, x1, y1, [&](int x, int y) {
-        RefinedPixel& px = w.refined[local(x, y)];
-        const std::uint32_t first = static_cast<std::uint32_t>(w.next_strata.size());
-        const int count = px.side * px.side;
-        if (!refine[local(x, y)]) {
-          w.next_strata.insert(w.next_strata.end(), w.strata.begin() + px.first, w.strata.begin() + px.first + count);
-          px.first = first;
-          return;
-        }
-        any = true;
-        const int child = 2 * side;
-        for (int k = 0; k < count; ++k) {
-          const StratumSample& st = w.strata[px.first + k];
-          // The sub-stratum holding this stratum's sample (clamped against rounding).
-          const int ci = std::clamp(int(st.x * child), 2 * st.i, 2 * st.i + 1);
-          const int cj = std::clamp(int(st.y * child), 2 * st.j, 2 * st.j + 1);
-          for (int b = 0; b < 2; ++b) {
-            for (int a = 0; a < 2; ++a) {
-              const int i = 2 * st.i + a, j = 2 * st.j + b;
-              if (i == ci && j == cj) {
-                w.next_strata.push_back({i, j, st.x, st.y});
-                continue;
-              }
-              const StratumSample fresh = stratum(pixel_number(x, y), child, i, j);
-              w.next_strata.push_back(fresh);
-              w.film.push(x + fresh.x, y + fresh.y, x + (i + 0.5) / child, y + (j + 0.5) / child, 1.0 / child);
-              w.owner.push_back(static_cast<std::uint32_t>(local(x, y)));
-            }
-          }
-        }
-        px.first = first;
-        px.side = child;
-      });
-      std::swap(w.strata, w.next_strata);
-      if (!any) break;
-      trace_new(false);
-      for (std::size_t k = 0; k < w.refined.size(); ++k) {
-        refine[k] = refine[k] && w.refined[k].side == 2 * side && too_uncertain(w.refined[k]);
-      }
-    }
-    for (int y = tile.y0; y < y1; ++y) {
-      for (int x = tile.x0; x < x1; ++x) {
-        const RefinedPixel& px = w.refined[local(x, y)];
-        set_pixel(x, y, px.sum * (1.f / float(px.count)));
-      }
-    }
+  // The supersampler's mode: the settings' when it is none, grid or jitter.
+  static AntiAliasing supersampled_aa(const AntiAliasing& aa) {
+    const bool supersampled = aa.mode == AntiAliasing::Mode::none || aa.mode == AntiAliasing::Mode::grid ||
+                              aa.mode == AntiAliasing::Mode::jitter;
+    return supersampled ? aa : AntiAliasing{};
   }
 
   void render_aovs(const PixelTile& tile, Worker& w) const {
+    const RenderSettings& settings = target_.settings;
+    Framebuffer& image = target_.image;
     w.centre_rays.clear();
     for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) w.centre_rays.push_back(camera_.ray(x + 0.5, y + 0.5));
+      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
+        w.centre_rays.push_back(target_.camera.ray(x + 0.5, y + 0.5));
+      }
     }
     w.first.resize(w.centre_rays.size());
-    w.tracer.first_hits(w.centre_rays, w.first);
+    w.batch.tracer.first_hits(w.centre_rays, w.first);
     std::size_t k = 0;
     for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
       for (int x = tile.x0; x < tile.x0 + tile.width; ++x, ++k) {
-        const std::size_t p = std::size_t(y) * std::size_t(image_.width) + std::size_t(x);
+        const std::size_t p = std::size_t(y) * std::size_t(image.width) + std::size_t(x);
         const FirstHit& f = w.first[k];
-        if (settings_.aov_depth) image_.depth[p] = f.depth;
-        if (settings_.aov_normal) {
-          image_.normal[3 * p] = f.normal.x;
-          image_.normal[3 * p + 1] = f.normal.y;
-          image_.normal[3 * p + 2] = f.normal.z;
+        if (settings.aov_depth) image.depth[p] = f.depth;
+        if (settings.aov_normal) {
+          image.normal[3 * p] = f.normal.x;
+          image.normal[3 * p + 1] = f.normal.y;
+          image.normal[3 * p + 2] = f.normal.z;
         }
-        if (settings_.aov_id) {
-          image_.kind[p] = f.kind;
-          image_.id[p] = f.id;
+        if (settings.aov_id) {
+          image.kind[p] = f.kind;
+          image.id[p] = f.id;
         }
       }
     }
   }
 
-  const Camera& camera_;
-  const RenderSettings& settings_;
-  Framebuffer& image_;
+  const TileTarget& target_;
   std::vector<Vec3<float>>* corners_;  // corners mode: (W + 1) x (H + 1) colours
-  bool differentials_;                 // rays_carry_differentials (tracer.h)
-  int cells_per_side_ = 1;             // grid, jitter: N; none: 1
-  std::vector<SubPixelCell> cells_;    // grid, jitter, none: a pixel's N x N cells
+  Supersampler supersampler_;
 };
-
-// The SPD rule, part two: each pixel the mean of its four corners.
-void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image) {
-  const std::size_t cw = std::size_t(image.width) + 1;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      const std::size_t i = std::size_t(y) * cw + std::size_t(x);
-      const Vec3<float> c = (corners[i] + corners[i + 1] + corners[i + cw] + corners[i + cw + 1]) * 0.25f;
-      float* p = &image.rgb[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3];
-      p[0] = c.x;
-      p[1] = c.y;
-      p[2] = c.z;
-    }
-  }
-}
 
 }  // namespace
 
@@ -506,7 +132,7 @@ struct FrameRenderer::State {
   bool corners_mode() const { return settings.aa.mode == AntiAliasing::Mode::corners; }
 
   // The corners a tile owns: its top-left corners, plus the image's right
-  // and bottom edges (TileRenderer::render_corners).
+  // and bottom edges (render_corners).
   PixelTile owned_corners(const PixelTile& tile) const {
     return {tile.x0, tile.y0, tile.width + (tile.x0 + tile.width == settings.width ? 1 : 0),
             tile.height + (tile.y0 + tile.height == settings.height ? 1 : 0)};
@@ -570,8 +196,8 @@ Film FrameRenderer::make_film() const {
 std::size_t FrameRenderer::render_tiles(Film& film, const TileSource& next, const TileDone& done,
                                         const std::atomic<bool>* stop) {
   State& s = *state_;
-  const TileRenderer tile_renderer(s.camera, s.settings, film.image, &film.corners,
-                                   rays_carry_differentials(s.scene, s.settings.trace));
+  const TileTarget target{s.camera, s.settings, film.image, rays_carry_differentials(s.scene, s.settings.trace)};
+  const TileRenderer tile_renderer(target, &film.corners);
   std::atomic<std::size_t> rendered{0};
   s.arena.execute([&] {
     // Each iteration renders at most one tile, whichever next() gives.
@@ -584,13 +210,13 @@ std::size_t FrameRenderer::render_tiles(Film& film, const TileSource& next, cons
             const std::optional<std::size_t> t = next();
             if (!t) return;
             // camera_and_film: the tile's time less what the tracer charged to its phases.
-            const std::uint64_t traced_before = w.stats.phases.total();
+            const std::uint64_t traced_before = w.batch.stats.phases.total();
             PhaseClock clock;
             std::uint64_t tile_time = 0;
             tile_renderer.render(s.tiles.at(*t), w);
             clock.charge(tile_time);
-            const std::uint64_t traced = w.stats.phases.total() - traced_before;
-            w.stats.phases.camera_and_film += tile_time > traced ? tile_time - traced : 0;
+            const std::uint64_t traced = w.batch.stats.phases.total() - traced_before;
+            w.batch.stats.phases.camera_and_film += tile_time > traced ? tile_time - traced : 0;
             ++rendered;
             if (done) done(*t, double(tile_time) / 1e6);
           }
@@ -606,7 +232,7 @@ std::vector<double> FrameRenderer::estimate_costs(std::span<const std::size_t> t
   std::vector<double> costs(tiles.size(), 0.0);
   s.arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16), [&](const tbb::blocked_range<std::size_t>& range) {
-      Worker& w = s.workers.local();
+      SampleBatch& w = s.workers.local().batch;
       TraceStats scratch;
       for (std::size_t k = range.begin(); k != range.end(); ++k) {
         const PixelTile& tile = s.tiles.at(tiles[k]);
@@ -661,7 +287,7 @@ void FrameRenderer::finish(Film& film) const {
 
 TraceStats FrameRenderer::stats() const {
   TraceStats total;
-  for (const Worker& w : state_->workers) total.add(w.stats);
+  for (const Worker& w : state_->workers) total.add(w.batch.stats);
   return total;
 }
 
