@@ -304,35 +304,8 @@ class Coordinator {
     int reported = 0;
     while (true) {
       receive(reported);
-      for (const LocalTile& done : own.take_finished()) {
-        std::lock_guard lock(schedule_mutex_);
-        if (schedule_.complete(done.tile, 0)) {
-          CheckpointTile tile{done.tile, {}};
-          renderer_.pack_tile(own_film, done.tile, tile.bytes);
-          renderer_.unpack_tile(film_, done.tile, tile.bytes);
-          ++placed_[0];
-          tile_ms_[done.tile] = done.ms;
-          unsaved_.push_back(std::move(tile));
-        } else {
-          ++repeated_[0];
-        }
-      }
-      std::size_t done_count;
-      {
-        std::lock_guard lock(schedule_mutex_);
-        done_count = schedule_.done_count();
-        for (int r = 1; r < ranks_ && !told_to_end; ++r) {
-          refill(r);
-          if (schedule_.waiting() == 0 && schedule_.outstanding(r) == 0) {
-            if (const std::optional<std::uint32_t> again = schedule_.reissue(r)) send_work({*again}, r);
-          }
-        }
-        if (schedule_.all_done() && !told_to_end) {
-          all_done = true;  // rank 0's threads start no other tile
-          for (int r = 1; r < ranks_; ++r) send_work({}, r);
-          told_to_end = true;
-        }
-      }
+      place_own_tiles(own, own_film);
+      const std::size_t done_count = hand_out_work(told_to_end, all_done);
       progress_.update(done_count, schedule_.tile_count());
       if (stop_requested()) interrupted(done_count);
       if (Clock::now() - last_checkpoint_ >= interval_) save();
@@ -342,7 +315,50 @@ class Coordinator {
     render_thread.join();
     progress_.finish();
     save();
+    return gathered(resumed, start, own);
+  }
 
+ private:
+  // The tiles rank 0's threads finished, copied into the image when they
+  // are a tile's first result.
+  void place_own_tiles(RankRenderer& own, const Film& own_film) {
+    for (const LocalTile& done : own.take_finished()) {
+      std::lock_guard lock(schedule_mutex_);
+      if (schedule_.complete(done.tile, 0)) {
+        CheckpointTile tile{done.tile, {}};
+        renderer_.pack_tile(own_film, done.tile, tile.bytes);
+        renderer_.unpack_tile(film_, done.tile, tile.bytes);
+        ++placed_[0];
+        tile_ms_[done.tile] = done.ms;
+        unsaved_.push_back(std::move(tile));
+      } else {
+        ++repeated_[0];
+      }
+    }
+  }
+
+  // Keeps every worker fed (at the end, a tile still out elsewhere again),
+  // and once every tile is done tells them, and rank 0's threads, to end.
+  // Returns the tiles done.
+  std::size_t hand_out_work(bool& told_to_end, std::atomic<bool>& all_done) {
+    std::lock_guard lock(schedule_mutex_);
+    const std::size_t done_count = schedule_.done_count();
+    for (int r = 1; r < ranks_ && !told_to_end; ++r) {
+      refill(r);
+      if (schedule_.waiting() == 0 && schedule_.outstanding(r) == 0) {
+        if (const std::optional<std::uint32_t> again = schedule_.reissue(r)) send_work({*again}, r);
+      }
+    }
+    if (schedule_.all_done() && !told_to_end) {
+      all_done = true;  // rank 0's threads start no other tile
+      for (int r = 1; r < ranks_; ++r) send_work({}, r);
+      told_to_end = true;
+    }
+    return done_count;
+  }
+
+  // The job's summary and the first results' tile times.
+  Gathered gathered(std::size_t resumed, Clock::time_point start, RankRenderer& own) {
     Gathered out;
     MpiJobSummary& s = out.summary;
     s.tiles = schedule_.tile_count();
@@ -360,7 +376,6 @@ class Coordinator {
     return out;
   }
 
- private:
   // Keeps up to 3 batches plus 2 tiles per thread out on worker r, sending
   // whole batches only (schedule_mutex_ held).
   void refill(int r) {
@@ -492,119 +507,183 @@ int agree_on(int exit_code, const std::string& message) {
   return worst;
 }
 
-int run_mpi_render(const MpiRenderArgs& args) {
-  const int rank = world_rank(), ranks = world_size();
-  const RenderArgs& render_args = args.render;
+namespace {
 
-  // The flags: rank 0 also checks the files it will write.
-  CheckedRenderArgs checked;
-  fs::path checkpoint_path;
+// Runs step on this rank, then every rank agrees on the outcome
+// (agree_on): 0 when every rank succeeded, else the worst exit code, its
+// message printed once. An exception is described as the programs do
+// (describe_current_exception); as_usage_error: any exception is a usage
+// error.
+template <class Step>
+int on_every_rank(Step&& step, bool as_usage_error = false) {
   int code = 0;
   std::string message;
   try {
-    if (!(args.checkpoint_interval_s > 0.0 && args.checkpoint_interval_s <= kMaxCheckpointInterval)) {
-      throw UsageError("--checkpoint-interval: expected seconds in (0, " +
-                       std::to_string(int(kMaxCheckpointInterval)) + "]");
-    }
-    const fs::path output = render_args.output.empty() ? default_output(render_args.scene) : fs::path(render_args.output);
-    checkpoint_path = args.checkpoint.empty() ? fs::path(output.string() + ".checkpoint") : fs::path(args.checkpoint);
-    if (rank == 0) {
-      checked = check_render_args(render_args, std::getenv("QUIVER_SIMD"), {{"--checkpoint", checkpoint_path}});
-      check_output_directory(checkpoint_path);
-    } else {
-      check_render_options(render_args.options);
-      checked.isa = choose_isa(render_args.options.simd, std::getenv("QUIVER_SIMD"));
-      checked.output = output;
-    }
+    step();
   } catch (const std::exception& error) {
-    code = kExitUsage;
-    message = error.what();
+    std::tie(code, message) = as_usage_error ? std::pair<int, std::string>{kExitUsage, error.what()}
+                                             : describe_current_exception();
+  } catch (...) {
+    std::tie(code, message) = describe_current_exception();
   }
-  if ((code = agree_on(code, message)) != 0) return code;
+  return agree_on(code, message);
+}
 
-  // The scene, on every rank.
-  if (rank == 0) install_interrupt_handlers();
+// What the ranks set up before rendering: the checked flags, the scene, the
+// frame renderer and the fingerprint of what was read; on rank 0 also the
+// film, the checkpoint and the tiles it already holds.
+struct MpiSetup {
+  CheckedRenderArgs checked;
+  fs::path checkpoint_path;
   std::optional<PreparedRender> prepared;
-  try {
-    prepared.emplace(prepare_render(render_args, checked));
-    if (rank == 0) print_scene_warnings(prepared->desc);
-  } catch (...) {
-    std::tie(code, message) = describe_current_exception();
-  }
-  if ((code = agree_on(code, message)) != 0) return code;
-  const RenderSettings& settings = prepared->plan.settings;
-
   std::optional<FrameRenderer> renderer;
-  try {
-    renderer.emplace(prepared->scene, settings);
-  } catch (...) {
-    std::tie(code, message) = describe_current_exception();
-  }
-  if ((code = agree_on(code, message)) != 0) return code;
-  const std::size_t tile_count = renderer->tiles().size();
-
-  // Every rank must render the same frame from the same files: each
-  // fingerprints what it read and compares it with rank 0's.
   std::uint64_t fingerprint = 0;
-  try {
-    fingerprint = render_fingerprint(settings, prepared->plan.build, render_args.options.crease_angle,
-                                     *prepared->desc.camera, prepared->inputs, QUIVER_VERSION);
-  } catch (...) {
-    std::tie(code, message) = describe_current_exception();
-  }
-  if ((code = agree_on(code, message)) != 0) return code;
-  std::uint64_t rank0_fingerprint = fingerprint;
-  MPI_Bcast(&rank0_fingerprint, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  if (rank0_fingerprint != fingerprint) {
-    code = kExitFailure;
-    message = "the scene files or settings this rank read differ from rank 0's (every rank must read the same "
-              "files)";
-  }
-  if ((code = agree_on(code, message)) != 0) return code;
-
-  // Rank 0: the checkpoint, new or resumed.
   std::optional<CheckpointWriter> checkpoint;
   std::optional<Film> film;
-  std::vector<bool> done(tile_count, false);
+  std::vector<bool> done;
   std::size_t resumed = 0;
+};
+
+// The flags: rank 0 also checks the files it will write.
+void check_mpi_flags(const MpiRenderArgs& args, int rank, MpiSetup& setup) {
+  const RenderArgs& render_args = args.render;
+  if (!(args.checkpoint_interval_s > 0.0 && args.checkpoint_interval_s <= kMaxCheckpointInterval)) {
+    throw UsageError("--checkpoint-interval: expected seconds in (0, " + std::to_string(int(kMaxCheckpointInterval)) +
+                     "]");
+  }
+  const fs::path output = render_args.output.empty() ? default_output(render_args.scene) : fs::path(render_args.output);
+  setup.checkpoint_path = args.checkpoint.empty() ? fs::path(output.string() + ".checkpoint") : fs::path(args.checkpoint);
   if (rank == 0) {
-    try {
-      const CheckpointKey key{fingerprint, std::uint32_t(settings.width), std::uint32_t(settings.height),
-                              std::uint32_t(settings.tile_size), std::uint32_t(tile_count)};
-      film.emplace(renderer->make_film());
-      if (args.resume) {
-        const CheckpointContents contents = read_checkpoint(checkpoint_path, key);
-        for (const CheckpointTile& tile : contents.tiles) {
-          renderer->unpack_tile(*film, tile.tile, tile.bytes);
-          if (!done[tile.tile]) ++resumed;
-          done[tile.tile] = true;
-        }
-        checkpoint.emplace(CheckpointWriter::resume(checkpoint_path, contents));
-      } else {
-        checkpoint.emplace(CheckpointWriter::create(checkpoint_path, key));
-      }
-    } catch (...) {
-      std::tie(code, message) = describe_current_exception();
-    }
+    setup.checked = check_render_args(render_args, std::getenv("QUIVER_SIMD"), {{"--checkpoint", setup.checkpoint_path}});
+    check_output_directory(setup.checkpoint_path);
+  } else {
+    check_render_options(render_args.options);
+    setup.checked.isa = choose_isa(render_args.options.simd, std::getenv("QUIVER_SIMD"));
+    setup.checked.output = output;
   }
-  if ((code = agree_on(code, message)) != 0) return code;
+}
 
-  // The cost estimate: each rank its share of the tiles, summed on rank 0.
-  const Clock::time_point estimate_start = Clock::now();
+// Every rank must render the same frame from the same files: each
+// fingerprints what it read and compares it with rank 0's (a collective).
+void compare_fingerprints(const MpiSetup& setup) {
+  std::uint64_t rank0_fingerprint = setup.fingerprint;
+  MPI_Bcast(&rank0_fingerprint, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  if (rank0_fingerprint != setup.fingerprint) {
+    throw std::runtime_error("the scene files or settings this rank read differ from rank 0's (every rank must read "
+                             "the same files)");
+  }
+}
+
+// Rank 0: the film and the checkpoint, new or resumed (its tiles unpacked
+// into the film and marked done).
+void open_checkpoint(const MpiRenderArgs& args, MpiSetup& setup) {
+  const RenderSettings& settings = setup.prepared->plan.settings;
+  const std::size_t tile_count = setup.renderer->tiles().size();
+  const CheckpointKey key{setup.fingerprint, std::uint32_t(settings.width), std::uint32_t(settings.height),
+                          std::uint32_t(settings.tile_size), std::uint32_t(tile_count)};
+  setup.film.emplace(setup.renderer->make_film());
+  if (!args.resume) {
+    setup.checkpoint.emplace(CheckpointWriter::create(setup.checkpoint_path, key));
+    return;
+  }
+  const CheckpointContents contents = read_checkpoint(setup.checkpoint_path, key);
+  for (const CheckpointTile& tile : contents.tiles) {
+    setup.renderer->unpack_tile(*setup.film, tile.tile, tile.bytes);
+    if (!setup.done[tile.tile]) ++setup.resumed;
+    setup.done[tile.tile] = true;
+  }
+  setup.checkpoint.emplace(CheckpointWriter::resume(setup.checkpoint_path, contents));
+}
+
+// The cost estimate: each rank its share of the tiles, summed on rank 0.
+std::vector<double> estimate_tile_costs(const FrameRenderer& renderer, int rank, int ranks) {
+  const std::size_t tile_count = renderer.tiles().size();
   std::vector<double> costs(tile_count, 0.0);
-  {
-    std::vector<std::size_t> mine;
-    for (std::size_t t = std::size_t(rank); t < tile_count; t += std::size_t(ranks)) mine.push_back(t);
-    const std::vector<double> estimated = renderer->estimate_costs(mine, kEstimateStride);
-    for (std::size_t k = 0; k < mine.size(); ++k) costs[mine[k]] = estimated[k];
-    MPI_Reduce(rank == 0 ? MPI_IN_PLACE : costs.data(), costs.data(), int(tile_count), MPI_DOUBLE, MPI_SUM, 0,
-               MPI_COMM_WORLD);
-  }
-  const double estimate_ms = ms_since(estimate_start);
+  std::vector<std::size_t> mine;
+  for (std::size_t t = std::size_t(rank); t < tile_count; t += std::size_t(ranks)) mine.push_back(t);
+  const std::vector<double> estimated = renderer.estimate_costs(mine, kEstimateStride);
+  for (std::size_t k = 0; k < mine.size(); ++k) costs[mine[k]] = estimated[k];
+  MPI_Reduce(rank == 0 ? MPI_IN_PLACE : costs.data(), costs.data(), int(tile_count), MPI_DOUBLE, MPI_SUM, 0,
+             MPI_COMM_WORLD);
+  return costs;
+}
 
+// Rank 0, every tile gathered: the image and the stats staged and
+// committed, the checkpoint removed; interrupted instead, nothing written
+// and the checkpoint kept (the exit code and message of that).
+std::pair<int, std::string> write_outputs(const MpiRenderArgs& args, MpiSetup& setup, Gathered& gathered, int ranks) {
+  const RenderArgs& render_args = args.render;
+  const RenderSettings& settings = setup.prepared->plan.settings;
+  setup.renderer->finish(*setup.film);
+  RenderResult result;
+  result.image = std::move(setup.film->image);
+  result.stats = merged_trace_stats(gathered.summary.ranks);
+  result.render_ms = gathered.summary.render_ms;
+  result.threads = 0;
+  for (const RankReport& r : gathered.summary.ranks) result.threads += r.threads;
+  result.sphere_method = setup.renderer->sphere_method();
+  result.tiles_total = result.tiles_done = setup.renderer->tiles().size();
+
+  StagedOutputs staged;
+  stage_image(staged, setup.checked.output, result.image);
+  if (!render_args.stats.empty()) {
+    nlohmann::json stats = render_stats(render_args, setup.checked, *setup.prepared, result);
+    stats["mpi"] = mpi_stats_json(gathered.summary);
+    if (args.tile_times) {
+      nlohmann::json times = nlohmann::json::array();
+      for (const double ms : gathered.tile_ms) times.push_back(std::isnan(ms) ? nlohmann::json(nullptr) : nlohmann::json(ms));
+      stats["tile_ms"] = std::move(times);
+      stats["tile_cost_estimate"] = gathered.costs;
+      stats["tile_size"] = settings.tile_size;
+    }
+    stage_json_file(staged, render_args.stats, stats);
+  }
+  if (stop_requested()) {
+    return {interrupted_exit_code(interrupting_signal()),
+            "interrupted by " + signal_name(interrupting_signal()) +
+                " while writing the outputs; nothing written; the checkpoint " + setup.checkpoint_path.string() +
+                " holds every tile: run again with --resume"};
+  }
+  staged.commit();
+  setup.checkpoint->remove();
+  if (!render_args.quiet) {
+    print_render_summary(stderr, result, settings, setup.prepared->load_ms, setup.prepared->build_ms,
+                         setup.checked.output,
+                         std::to_string(ranks) + " ranks, " + std::to_string(result.threads) + " threads");
+  }
+  return {0, ""};
+}
+
+}  // namespace
+
+int run_mpi_render(const MpiRenderArgs& args) {
+  const int rank = world_rank(), ranks = world_size();
+  const RenderArgs& render_args = args.render;
+  MpiSetup setup;
+  if (int code = on_every_rank([&] { check_mpi_flags(args, rank, setup); }, true)) return code;
+  if (rank == 0) install_interrupt_handlers();
+  const auto prepare = [&] {
+    setup.prepared.emplace(prepare_render(render_args, setup.checked));
+    if (rank == 0) print_scene_warnings(setup.prepared->desc);
+  };
+  if (int code = on_every_rank(prepare)) return code;
+  const RenderSettings& settings = setup.prepared->plan.settings;
+  if (int code = on_every_rank([&] { setup.renderer.emplace(setup.prepared->scene, settings); })) return code;
+  const auto fingerprint = [&] {
+    setup.fingerprint = render_fingerprint(settings, setup.prepared->plan.build, render_args.options.crease_angle,
+                                           *setup.prepared->desc.camera, setup.prepared->inputs, QUIVER_VERSION);
+  };
+  if (int code = on_every_rank(fingerprint)) return code;
+  if (int code = on_every_rank([&] { compare_fingerprints(setup); })) return code;
+  setup.done.assign(setup.renderer->tiles().size(), false);
+  if (int code = on_every_rank([&] { if (rank == 0) open_checkpoint(args, setup); })) return code;
+
+  const Clock::time_point estimate_start = Clock::now();
+  const std::vector<double> costs = estimate_tile_costs(*setup.renderer, rank, ranks);
+  const double estimate_ms = ms_since(estimate_start);
   if (rank != 0) {
     try {
-      run_worker(*renderer);
+      run_worker(*setup.renderer);
     } catch (...) {
       abort_job(describe());
     }
@@ -614,54 +693,20 @@ int run_mpi_render(const MpiRenderArgs& args) {
   set_interrupt_phase(InterruptPhase::rendering);
   Gathered gathered;
   try {
-    TileSchedule schedule(tile_count, done, costs, ranks);
+    TileSchedule schedule(setup.renderer->tiles().size(), setup.done, costs, ranks);
     ProgressBar progress(stderr, !render_args.quiet && is_terminal(stderr));
-    Coordinator coordinator(*renderer, *film, schedule, *checkpoint, args.checkpoint_interval_s, progress, ranks);
-    gathered = coordinator.run(resumed);
+    Coordinator coordinator(*setup.renderer, *setup.film, schedule, *setup.checkpoint, args.checkpoint_interval_s,
+                            progress, ranks);
+    gathered = coordinator.run(setup.resumed);
   } catch (...) {
     abort_job(describe());
   }
   gathered.summary.estimate_ms = estimate_ms;
   gathered.costs = costs;
-
+  int code = 0;
+  std::string message;
   try {
-    renderer->finish(*film);
-    RenderResult result;
-    result.image = std::move(film->image);
-    result.stats = merged_trace_stats(gathered.summary.ranks);
-    result.render_ms = gathered.summary.render_ms;
-    result.threads = 0;
-    for (const RankReport& r : gathered.summary.ranks) result.threads += r.threads;
-    result.sphere_method = renderer->sphere_method();
-    result.tiles_total = result.tiles_done = tile_count;
-
-    StagedOutputs staged;
-    stage_image(staged, checked.output, result.image);
-    if (!render_args.stats.empty()) {
-      nlohmann::json stats = render_stats(render_args, checked, *prepared, result);
-      stats["mpi"] = mpi_stats_json(gathered.summary);
-      if (args.tile_times) {
-        nlohmann::json times = nlohmann::json::array();
-        for (const double ms : gathered.tile_ms) times.push_back(std::isnan(ms) ? nlohmann::json(nullptr) : nlohmann::json(ms));
-        stats["tile_ms"] = std::move(times);
-        stats["tile_cost_estimate"] = gathered.costs;
-        stats["tile_size"] = settings.tile_size;
-      }
-      stage_json_file(staged, render_args.stats, stats);
-    }
-    if (stop_requested()) {
-      code = interrupted_exit_code(interrupting_signal());
-      message = "interrupted by " + signal_name(interrupting_signal()) +
-                " while writing the outputs; nothing written; the checkpoint " + checkpoint_path.string() +
-                " holds every tile: run again with --resume";
-    } else {
-      staged.commit();
-      checkpoint->remove();
-      if (!render_args.quiet) {
-        print_render_summary(stderr, result, settings, prepared->load_ms, prepared->build_ms, checked.output,
-                             std::to_string(ranks) + " ranks, " + std::to_string(result.threads) + " threads");
-      }
-    }
+    std::tie(code, message) = write_outputs(args, setup, gathered, ranks);
   } catch (...) {
     std::tie(code, message) = describe_current_exception();
   }

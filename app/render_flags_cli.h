@@ -93,7 +93,8 @@ inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
   return flags;
 }
 
-inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
+// The scene and the image file.
+inline void add_file_flags(CLI::App& render, RenderArgs& args) {
   render.add_option("scene", args.scene,
                     "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). Absent: the built-in "
                     "scene. A scene without a camera (a mesh) gets a default view framing it (and, if it has no "
@@ -107,6 +108,10 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                     "never a file the render reads or another output")
       ->type_name("FILE")
       ->check(kNonEmptyFileName);
+}
+
+// The image: its size and how its pixels are sampled and traced.
+inline void add_image_flags(CLI::App& render, RawRenderFlags& raw) {
   raw.width_option = render.add_option("--width", raw.width,
                                        "Image width in pixels, 1..65536 (at most 2^28 pixels in all). Default: the "
                                        "scene camera's; with --height alone, the camera's aspect is kept; 512 "
@@ -141,6 +146,10 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                             "is not cast; 0..1; 0 disables the cut-off. Default: the scene "
                                             "file's setting, else 0.001")
                               ->type_name("WEIGHT");
+}
+
+// How the render runs and what else it writes.
+inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")
       ->type_name("N");
   raw.simd_option = render.add_option("--simd", raw.simd,
@@ -164,6 +173,10 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                      "output")
                        ->type_name("LIST");
   render.add_flag("-q,--quiet", args.quiet, "No progress bar and no summary line (errors are still reported)");
+}
+
+// Procedures, surfaces, textures, meshes, paths and the view.
+inline void add_procedure_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   raw.preset_option = render.add_option("--preset", raw.preset,
                                         "spd: the Standard Procedural Databases procedure: --aa corners, "
                                         "--max-depth 4 (5 levels counting the eye ray), --min-weight 0, every "
@@ -184,6 +197,13 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
   add_strict_flag(render, args.options.strict);
   add_allow_outside_paths_flag(render, args.options.allow_outside_paths);
   add_camera_flags(render, raw.camera);
+}
+
+inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
+  add_file_flags(render, args);
+  add_image_flags(render, raw);
+  add_run_flags(render, args, raw);
+  add_procedure_flags(render, args, raw);
 }
 
 // Copies the flags that were given into the optional fields.
