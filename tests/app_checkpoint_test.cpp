@@ -1,8 +1,8 @@
 // quiver-mpi's checkpoint (app/checkpoint.h): batches read back whole; a
-// torn or corrupted last batch is dropped and the ones before it kept; a
-// resumed file continues after its valid part; a checkpoint of another
-// render is refused; the fingerprint follows the settings, the camera and
-// the input files' bytes.
+// torn or corrupted last batch, or one naming a tile past the last, is
+// dropped and the ones before it kept; a resumed file continues after its
+// valid part; a checkpoint of another render is refused; the fingerprint
+// follows the settings, the camera and the input files' bytes.
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
@@ -82,6 +82,23 @@ TEST(Checkpoint, ACorruptedBatchEndsWhatIsRead) {
   const CheckpointContents contents = read_checkpoint(path, kKey);
   ASSERT_EQ(contents.tiles.size(), 1u);
   EXPECT_EQ(contents.tiles[0].tile, 1u);
+}
+
+// A whole batch naming a tile past the image's last (a file from a buggy or
+// hostile writer) ends what is read, like a corrupted one.
+TEST(Checkpoint, ATileIndexPastTheLastEndsWhatIsRead) {
+  testing::TemporaryDirectory dir;
+  const fs::path path = dir.path() / "c";
+  {
+    CheckpointWriter writer = CheckpointWriter::create(path, kKey);
+    const std::vector<CheckpointTile> last{tile(kKey.tiles - 1, 8)}, past{tile(kKey.tiles, 8)};
+    writer.append(last);
+    writer.append(past);
+  }
+  const CheckpointContents contents = read_checkpoint(path, kKey);
+  ASSERT_EQ(contents.tiles.size(), 1u);
+  EXPECT_EQ(contents.tiles[0].tile, kKey.tiles - 1);
+  EXPECT_LT(contents.valid_bytes, fs::file_size(path));
 }
 
 TEST(Checkpoint, AnotherRendersCheckpointOrAnotherFileIsRefused) {

@@ -262,6 +262,14 @@ TEST(TraceCommand, TheJsonLineHasTheKeysAndTheMedians) {
   }
 }
 
+TEST(TraceCommand, TheMedianOfAnEvenCountIsTheMeanOfTheMiddleTwo) {
+  EXPECT_EQ(median({}), 0.0);
+  EXPECT_EQ(median({7.0}), 7.0);
+  EXPECT_EQ(median({9.0, 1.0, 4.0}), 4.0);
+  EXPECT_EQ(median({10.0, 1.0, 3.0, 2.0}), 2.5);  // sorted 1 2 3 10
+  EXPECT_EQ(median({6.0, 2.0}), 4.0);
+}
+
 TEST(TraceCommand, OptionChecks) {
   TraceOptions ok;
   EXPECT_NO_THROW(check_trace_options(ok));
