@@ -129,8 +129,9 @@ std::vector<float> interleaved_floats(const Framebuffer& framebuffer, std::size_
   return values;
 }
 
-// zlib level of PNG files: 2 writes the built-in scene's 640x480 image
-// 3.3x faster than libpng's default 6, 13% larger (bench/README.md).
+// zlib level of PNG files: a low level writes several times faster than
+// libpng's default 6 for files a little larger, and writing is on the
+// critical path of every render.
 constexpr int kPngCompressionLevel = 2;
 
 // libpng reports an error by calling this, which must not return: the
