@@ -46,8 +46,39 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
 
 void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3<float>> colors, TraceStats& stats,
                    std::span<SampleSurface> surfaces) {
-  const std::size_t n = film.size();
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
+  start_at_camera(camera, film, stats);
+  PhaseClock clock;
+  bool one_ray_per_sample = true;  // until a ray spawns two
+  for (int depth = 0; rays_.count > 0; ++depth) {
+    hits_.reset(rays_);
+    clock.charge(stats.phases.shading);
+    intersector_.closest(scene_, rays_, hits_);
+    clock.charge(stats.phases.intersection);
+    next_rays_.clear();
+    next_paths_.clear();
+    next_differentials_.clear();
+    for (ShadowSlot& slot : slots_) slot.open(rays_.count);
+    resolve_surfaces();
+    if (depth == 0 && !surfaces.empty()) record_first_surfaces(surfaces);
+    shade(depth);
+    // The ambient terms (the background on a miss), in ray order.
+    for (std::size_t i = 0; i < rays_.count; ++i) {
+      Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
+      out = out + Vec3<float>(shaded_.emitted_r[i], shaded_.emitted_g[i], shaded_.emitted_b[i]);
+    }
+    count_shading(depth, stats);
+    clock.charge(stats.phases.shading);
+    resolve_shadows(colors, shaded_.counts.shadow_uncompacted, one_ray_per_sample, stats);
+    one_ray_per_sample = one_ray_per_sample && shaded_.counts.refraction == 0;
+    clock.charge(stats.phases.shadows);
+    next_wave(depth, stats);
+  }
+  clock.charge(stats.phases.shading);
+}
+
+void Tracer::start_at_camera(const Camera& camera, const FilmSamples& film, TraceStats& stats) {
+  const std::size_t n = film.size();
   camera_rays_(camera, film.x, film.y, rays_);
   paths_.start_at_camera(n);
   for (std::size_t i = 0; i < n; ++i) paths_.key[i] = sample_key(film.x[i], film.y[i], settings_.seed);
@@ -77,73 +108,58 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
   primary.active += n;
   primary.issued_compacted += padded_to(n, width_);
   primary.issued_uncompacted += padded_to(n, width_);
+}
 
-  PhaseClock clock;
-  bool one_ray_per_sample = true;  // until a ray spawns two
-  for (int depth = 0; rays_.count > 0; ++depth) {
-    hits_.reset(rays_);
-    clock.charge(stats.phases.shading);
-    intersector_.closest(scene_, rays_, hits_);
-    clock.charge(stats.phases.intersection);
-    next_rays_.clear();
-    next_paths_.clear();
-    next_differentials_.clear();
-    for (ShadowSlot& slot : slots_) slot.open(rays_.count);
-    resolve_surfaces();
-    if (depth == 0 && !surfaces.empty()) {
-      for (std::size_t i = 0; i < rays_.count; ++i) {
-        const Ray<float> ray = rays_.get(i);
-        surfaces[std::size_t(paths_.sample[i])] =
-            hits_.id[i] == kNoHit ? SampleSurface{}
-                                  : SampleSurface{surfaces_.material[i], distance_along(ray, hits_.t[i])};
-      }
-    }
-    shaded_.slots = &slots_;
-    shaded_.next_rays = &next_rays_;
-    shaded_.next_paths = &next_paths_;
-    shaded_.next_differentials = differentials_ ? &next_differentials_ : nullptr;
-    shaded_.counts = {};
-    const WaveShadingInput in{&scene_,
-                              &materials_,
-                              &rays_,
-                              &hits_,
-                              &paths_,
-                              &surfaces_,
-                              differentials_ ? &differentials_of_rays_ : nullptr,
-                              depth < settings_.max_depth,
-                              settings_.min_weight,
-                              settings_.seed,
-                              settings_.spawn_every_ray};
-    shade_wave_(in, shaded_);
-    // The ambient terms (the background on a miss), in ray order.
-    for (std::size_t i = 0; i < rays_.count; ++i) {
-      Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
-      out = out + Vec3<float>(shaded_.emitted_r[i], shaded_.emitted_g[i], shaded_.emitted_b[i]);
-    }
-    if (depth == 0) stats.rays.primary_hits += shaded_.counts.hits;
-    stats.shading_active += shaded_.counts.hits;
-    stats.light_sample_active += shaded_.counts.light_active;
-    stats.light_sample_issued += shaded_.counts.light_issued;
-    stats.rays.reflection += shaded_.counts.reflection;
-    stats.rays.refraction += shaded_.counts.refraction;
-    clock.charge(stats.phases.shading);
-    resolve_shadows(colors, shaded_.counts.shadow_uncompacted, one_ray_per_sample, stats);
-    one_ray_per_sample = one_ray_per_sample && shaded_.counts.refraction == 0;
-    clock.charge(stats.phases.shadows);
-    if (next_rays_.count > 0) {
-      WaveLanes& next = stats.wave(std::size_t(depth) + 1);
-      next.active += next_rays_.count;
-      next.issued_compacted += padded_to(next_rays_.count, width_);
-      next.issued_uncompacted += shaded_.counts.next_uncompacted;
-    }
-    std::swap(rays_, next_rays_);
-    std::swap(paths_, next_paths_);
-    std::swap(differentials_of_rays_, next_differentials_);
-    rays_.pad();
-    paths_.pad();
-    if (differentials_) differentials_of_rays_.pad(rays_.count);
+void Tracer::record_first_surfaces(std::span<SampleSurface> surfaces) const {
+  for (std::size_t i = 0; i < rays_.count; ++i) {
+    const Ray<float> ray = rays_.get(i);
+    surfaces[std::size_t(paths_.sample[i])] =
+        hits_.id[i] == kNoHit ? SampleSurface{} : SampleSurface{surfaces_.material[i], distance_along(ray, hits_.t[i])};
   }
-  clock.charge(stats.phases.shading);
+}
+
+void Tracer::shade(int depth) {
+  shaded_.slots = &slots_;
+  shaded_.next_rays = &next_rays_;
+  shaded_.next_paths = &next_paths_;
+  shaded_.next_differentials = differentials_ ? &next_differentials_ : nullptr;
+  shaded_.counts = {};
+  const WaveShadingInput in{.scene = &scene_,
+                            .materials = &materials_,
+                            .rays = &rays_,
+                            .hits = &hits_,
+                            .paths = &paths_,
+                            .surfaces = &surfaces_,
+                            .differentials = differentials_ ? &differentials_of_rays_ : nullptr,
+                            .spawn = depth < settings_.max_depth,
+                            .min_weight = settings_.min_weight,
+                            .seed = settings_.seed,
+                            .spawn_every_ray = settings_.spawn_every_ray};
+  shade_wave_(in, shaded_);
+}
+
+void Tracer::count_shading(int depth, TraceStats& stats) const {
+  if (depth == 0) stats.rays.primary_hits += shaded_.counts.hits;
+  stats.shading_active += shaded_.counts.hits;
+  stats.light_sample_active += shaded_.counts.light_active;
+  stats.light_sample_issued += shaded_.counts.light_issued;
+  stats.rays.reflection += shaded_.counts.reflection;
+  stats.rays.refraction += shaded_.counts.refraction;
+}
+
+void Tracer::next_wave(int depth, TraceStats& stats) {
+  if (next_rays_.count > 0) {
+    WaveLanes& next = stats.wave(std::size_t(depth) + 1);
+    next.active += next_rays_.count;
+    next.issued_compacted += padded_to(next_rays_.count, width_);
+    next.issued_uncompacted += shaded_.counts.next_uncompacted;
+  }
+  std::swap(rays_, next_rays_);
+  std::swap(paths_, next_paths_);
+  std::swap(differentials_of_rays_, next_differentials_);
+  rays_.pad();
+  paths_.pad();
+  if (differentials_) differentials_of_rays_.pad(rays_.count);
 }
 
 void Tracer::resolve_surfaces() {

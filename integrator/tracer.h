@@ -87,6 +87,16 @@ class Tracer {
   void first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out);
 
  private:
+  // Wave 0: the film's camera rays, their paths and differentials.
+  void start_at_camera(const Camera& camera, const FilmSamples& film, TraceStats& stats);
+  // Each camera ray's first surface, by its sample.
+  void record_first_surfaces(std::span<SampleSurface> surfaces) const;
+  // Shades the wave into shaded_ (the emitted light, shadow streams and the
+  // next wave's rays); depth: the wave's.
+  void shade(int depth);
+  void count_shading(int depth, TraceStats& stats) const;
+  // The spawned rays become the wave (padded for the lanes), counted.
+  void next_wave(int depth, TraceStats& stats);
   // The scalar pass: surface_detail of every hit of the wave into surfaces_
   // (with the footprints its differentials give, when they are carried).
   void resolve_surfaces();
