@@ -180,126 +180,161 @@ Mask<F> worth_casting(const Vec3<F>& weight, float min_weight) {
   return (largest > F(0.f)) & (largest >= F(min_weight));
 }
 
+// A packet's hits as shading reads them: the surface frame (its error
+// with the instance's), the material, the colour and the path weight.
 template <class F>
-void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first) {
-  constexpr int W = lane_count<F>;
-  const Scene& scene = *in.scene;
-  const MaterialTable& table = *in.materials;
+struct PacketHits {
+  Mask<F> hit_mask;
+  Hit<F> hit;
+  Vec3<F> weight;
+  Mask<F> smooth;
+  Vec3<F> interpolated;
+  SurfaceFrame<F> s;
+  Vec3<F> color;
+  IntLanes<F> material;
+  Vec3<F> incident;  // the ray's unit direction
+  Vec3<F> origin;    // the point offset to the geometric normal's side
+};
+
+template <class F>
+PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
   const Mask<F> active = first_lanes<F>(in.rays->count - first);
   const Ray<F> ray = in.rays->load<F>(first);
-  const Hit<F> hit = in.hits->load<F>(first);
-  const Mask<F> hit_mask = active & nonzero_lanes(hit.id - IntLanes<F>(kNoHit));
-  const Vec3<F> weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
   const SurfaceColumns& columns = *in.surfaces;
-  const Mask<F> smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
-  const Vec3<F> interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
-  SurfaceFrame<F> s = surface_frame(ray, hit, smooth, interpolated);
-  s.error = s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
-  const Vec3<F> color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
-  const IntLanes<F> material = load_int_lanes<F>(columns.material.data() + first);
-  out.counts.hits += std::popcount(lane_bits(hit_mask));
+  PacketHits<F> h;
+  h.hit = in.hits->load<F>(first);
+  h.hit_mask = active & nonzero_lanes(h.hit.id - IntLanes<F>(kNoHit));
+  h.weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
+  h.smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
+  h.interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
+  h.s = surface_frame(ray, h.hit, h.smooth, h.interpolated);
+  h.s.error = h.s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
+  h.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
+  h.material = load_int_lanes<F>(columns.material.data() + first);
+  h.incident = normalize(ray.direction);
+  h.origin = offset_origin(h.s.position, h.s.error, h.s.geometric);
+  return h;
+}
 
-  // Ambient ka Ia colour where a surface is hit; the background on a miss.
-  const F ka = gather_lanes<F>(table.ka.data(), material);
-  const Vec3<F> ambient = mul(weight, mul(Vec3<F>(scene.ambient), color) * ka);
-  const Vec3<F> emitted = select(hit_mask, ambient, mul(weight, Vec3<F>(scene.background)));
-  store_lanes(emitted.x, out.emitted_r.data() + first);
-  store_lanes(emitted.y, out.emitted_g.data() + first);
-  store_lanes(emitted.z, out.emitted_b.data() + first);
-  if (none(hit_mask)) return;
-
-  const Vec3<F> incident = normalize(ray.direction);
-  const F kd = gather_lanes<F>(table.kd.data(), material);
-  const F ks = gather_lanes<F>(table.ks.data(), material);
-  const Vec3<F> origin = offset_origin(s.position, s.error, s.geometric);
-  // A one-sided surface seen from behind gets the ambient term only.
-  const Mask<F> two_sided = gather_lanes<F>(table.two_sided.data(), material) > F(0.f);
-  const Mask<F> lit = hit_mask & (two_sided | s.entering) & ((kd > F(0.f)) | (ks > F(0.f)));
-  if (any(lit)) {
-    const F shininess = gather_lanes<F>(table.shininess.data(), material);
-    const Vec3<F> to_eye = -incident;
-    std::size_t slot = 0;
-    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-      const int n = samples_per_side(scene.lights[l]);
-      const Vec3<F> intensity(scene.lights[l].color / float(n * n));
-      for (int j = 0; j < n * n; ++j, ++slot) {
-        float tmax;
-        const Vec3<F> direction = light_sample_direction(in, l, j, n, origin, first, tmax);
-        const Vec3<F> to_light = normalize(direction);
-        const F n_dot_l = dot(s.shading, to_light);
-        // No shadow ray where the surface faces away from the light.
-        Mask<F> cast = lit & (n_dot_l > F(0.f)) & (dot(s.geometric, to_light) > F(0.f));
-        const Vec3<F> half = normalize(to_light + to_eye);
-        const F n_dot_h = max(dot(s.shading, half), F(0.f));
-        const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
-        // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
-        const Vec3<F> reflected = color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
-        const Vec3<F> contribution = mul(weight, mul(intensity, reflected));
-        // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
-        if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
-        const unsigned bits = lane_bits(cast);
-        out.counts.light_issued += W;
-        out.counts.light_active += std::popcount(bits);
-        if (bits == 0) continue;
-        out.counts.shadow_uncompacted += W;
-        append_shadow_rays((*out.slots)[slot], bits, first, origin, direction, tmax, contribution);
-      }
+// Each light sample's contribution I_i (kd (N.L) colour + ks (N.H)^n) times
+// the path weight, appended with its shadow ray to the sample slot's
+// stream where the lit surface faces the light.
+template <class F>
+void shade_lights(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first, const PacketHits<F>& h,
+                  const Mask<F>& lit, const F& kd, const F& ks) {
+  constexpr int W = lane_count<F>;
+  const Scene& scene = *in.scene;
+  const SurfaceFrame<F>& s = h.s;
+  const F shininess = gather_lanes<F>(in.materials->shininess.data(), h.material);
+  const Vec3<F> to_eye = -h.incident;
+  std::size_t slot = 0;
+  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+    const int n = samples_per_side(scene.lights[l]);
+    const Vec3<F> intensity(scene.lights[l].color / float(n * n));
+    for (int j = 0; j < n * n; ++j, ++slot) {
+      float tmax;
+      const Vec3<F> direction = light_sample_direction(in, l, j, n, h.origin, first, tmax);
+      const Vec3<F> to_light = normalize(direction);
+      const F n_dot_l = dot(s.shading, to_light);
+      // No shadow ray where the surface faces away from the light.
+      Mask<F> cast = lit & (n_dot_l > F(0.f)) & (dot(s.geometric, to_light) > F(0.f));
+      const Vec3<F> half = normalize(to_light + to_eye);
+      const F n_dot_h = max(dot(s.shading, half), F(0.f));
+      const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
+      // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
+      const Vec3<F> reflected = h.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
+      const Vec3<F> contribution = mul(h.weight, mul(intensity, reflected));
+      // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
+      if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
+      const unsigned bits = lane_bits(cast);
+      out.counts.light_issued += W;
+      out.counts.light_active += std::popcount(bits);
+      if (bits == 0) continue;
+      out.counts.shadow_uncompacted += W;
+      append_shadow_rays((*out.slots)[slot], bits, first, h.origin, direction, tmax, contribution);
     }
   }
-  if (!in.spawn) return;
+}
 
-  const F kr = gather_lanes<F>(table.kr.data(), material);
-  const F kt = gather_lanes<F>(table.kt.data(), material);
-  const F ior = gather_lanes<F>(table.ior.data(), material);
-  Vec3<F> reflect_weight = weight * kr;
-  Vec3<F> refract_weight = mul(weight, color * kt);
+// The reflection and refraction rays a packet casts: their lanes, weights
+// and directions (Snell through the shading normal, else through the
+// geometric one; total internal reflection folds kt into the reflection).
+template <class F>
+struct SecondaryRays {
+  unsigned reflection_bits = 0, refraction_bits = 0;
+  Vec3<F> reflect_weight, refract_weight;
+  F eta;
+  Mask<F> retry;  // refracted through the geometric normal
+  Vec3<F> along_shading, along_geometric, refracted;
+};
+
+template <class F>
+SecondaryRays<F> secondary_rays(const WaveShadingInput& in, const PacketHits<F>& h) {
+  const MaterialTable& table = *in.materials;
+  const F kr = gather_lanes<F>(table.kr.data(), h.material);
+  const F kt = gather_lanes<F>(table.kt.data(), h.material);
+  const F ior = gather_lanes<F>(table.ior.data(), h.material);
+  const SurfaceFrame<F>& s = h.s;
+  SecondaryRays<F> r;
+  r.reflect_weight = h.weight * kr;
+  r.refract_weight = mul(h.weight, h.color * kt);
   // Snell through the shading normal, else (bent behind the surface) the geometric one.
   const Mask<F> transmissive = kt > F(0.f);
-  const F eta = select(s.entering, F(1.f) / ior, ior);
+  r.eta = select(s.entering, F(1.f) / ior, ior);
   Mask<F> through_shading, through_geometric;
-  const Vec3<F> along_shading = refract(incident, s.shading, eta, through_shading);
-  const Mask<F> retry = and_not(through_shading, dot(along_shading, s.geometric) < F(0.f));
-  const Vec3<F> along_geometric = refract(incident, s.geometric, eta, through_geometric);
-  const Vec3<F> refracted = select(retry, along_geometric, along_shading);
-  const Mask<F> transmitted = (retry & through_geometric) | and_not(through_shading, retry);
+  r.along_shading = refract(h.incident, s.shading, r.eta, through_shading);
+  r.retry = and_not(through_shading, dot(r.along_shading, s.geometric) < F(0.f));
+  r.along_geometric = refract(h.incident, s.geometric, r.eta, through_geometric);
+  r.refracted = select(r.retry, r.along_geometric, r.along_shading);
+  const Mask<F> transmitted = (r.retry & through_geometric) | and_not(through_shading, r.retry);
   // Total internal reflection: the transmitted share kt is reflected. Like
   // the kr share, it crosses no surface, so the colour (a filter where light
   // refracts through the surface, entering or leaving) does not multiply
   // it: through a tinted prism that folds a ray twice inside, the sky is
   // kt^4 C^2, not kt^4 C^4, as POV-Ray gives it.
   const Mask<F> total_internal = and_not(transmissive, transmitted);
-  reflect_weight = select(total_internal, reflect_weight + weight * kt, reflect_weight);
-  refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), refract_weight);
+  r.reflect_weight = select(total_internal, r.reflect_weight + h.weight * kt, r.reflect_weight);
+  r.refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), r.refract_weight);
   // SPD (rules 8 and 9): a reflection ray off every reflective or
   // transmissive hit (a transmitter with Ks 0 too, its weight then 0 unless
   // totally internally reflected) and a refraction ray through every
   // transmissive one, with no weight test.
-  const Mask<F> cast_reflection =
-      hit_mask & (in.spawn_every_ray ? (kr > F(0.f)) | transmissive : worth_casting(reflect_weight, in.min_weight));
-  Mask<F> cast_refraction = hit_mask & transmissive & transmitted;
-  if (!in.spawn_every_ray) cast_refraction = cast_refraction & worth_casting(refract_weight, in.min_weight);
-  const unsigned reflection_bits = lane_bits(cast_reflection), refraction_bits = lane_bits(cast_refraction);
-  if ((reflection_bits | refraction_bits) == 0) return;
+  const Mask<F> cast_reflection = h.hit_mask & (in.spawn_every_ray ? (kr > F(0.f)) | transmissive
+                                                                     : worth_casting(r.reflect_weight, in.min_weight));
+  Mask<F> cast_refraction = h.hit_mask & transmissive & transmitted;
+  if (!in.spawn_every_ray) cast_refraction = cast_refraction & worth_casting(r.refract_weight, in.min_weight);
+  r.reflection_bits = lane_bits(cast_reflection);
+  r.refraction_bits = lane_bits(cast_refraction);
+  return r;
+}
 
-  const Vec3<F> mirrored = reflect(incident, s.shading);
+// Appends the packet's secondary rays to the next wave, by lane, a lane's
+// reflection before its refraction, with their paths and differentials.
+template <class F>
+void append_secondary_rays(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first,
+                           const PacketHits<F>& h, const SecondaryRays<F>& sr) {
+  constexpr int W = lane_count<F>;
+  const SurfaceFrame<F>& s = h.s;
+  const unsigned reflection_bits = sr.reflection_bits, refraction_bits = sr.refraction_bits;
+  const Vec3<F> mirrored = reflect(h.incident, s.shading);
   const Mask<F> mirrored_outward = dot(mirrored, s.geometric) > F(0.f);
-  const Vec3<F> reflected = select(mirrored_outward, mirrored, reflect(incident, s.geometric));
+  const Vec3<F> reflected = select(mirrored_outward, mirrored, reflect(h.incident, s.geometric));
   if (reflection_bits != 0) out.counts.next_uncompacted += W;
   if (refraction_bits != 0) out.counts.next_uncompacted += W;
   out.counts.reflection += std::popcount(reflection_bits);
   out.counts.refraction += std::popcount(refraction_bits);
   // Appended by lane, a lane's reflection before its refraction.
-  const Vec3Lanes<F> outside(origin), inside(offset_origin(s.position, s.error, -s.geometric));
-  const Vec3Lanes<F> reflected_lanes(reflected), refracted_lanes(refracted);
-  const Vec3Lanes<F> reflect_weights(reflect_weight), refract_weights(refract_weight);
+  const Vec3Lanes<F> outside(h.origin), inside(offset_origin(s.position, s.error, -s.geometric));
+  const Vec3Lanes<F> reflected_lanes(reflected), refracted_lanes(sr.refracted);
+  const Vec3Lanes<F> reflect_weights(sr.reflect_weight), refract_weights(sr.refract_weight);
   RaySoA& r = *out.next_rays;
   PathColumns& p = *out.next_paths;
   std::size_t i = grow_spawned(std::size_t(std::popcount(reflection_bits) + std::popcount(refraction_bits)), r, p,
                                out.next_differentials);
   std::optional<SpawnedDifferentials<F>> spawned;
   if (in.differentials != nullptr) {
-    spawned = spawned_differentials(in, first, s, select(smooth, interpolated, hit.ng), incident, mirrored_outward,
-                                    eta, retry, along_shading, along_geometric);
+    spawned = spawned_differentials(in, first, s, select(h.smooth, h.interpolated, h.hit.ng), h.incident,
+                                    mirrored_outward, sr.eta, sr.retry, sr.along_shading, sr.along_geometric);
   }
   DifferentialColumns* const next_differentials = out.next_differentials;
   auto append = [&](std::size_t parent, int k, const Vec3Lanes<F>& from, const Vec3Lanes<F>& direction,
@@ -336,6 +371,34 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
              spawned ? &spawned->refracted_dx : nullptr, spawned ? &spawned->refracted_dy : nullptr);
     }
   }
+}
+
+template <class F>
+void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first) {
+  const Scene& scene = *in.scene;
+  const MaterialTable& table = *in.materials;
+  const PacketHits<F> h = load_packet_hits<F>(in, first);
+  out.counts.hits += std::popcount(lane_bits(h.hit_mask));
+
+  // Ambient ka Ia colour where a surface is hit; the background on a miss.
+  const F ka = gather_lanes<F>(table.ka.data(), h.material);
+  const Vec3<F> ambient = mul(h.weight, mul(Vec3<F>(scene.ambient), h.color) * ka);
+  const Vec3<F> emitted = select(h.hit_mask, ambient, mul(h.weight, Vec3<F>(scene.background)));
+  store_lanes(emitted.x, out.emitted_r.data() + first);
+  store_lanes(emitted.y, out.emitted_g.data() + first);
+  store_lanes(emitted.z, out.emitted_b.data() + first);
+  if (none(h.hit_mask)) return;
+
+  const F kd = gather_lanes<F>(table.kd.data(), h.material);
+  const F ks = gather_lanes<F>(table.ks.data(), h.material);
+  // A one-sided surface seen from behind gets the ambient term only.
+  const Mask<F> two_sided = gather_lanes<F>(table.two_sided.data(), h.material) > F(0.f);
+  const Mask<F> lit = h.hit_mask & (two_sided | h.s.entering) & ((kd > F(0.f)) | (ks > F(0.f)));
+  if (any(lit)) shade_lights(in, out, first, h, lit, kd, ks);
+  if (!in.spawn) return;
+  const SecondaryRays<F> secondary = secondary_rays(in, h);
+  if ((secondary.reflection_bits | secondary.refraction_bits) == 0) return;
+  append_secondary_rays(in, out, first, h, secondary);
 }
 
 }  // namespace
