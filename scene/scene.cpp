@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "geometry/bvh_store.h"
 #include "geometry/primitive_bounds.h"
@@ -244,6 +245,131 @@ std::size_t Scene::memory_bytes() const {
   return bytes;
 }
 
+namespace {
+
+// The scene's primitives of every directly stored kind, split by layer
+// (patches with normals become triangles), with their origins.
+struct SceneInputs {
+  KindInput<SphereDesc> spheres;
+  KindInput<PlaneDesc> planes;
+  KindInput<TriangleDesc> triangles;
+  KindInput<PolygonDesc> polygons;
+  KindInput<ConeDesc> cones;
+};
+
+// The one list of directly stored kinds: for each, fn(its input, its
+// builder, its store and origins in a layer, its BVH, nullptr for planes,
+// which are always scanned). Stores are numbered and tabulated in this order.
+template <class Fn>
+void for_each_stored_kind(SceneInputs& inputs, Scene& scene, Fn fn) {
+  fn(inputs.spheres, build_spheres, &GeometryLayer::spheres, &GeometryLayer::sphere_origin, &scene.sphere_bvh);
+  fn(inputs.planes, build_planes, &GeometryLayer::planes, &GeometryLayer::plane_origin, nullptr);
+  fn(inputs.triangles, build_triangles, &GeometryLayer::triangles, &GeometryLayer::triangle_origin,
+     &scene.triangle_bvh);
+  fn(inputs.polygons, build_polygons, &GeometryLayer::polygons, &GeometryLayer::polygon_origin, &scene.polygon_bvh);
+  fn(inputs.cones, build_cones, &GeometryLayer::cones, &GeometryLayer::cone_origin, &scene.cone_bvh);
+}
+
+// Appends each item's description to its material's layer of input.
+template <class Item, class Desc, class OriginOf, class IsTransmissive>
+void split_by_layer(const std::vector<Item>& items, Desc Item::*desc, PrimitiveKind kind, OriginOf origin_of,
+                    IsTransmissive is_transmissive, KindInput<Desc>& input) {
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const PrimitiveOrigin o = origin_of(items[i].material, kind, i);
+    auto& in = input.layer(is_transmissive(items[i].material));
+    in.descs.push_back(items[i].*desc);
+    in.origins.push_back(o);
+  }
+}
+
+template <class OriginOf, class IsTransmissive>
+SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is_transmissive) {
+  SceneInputs inputs;
+  split_by_layer(desc.spheres, &SceneSphere::sphere, PrimitiveKind::sphere, origin_of, is_transmissive, inputs.spheres);
+  split_by_layer(desc.planes, &ScenePlane::plane, PrimitiveKind::plane, origin_of, is_transmissive, inputs.planes);
+  split_by_layer(desc.triangles, &SceneTriangle::triangle, PrimitiveKind::triangle, origin_of, is_transmissive,
+                 inputs.triangles);
+  for (std::size_t i = 0; i < desc.polygons.size(); ++i) {
+    const ScenePolygon& p = desc.polygons[i];
+    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::polygon, i);
+    if (!p.normals.empty()) {
+      auto& in = inputs.triangles.layer(is_transmissive(p.material));
+      for (TriangleDesc& t : patch_triangles(p)) {
+        in.descs.push_back(std::move(t));
+        in.origins.push_back(o);
+      }
+      continue;
+    }
+    auto& in = inputs.polygons.layer(is_transmissive(p.material));
+    in.descs.push_back(p.polygon);
+    in.origins.push_back(o);
+  }
+  split_by_layer(desc.cones, &SceneCone::cone, PrimitiveKind::cone, origin_of, is_transmissive, inputs.cones);
+  return inputs;
+}
+
+// Every kind's stores in both layers, their BVHs, ids from 0 in the list's
+// order (opaque layer first), and the per-id material tables. Returns the
+// next free id.
+std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene) {
+  BuildReport* const reports[] = {&scene.counts.spheres, &scene.counts.planes, &scene.counts.triangles,
+                                  &scene.counts.polygons, &scene.counts.cones};
+  int kind = 0;
+  for_each_stored_kind(inputs, scene, [&](auto& input, auto builder, auto store, auto origins, auto bvh) {
+    for (bool t : {false, true}) {
+      GeometryLayer& g = t ? scene.transmissive : scene.opaque;
+      build_store(input.layer(t), builder, *reports[kind], g.*store, g.*origins);
+    }
+    GeometryLayer& o = scene.opaque;
+    GeometryLayer& t = scene.transmissive;
+    if constexpr (!std::is_null_pointer_v<decltype(bvh)>) {
+      index_stores(input, builder, options, o.*store, o.*origins, t.*store, t.*origins, *bvh);
+    }
+    ++kind;
+  });
+  std::int32_t next_id = 0;
+  for (GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    for_each_stored_kind(inputs, scene, [&](auto&, auto, auto store, auto, auto) {
+      (g->*store).id_base = next_id;
+      next_id += static_cast<std::int32_t>((g->*store).count);
+    });
+  }
+  scene.material_of_id.resize(scene.primitive_count());
+  scene.plain_of_id.resize(scene.primitive_count());
+  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    for_each_stored_kind(inputs, scene, [&](auto&, auto, auto store, auto origins, auto) {
+      const auto& kind_store = g->*store;
+      bool interpolated = false;
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(kind_store)>, TriangleSoA>) {
+        interpolated = kind_store.has_normals();
+      }
+      const std::vector<PrimitiveOrigin>& kind_origins = g->*origins;
+      for (std::size_t k = 0; k < kind_origins.size(); ++k) {
+        const std::size_t id = std::size_t(kind_store.id_base) + k;
+        scene.material_of_id[id] = kind_origins[k].material;
+        scene.plain_of_id[id] = !interpolated && !scene.materials[kind_origins[k].material].texture ? 1 : 0;
+      }
+    });
+  }
+  return next_id;
+}
+
+// The box of every bounded primitive, placed instances included.
+void set_bounds(Scene& scene) {
+  Box bounds = empty_box();
+  layer_bounds(scene.opaque, bounds);
+  layer_bounds(scene.transmissive, bounds);
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    grow(bounds, transformed_box(scene.meshes[scene.instances.mesh[i]].bounds, scene.instances.object_to_world[i]));
+  }
+  if (!is_empty(bounds)) {
+    scene.bounds_min = bounds.lo;
+    scene.bounds_max = bounds.hi;
+  }
+}
+
+}  // namespace
+
 Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   if (!desc.camera) throw std::invalid_argument("the scene has no camera");
   Scene scene;
@@ -262,7 +388,7 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   scene.textures.reserve(desc.textures.size());
   for (const TextureDesc& t : desc.textures) scene.textures.push_back(build_texture(t));
 
-  // Splits one kind's primitives by layer; checks material indices.
+  // A primitive's origin, its material index checked; its layer.
   auto origin_of = [&](std::size_t material, PrimitiveKind kind, std::size_t index) {
     if (material >= desc.materials.size()) {
       throw std::invalid_argument("a primitive refers to material " + std::to_string(material) + " of " +
@@ -271,113 +397,10 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
     return PrimitiveOrigin{static_cast<std::uint32_t>(material), kind, static_cast<std::uint32_t>(index)};
   };
   auto is_transmissive = [&](std::size_t material) { return desc.materials[material].kt > 0.f; };
-
-  KindInput<SphereDesc> spheres;
-  for (std::size_t i = 0; i < desc.spheres.size(); ++i) {
-    const SceneSphere& s = desc.spheres[i];
-    const PrimitiveOrigin o = origin_of(s.material, PrimitiveKind::sphere, i);
-    auto& in = spheres.layer(is_transmissive(s.material));
-    in.descs.push_back(s.sphere);
-    in.origins.push_back(o);
-  }
-  KindInput<PlaneDesc> planes;
-  for (std::size_t i = 0; i < desc.planes.size(); ++i) {
-    const ScenePlane& p = desc.planes[i];
-    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::plane, i);
-    auto& in = planes.layer(is_transmissive(p.material));
-    in.descs.push_back(p.plane);
-    in.origins.push_back(o);
-  }
-  KindInput<TriangleDesc> triangles;
-  for (std::size_t i = 0; i < desc.triangles.size(); ++i) {
-    const SceneTriangle& t = desc.triangles[i];
-    const PrimitiveOrigin o = origin_of(t.material, PrimitiveKind::triangle, i);
-    auto& in = triangles.layer(is_transmissive(t.material));
-    in.descs.push_back(t.triangle);
-    in.origins.push_back(o);
-  }
-  KindInput<PolygonDesc> polygons;
-  for (std::size_t i = 0; i < desc.polygons.size(); ++i) {
-    const ScenePolygon& p = desc.polygons[i];
-    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::polygon, i);
-    if (!p.normals.empty()) {
-      auto& in = triangles.layer(is_transmissive(p.material));
-      for (TriangleDesc& t : patch_triangles(p)) {
-        in.descs.push_back(std::move(t));
-        in.origins.push_back(o);
-      }
-      continue;
-    }
-    auto& in = polygons.layer(is_transmissive(p.material));
-    in.descs.push_back(p.polygon);
-    in.origins.push_back(o);
-  }
-  KindInput<ConeDesc> cones;
-  for (std::size_t i = 0; i < desc.cones.size(); ++i) {
-    const SceneCone& c = desc.cones[i];
-    const PrimitiveOrigin o = origin_of(c.material, PrimitiveKind::cone, i);
-    auto& in = cones.layer(is_transmissive(c.material));
-    in.descs.push_back(c.cone);
-    in.origins.push_back(o);
-  }
-
-  std::int32_t next_id = 0;
-  auto number = [&](auto& store) {
-    store.id_base = next_id;
-    next_id += static_cast<std::int32_t>(store.count);
-  };
-  for (bool t : {false, true}) {
-    GeometryLayer& g = t ? scene.transmissive : scene.opaque;
-    build_store(spheres.layer(t), build_spheres, scene.counts.spheres, g.spheres, g.sphere_origin);
-    build_store(planes.layer(t), build_planes, scene.counts.planes, g.planes, g.plane_origin);
-    build_store(triangles.layer(t), build_triangles, scene.counts.triangles, g.triangles, g.triangle_origin);
-    build_store(polygons.layer(t), build_polygons, scene.counts.polygons, g.polygons, g.polygon_origin);
-    build_store(cones.layer(t), build_cones, scene.counts.cones, g.cones, g.cone_origin);
-  }
-  GeometryLayer& o = scene.opaque;
-  GeometryLayer& t = scene.transmissive;
-  index_stores(spheres, build_spheres, options, o.spheres, o.sphere_origin, t.spheres, t.sphere_origin,
-               scene.sphere_bvh);
-  index_stores(triangles, build_triangles, options, o.triangles, o.triangle_origin, t.triangles, t.triangle_origin,
-               scene.triangle_bvh);
-  index_stores(polygons, build_polygons, options, o.polygons, o.polygon_origin, t.polygons, t.polygon_origin,
-               scene.polygon_bvh);
-  index_stores(cones, build_cones, options, o.cones, o.cone_origin, t.cones, t.cone_origin, scene.cone_bvh);
-  for (GeometryLayer* g : {&o, &t}) {
-    number(g->spheres);
-    number(g->planes);
-    number(g->triangles);
-    number(g->polygons);
-    number(g->cones);
-  }
-  scene.material_of_id.resize(scene.primitive_count());
-  scene.plain_of_id.resize(scene.primitive_count());
-  auto tabulate = [&](std::int32_t id_base, const std::vector<PrimitiveOrigin>& origins, bool interpolated) {
-    for (std::size_t k = 0; k < origins.size(); ++k) {
-      const std::size_t id = std::size_t(id_base) + k;
-      scene.material_of_id[id] = origins[k].material;
-      scene.plain_of_id[id] = !interpolated && !scene.materials[origins[k].material].texture ? 1 : 0;
-    }
-  };
-  for (const GeometryLayer* g : {&o, &t}) {
-    tabulate(g->spheres.id_base, g->sphere_origin, false);
-    tabulate(g->planes.id_base, g->plane_origin, false);
-    tabulate(g->triangles.id_base, g->triangle_origin, g->triangles.has_normals());
-    tabulate(g->polygons.id_base, g->polygon_origin, false);
-    tabulate(g->cones.id_base, g->cone_origin, false);
-  }
-
-  Box bounds = empty_box();
-  layer_bounds(scene.opaque, bounds);
-  layer_bounds(scene.transmissive, bounds);
+  SceneInputs inputs = scene_inputs(desc, origin_of, is_transmissive);
+  const std::int32_t next_id = build_stores(inputs, options, scene);
   build_instancing(desc, options, origin_of, is_transmissive, next_id, scene);
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    grow(bounds, transformed_box(scene.meshes[scene.instances.mesh[i]].bounds, scene.instances.object_to_world[i]));
-  }
-  if (!is_empty(bounds)) {
-    scene.bounds_min = bounds.lo;
-    scene.bounds_max = bounds.hi;
-  }
+  set_bounds(scene);
   return scene;
 }
 
