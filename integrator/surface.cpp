@@ -81,6 +81,175 @@ Vec3<float> instance_error(const Scene& scene, std::size_t row, const Ray<float>
   return apply_vector(absolute(scene.instances.object_to_world[row]), in_object);
 }
 
+// A hit as the kinds' mappings read it: the primitive, whether its
+// material is textured, the point (in the instance's coordinates for an
+// instance) and its change per film axis (zero without a footprint).
+struct MappedHit {
+  const Scene& scene;
+  const Hit<float>& hit;
+  const GeometryLayer& g;
+  std::uint32_t i;
+  bool textured;
+  const PointDifferentials* footprint;
+  Vec3<float> position;
+  Vec3<float> dp[2];
+  bool instanced;
+  std::size_t row;
+};
+
+// Each kind's mapping sets s's (u, v) (where textured), its shading normal
+// and the normal's change, and du, dv: (u, v)'s change per film axis.
+
+void map_sphere(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+  const GeometryLayer& g = m.g;
+  const std::uint32_t i = m.i;
+  const bool textured = m.textured;
+  const PointDifferentials* const footprint = m.footprint;
+  const Vec3<float>* const dp = m.dp;
+  Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
+  if (!textured && footprint == nullptr) return;
+  const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
+  const Vec3<float> d = normalize(m.position - c);
+  if (textured) {
+    s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
+    s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
+  }
+  if (footprint == nullptr) return;
+  for (int a = 0; a < 2; ++a) {
+    // The unit outward normal d's change: dp less its radial part, over r.
+    const Vec3<float> dd = (dp[a] - d * dot(d, dp[a])) * g.spheres.inv_r[i];
+    *dn[a] = dd;
+    du[a] = longitude_change(d.x, -d.z, dd.x, -dd.z);
+    dv[a] = dd.y / std::sqrt(std::max(1.f - d.y * d.y, 0.f)) * kInvPi;
+  }
+}
+
+void map_plane(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+  if (!m.textured) return;
+  const Vec3<float>* const dp = m.dp;
+  Vec3<float> t1, t2;
+  tangent_axes(normalize(m.hit.ng), t1, t2);
+  s.u = dot(m.position, t1);
+  s.v = dot(m.position, t2);
+  for (int a = 0; a < 2; ++a) {
+    du[a] = dot(dp[a], t1);
+    dv[a] = dot(dp[a], t2);
+  }
+}
+
+void map_triangle(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+  const Hit<float>& hit = m.hit;
+  const std::uint32_t i = m.i;
+  const PointDifferentials* const footprint = m.footprint;
+  const Vec3<float>* const dp = m.dp;
+  Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
+  const TriangleSoA& tri = m.scene.triangles_of(s.ref);
+  const float w0 = 1.f - hit.u - hit.v;
+  double db1[2] = {0.0, 0.0}, db2[2] = {0.0, 0.0};
+  if (footprint != nullptr) {
+    const Vec3<float> v0 = tri.vertex(i, 0);
+    for (int a = 0; a < 2; ++a) barycentric_change(tri.vertex(i, 1) - v0, tri.vertex(i, 2) - v0, dp[a], db1[a], db2[a]);
+  }
+  for (int a = 0; a < 2; ++a) {
+    du[a] = float(db1[a]);
+    dv[a] = float(db2[a]);
+  }
+  if (tri.has_uvs()) {
+    const auto a = tri.uv(i, 0), b = tri.uv(i, 1), c = tri.uv(i, 2);
+    s.u = w0 * a[0] + hit.u * b[0] + hit.v * c[0];
+    s.v = w0 * a[1] + hit.u * b[1] + hit.v * c[1];
+    for (int k = 0; k < 2 && footprint != nullptr; ++k) {
+      du[k] = float(db1[k] * (double(b[0]) - a[0]) + db2[k] * (double(c[0]) - a[0]));
+      dv[k] = float(db1[k] * (double(b[1]) - a[1]) + db2[k] * (double(c[1]) - a[1]));
+    }
+  }
+  if (!tri.has_normals()) return;
+  // An instance's normals in world space (not unit: interpolation commutes with the map).
+  const auto world_normal = [&](int k) {
+    return m.instanced ? apply_normal(m.scene.instances.world_to_object[m.row], tri.normal(i, k)) : tri.normal(i, k);
+  };
+  const Vec3<float> n0 = world_normal(0), n1 = world_normal(1), n2 = world_normal(2);
+  const Vec3<float> n = n0 * w0 + n1 * hit.u + n2 * hit.v;
+  if (!(dot(n, n) > 0.f)) return;
+  s.smooth = true;
+  s.interpolated = normalize(n);
+  // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
+  const float length = std::sqrt(dot(n, n));
+  for (int a = 0; a < 2 && footprint != nullptr; ++a) {
+    const Vec3<float> change = (n1 - n0) * float(db1[a]) + (n2 - n0) * float(db2[a]);
+    *dn[a] = (change - s.interpolated * dot(s.interpolated, change)) / length;
+  }
+}
+
+void map_polygon(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+  const Hit<float>& hit = m.hit;
+  const std::uint32_t i = m.i;
+  const PointDifferentials* const footprint = m.footprint;
+  const Vec3<float>* const dp = m.dp;
+  const PolygonSoA& p = m.g.polygons;
+  const int axis_u = p.axis_u[i], axis_v = p.axis_v[i];
+  for (int a = 0; a < 2; ++a) {
+    du[a] = dp[a][axis_u];
+    dv[a] = dp[a][axis_v];
+  }
+  if (!m.textured || p.vertex_count[i] != 4) return;
+  double quad[4][2];
+  for (int k = 0; k < 4; ++k) {
+    quad[k][0] = p.pu[p.first_vertex[i] + k];
+    quad[k][1] = p.pv[p.first_vertex[i] + k];
+  }
+  inverse_bilinear(quad, hit.u, hit.v, s.u, s.v);
+  // The bilinear map's change by a finite difference over the footprint.
+  for (int a = 0; a < 2 && footprint != nullptr; ++a) {
+    float u_moved, v_moved;
+    inverse_bilinear(quad, double(hit.u) + du[a], double(hit.v) + dv[a], u_moved, v_moved);
+    du[a] = u_moved - s.u;
+    dv[a] = v_moved - s.v;
+  }
+}
+
+void map_cone(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+  if (!m.textured) return;
+  const std::uint32_t i = m.i;
+  const Vec3<float>& position = m.position;
+  const Vec3<float>* const dp = m.dp;
+  const ConeSoA& c = m.g.cones;
+  const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
+  const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
+  const Vec3<float> radial = position - base - axis * dot(position - base, axis);
+  Vec3<float> t1, t2;
+  tangent_axes(axis, t1, t2);
+  s.u = 0.5f + std::atan2(dot(radial, t2), dot(radial, t1)) * kInvTwoPi;
+  s.v = m.hit.u;
+  for (int a = 0; a < 2; ++a) {
+    const Vec3<float> radial_change = dp[a] - axis * dot(dp[a], axis);
+    du[a] = longitude_change(dot(radial, t1), dot(radial, t2), dot(radial_change, t1), dot(radial_change, t2));
+    dv[a] = dot(dp[a], axis) / c.height[i];
+  }
+}
+
+// The material's colour at the point: times its texture where textured,
+// filtered over the footprint when there is one.
+Vec3<float> surface_colour(const Scene& scene, const SurfaceDetail& s, const MappedHit& m, const float du[2],
+                           const float dv[2]) {
+  const PointDifferentials* const footprint = m.footprint;
+  const Vec3<float>& position = m.position;
+  const Vec3<float>* const dp = m.dp;
+  if (!m.textured) return s.material->color;
+  if (footprint == nullptr) {
+    return mul(evaluate(scene.textures[*s.material->texture], s.u, s.v, position), s.material->color);
+  }
+  // The footprint's centre, to first order on the surface (a centred
+  // footprint keeps the point's bits, whatever the differentials).
+  const float cx = footprint->centre_x, cy = footprint->centre_y;
+  const bool shifted = cx != 0.f || cy != 0.f;
+  const float u = shifted ? std::fma(cy, du[1], std::fma(cx, du[0], s.u)) : s.u;
+  const float v = shifted ? std::fma(cy, dv[1], std::fma(cx, dv[0], s.v)) : s.v;
+  const Vec3<float> centre = shifted ? position + dp[0] * cx + dp[1] * cy : position;
+  const TextureFootprint f{du[0], dv[0], du[1], dv[1], dp[0], dp[1]};
+  return mul(evaluate_filtered(scene.textures[*s.material->texture], u, v, centre, f), s.material->color);
+}
+
 }  // namespace
 
 SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit,
@@ -89,8 +258,6 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   s.ref = scene.locate(hit.id);
   const bool instanced = s.ref.instance >= 0;
   const std::size_t row = instanced ? std::size_t(s.ref.instance) : 0;
-  const GeometryLayer& g = scene.layer(s.ref.transmissive);
-  const std::uint32_t i = s.ref.local;
   s.smooth = false;
   s.u = hit.u;
   s.v = hit.v;
@@ -98,148 +265,33 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   s.material = &scene.materials[s.material_index];
   // Texture coordinates only for textured materials (atan2 and asin are dear).
   const bool textured = s.material->texture.has_value();
-  Vec3<float> position =
-      textured || footprint != nullptr ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f);
-  // Per film axis (x, y): the point's change and that of (u, v).
-  Vec3<float> dp[2] = {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
-                       footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)};
+  MappedHit m{scene,
+              hit,
+              scene.layer(s.ref.transmissive),
+              s.ref.local,
+              textured,
+              footprint,
+              textured || footprint != nullptr ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f),
+              {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
+               footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)},
+              instanced,
+              row};
   if (instanced) {
     const AffineTransform& to_object = scene.instances.world_to_object[row];
-    position = apply_point(to_object, position);
-    for (Vec3<float>& d : dp) d = apply_vector(to_object, d);
+    m.position = apply_point(to_object, m.position);
+    for (Vec3<float>& d : m.dp) d = apply_vector(to_object, d);
     s.instance_error = instance_error(scene, row, ray, hit.t);
   }
+  // Per film axis (x, y): the change of (u, v).
   float du[2] = {0.f, 0.f}, dv[2] = {0.f, 0.f};
-  Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
   switch (s.ref.kind) {
-    case PrimitiveKind::sphere: {
-      if (!textured && footprint == nullptr) break;
-      const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
-      const Vec3<float> d = normalize(position - c);
-      if (textured) {
-        s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
-        s.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
-      }
-      if (footprint == nullptr) break;
-      for (int a = 0; a < 2; ++a) {
-        // The unit outward normal d's change: dp less its radial part, over r.
-        const Vec3<float> dd = (dp[a] - d * dot(d, dp[a])) * g.spheres.inv_r[i];
-        *dn[a] = dd;
-        du[a] = longitude_change(d.x, -d.z, dd.x, -dd.z);
-        dv[a] = dd.y / std::sqrt(std::max(1.f - d.y * d.y, 0.f)) * kInvPi;
-      }
-      break;
-    }
-    case PrimitiveKind::plane: {
-      if (!textured) break;
-      Vec3<float> t1, t2;
-      tangent_axes(normalize(hit.ng), t1, t2);
-      s.u = dot(position, t1);
-      s.v = dot(position, t2);
-      for (int a = 0; a < 2; ++a) {
-        du[a] = dot(dp[a], t1);
-        dv[a] = dot(dp[a], t2);
-      }
-      break;
-    }
-    case PrimitiveKind::triangle: {
-      const TriangleSoA& tri = scene.triangles_of(s.ref);
-      const float w0 = 1.f - hit.u - hit.v;
-      double db1[2] = {0.0, 0.0}, db2[2] = {0.0, 0.0};
-      if (footprint != nullptr) {
-        const Vec3<float> v0 = tri.vertex(i, 0);
-        for (int a = 0; a < 2; ++a) barycentric_change(tri.vertex(i, 1) - v0, tri.vertex(i, 2) - v0, dp[a], db1[a], db2[a]);
-      }
-      for (int a = 0; a < 2; ++a) {
-        du[a] = float(db1[a]);
-        dv[a] = float(db2[a]);
-      }
-      if (tri.has_uvs()) {
-        const auto a = tri.uv(i, 0), b = tri.uv(i, 1), c = tri.uv(i, 2);
-        s.u = w0 * a[0] + hit.u * b[0] + hit.v * c[0];
-        s.v = w0 * a[1] + hit.u * b[1] + hit.v * c[1];
-        for (int k = 0; k < 2 && footprint != nullptr; ++k) {
-          du[k] = float(db1[k] * (double(b[0]) - a[0]) + db2[k] * (double(c[0]) - a[0]));
-          dv[k] = float(db1[k] * (double(b[1]) - a[1]) + db2[k] * (double(c[1]) - a[1]));
-        }
-      }
-      if (tri.has_normals()) {
-        // An instance's normals in world space (not unit: interpolation commutes with the map).
-        const auto world_normal = [&](int k) {
-          return instanced ? apply_normal(scene.instances.world_to_object[row], tri.normal(i, k)) : tri.normal(i, k);
-        };
-        const Vec3<float> n0 = world_normal(0), n1 = world_normal(1), n2 = world_normal(2);
-        const Vec3<float> n = n0 * w0 + n1 * hit.u + n2 * hit.v;
-        if (dot(n, n) > 0.f) {
-          s.smooth = true;
-          s.interpolated = normalize(n);
-          // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
-          const float length = std::sqrt(dot(n, n));
-          for (int a = 0; a < 2 && footprint != nullptr; ++a) {
-            const Vec3<float> change = (n1 - n0) * float(db1[a]) + (n2 - n0) * float(db2[a]);
-            *dn[a] = (change - s.interpolated * dot(s.interpolated, change)) / length;
-          }
-        }
-      }
-      break;
-    }
-    case PrimitiveKind::polygon: {
-      const PolygonSoA& p = g.polygons;
-      const int axis_u = p.axis_u[i], axis_v = p.axis_v[i];
-      for (int a = 0; a < 2; ++a) {
-        du[a] = dp[a][axis_u];
-        dv[a] = dp[a][axis_v];
-      }
-      if (textured && p.vertex_count[i] == 4) {
-        double quad[4][2];
-        for (int k = 0; k < 4; ++k) {
-          quad[k][0] = p.pu[p.first_vertex[i] + k];
-          quad[k][1] = p.pv[p.first_vertex[i] + k];
-        }
-        inverse_bilinear(quad, hit.u, hit.v, s.u, s.v);
-        // The bilinear map's change by a finite difference over the footprint.
-        for (int a = 0; a < 2 && footprint != nullptr; ++a) {
-          float u_moved, v_moved;
-          inverse_bilinear(quad, double(hit.u) + du[a], double(hit.v) + dv[a], u_moved, v_moved);
-          du[a] = u_moved - s.u;
-          dv[a] = v_moved - s.v;
-        }
-      }
-      break;
-    }
-    case PrimitiveKind::cone: {
-      if (!textured) break;
-      const ConeSoA& c = g.cones;
-      const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
-      const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
-      const Vec3<float> radial = position - base - axis * dot(position - base, axis);
-      Vec3<float> t1, t2;
-      tangent_axes(axis, t1, t2);
-      s.u = 0.5f + std::atan2(dot(radial, t2), dot(radial, t1)) * kInvTwoPi;
-      s.v = hit.u;
-      for (int a = 0; a < 2; ++a) {
-        const Vec3<float> radial_change = dp[a] - axis * dot(dp[a], axis);
-        du[a] = longitude_change(dot(radial, t1), dot(radial, t2), dot(radial_change, t1), dot(radial_change, t2));
-        dv[a] = dot(dp[a], axis) / c.height[i];
-      }
-      break;
-    }
+    case PrimitiveKind::sphere: map_sphere(m, s, du, dv); break;
+    case PrimitiveKind::plane: map_plane(m, s, du, dv); break;
+    case PrimitiveKind::triangle: map_triangle(m, s, du, dv); break;
+    case PrimitiveKind::polygon: map_polygon(m, s, du, dv); break;
+    case PrimitiveKind::cone: map_cone(m, s, du, dv); break;
   }
-  if (!textured) {
-    s.color = s.material->color;
-  } else if (footprint == nullptr) {
-    s.color = mul(evaluate(scene.textures[*s.material->texture], s.u, s.v, position), s.material->color);
-  } else {
-    // The footprint's centre, to first order on the surface (a centred
-    // footprint keeps the point's bits, whatever the differentials).
-    const float cx = footprint->centre_x, cy = footprint->centre_y;
-    const bool shifted = cx != 0.f || cy != 0.f;
-    const float u = shifted ? std::fma(cy, du[1], std::fma(cx, du[0], s.u)) : s.u;
-    const float v = shifted ? std::fma(cy, dv[1], std::fma(cx, dv[0], s.v)) : s.v;
-    const Vec3<float> centre = shifted ? position + dp[0] * cx + dp[1] * cy : position;
-    const TextureFootprint f{du[0], dv[0], du[1], dv[1], dp[0], dp[1]};
-    s.color = mul(evaluate_filtered(scene.textures[*s.material->texture], u, v, centre, f), s.material->color);
-  }
+  s.color = surface_colour(scene, s, m, du, dv);
   return s;
 }
 
