@@ -119,11 +119,8 @@ void Tracer::record_first_surfaces(std::span<SampleSurface> surfaces) const {
 }
 
 void Tracer::shade(int depth) {
-  shaded_.slots = &slots_;
-  shaded_.next_rays = &next_rays_;
-  shaded_.next_paths = &next_paths_;
-  shaded_.next_differentials = differentials_ ? &next_differentials_ : nullptr;
   shaded_.counts = {};
+  const WaveAppendTargets to{&slots_, &next_rays_, &next_paths_, differentials_ ? &next_differentials_ : nullptr};
   const WaveShadingInput in{.scene = &scene_,
                             .materials = &materials_,
                             .rays = &rays_,
@@ -135,7 +132,7 @@ void Tracer::shade(int depth) {
                             .min_weight = settings_.min_weight,
                             .seed = settings_.seed,
                             .spawn_every_ray = settings_.spawn_every_ray};
-  shade_wave_(in, shaded_);
+  shade_wave_(in, to, shaded_);
 }
 
 void Tracer::count_shading(int depth, TraceStats& stats) const {

@@ -220,7 +220,8 @@ PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
 // the path weight, appended with its shadow ray to the sample slot's
 // stream where the lit surface faces the light.
 template <class F>
-void shade_lights(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first, const PacketHits<F>& h,
+void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out, std::size_t first,
+                  const PacketHits<F>& h,
                   const Mask<F>& lit, const F& kd, const F& ks) {
   constexpr int W = lane_count<F>;
   const Scene& scene = *in.scene;
@@ -251,7 +252,7 @@ void shade_lights(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
       out.counts.light_active += std::popcount(bits);
       if (bits == 0) continue;
       out.counts.shadow_uncompacted += W;
-      append_shadow_rays((*out.slots)[slot], bits, first, h.origin, direction, tmax, contribution);
+      append_shadow_rays((*to.slots)[slot], bits, first, h.origin, direction, tmax, contribution);
     }
   }
 }
@@ -311,7 +312,8 @@ SecondaryRays<F> secondary_rays(const WaveShadingInput& in, const PacketHits<F>&
 // Appends the packet's secondary rays to the next wave, by lane, a lane's
 // reflection before its refraction, with their paths and differentials.
 template <class F>
-void append_secondary_rays(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first,
+void append_secondary_rays(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out,
+                           std::size_t first,
                            const PacketHits<F>& h, const SecondaryRays<F>& sr) {
   constexpr int W = lane_count<F>;
   const SurfaceFrame<F>& s = h.s;
@@ -327,16 +329,16 @@ void append_secondary_rays(const WaveShadingInput& in, WaveShadingOutput& out, s
   const Vec3Lanes<F> outside(h.origin), inside(offset_origin(s.position, s.error, -s.geometric));
   const Vec3Lanes<F> reflected_lanes(reflected), refracted_lanes(sr.refracted);
   const Vec3Lanes<F> reflect_weights(sr.reflect_weight), refract_weights(sr.refract_weight);
-  RaySoA& r = *out.next_rays;
-  PathColumns& p = *out.next_paths;
+  RaySoA& r = *to.next_rays;
+  PathColumns& p = *to.next_paths;
   std::size_t i = grow_spawned(std::size_t(std::popcount(reflection_bits) + std::popcount(refraction_bits)), r, p,
-                               out.next_differentials);
+                               to.next_differentials);
   std::optional<SpawnedDifferentials<F>> spawned;
   if (in.differentials != nullptr) {
     spawned = spawned_differentials(in, first, s, select(h.smooth, h.interpolated, h.hit.ng), h.incident,
                                     mirrored_outward, sr.eta, sr.retry, sr.along_shading, sr.along_geometric);
   }
-  DifferentialColumns* const next_differentials = out.next_differentials;
+  DifferentialColumns* const next_differentials = to.next_differentials;
   auto append = [&](std::size_t parent, int k, const Vec3Lanes<F>& from, const Vec3Lanes<F>& direction,
                     const Vec3Lanes<F>& weights, std::uint64_t tag, const Vec3Lanes<F>* direction_dx,
                     const Vec3Lanes<F>* direction_dy) {
@@ -374,7 +376,7 @@ void append_secondary_rays(const WaveShadingInput& in, WaveShadingOutput& out, s
 }
 
 template <class F>
-void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_t first) {
+void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out, std::size_t first) {
   const Scene& scene = *in.scene;
   const MaterialTable& table = *in.materials;
   const PacketHits<F> h = load_packet_hits<F>(in, first);
@@ -394,11 +396,11 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
   // A one-sided surface seen from behind gets the ambient term only.
   const Mask<F> two_sided = gather_lanes<F>(table.two_sided.data(), h.material) > F(0.f);
   const Mask<F> lit = h.hit_mask & (two_sided | h.s.entering) & ((kd > F(0.f)) | (ks > F(0.f)));
-  if (any(lit)) shade_lights(in, out, first, h, lit, kd, ks);
+  if (any(lit)) shade_lights(in, to, out, first, h, lit, kd, ks);
   if (!in.spawn) return;
   const SecondaryRays<F> secondary = secondary_rays(in, h);
   if ((secondary.reflection_bits | secondary.refraction_bits) == 0) return;
-  append_secondary_rays(in, out, first, h, secondary);
+  append_secondary_rays(in, to, out, first, h, secondary);
 }
 
 }  // namespace
@@ -406,17 +408,17 @@ void shade_packet(const WaveShadingInput& in, WaveShadingOutput& out, std::size_
 }  // namespace QUIVER_UNIT_NAMESPACE
 
 template <KernelUnit U>
-void shade_wave(const WaveShadingInput& in, WaveShadingOutput& out) {
+void shade_wave(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out) {
   using F = UnitLanes<U>;
   const std::size_t padded = in.rays->ox.size();
   out.emitted_r.resize(padded);
   out.emitted_g.resize(padded);
   out.emitted_b.resize(padded);
   for (std::size_t first = 0; first < in.rays->count; first += std::size_t(lane_count<F>)) {
-    shade_packet<F>(in, out, first);
+    shade_packet<F>(in, to, out, first);
   }
 }
 
-template void shade_wave<kThisUnit>(const WaveShadingInput&, WaveShadingOutput&);
+template void shade_wave<kThisUnit>(const WaveShadingInput&, const WaveAppendTargets&, WaveShadingOutput&);
 
 }  // namespace quiver

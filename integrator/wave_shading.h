@@ -47,20 +47,27 @@ struct WaveShadingCounts {
   std::uint64_t light_active = 0, light_issued = 0;
 };
 
-struct WaveShadingOutput {
-  // Per ray: the light it adds at once (the ambient term, or the background on a miss).
-  AlignedFloats emitted_r, emitted_g, emitted_b;
-  std::vector<ShadowSlot>* slots;  // one per light sample slot; appended to
-  RaySoA* next_rays;               // the spawned rays, appended densely
+// Where a wave's shading appends: the tracer's buffers, borrowed.
+struct WaveAppendTargets {
+  std::vector<ShadowSlot>* slots;           // one per light sample slot
+  RaySoA* next_rays;                        // the spawned rays, appended densely
   PathColumns* next_paths;
   DifferentialColumns* next_differentials;  // appended to with next_rays; null when rays carry none
-  WaveShadingCounts counts;        // added to
 };
 
-// out.emitted_* are sized by the call; slots, next_rays and next_paths are appended to.
-template <KernelUnit U>
-void shade_wave(const WaveShadingInput& in, WaveShadingOutput& out);
+// What a wave's shading owns and writes: per ray, the light it adds at once
+// (the ambient term, or the background on a miss), sized by the call; and
+// what it counted, added to.
+struct WaveShadingOutput {
+  AlignedFloats emitted_r, emitted_g, emitted_b;
+  WaveShadingCounts counts;
+};
 
-using ShadeWaveFunction = void (*)(const WaveShadingInput&, WaveShadingOutput&);
+// Shades the wave of in: out's emitted light and counts, the shadow rays
+// and spawned rays appended to `to`.
+template <KernelUnit U>
+void shade_wave(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out);
+
+using ShadeWaveFunction = void (*)(const WaveShadingInput&, const WaveAppendTargets&, WaveShadingOutput&);
 
 }  // namespace quiver
