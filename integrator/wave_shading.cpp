@@ -192,8 +192,9 @@ struct PacketHits {
   SurfaceFrame<F> s;
   Vec3<F> color;
   IntLanes<F> material;
-  Vec3<F> incident;  // the ray's unit direction
-  Vec3<F> origin;    // the point offset to the geometric normal's side
+  Vec3<F> direction;  // the ray's, as stored
+  Vec3<F> incident;   // the ray's unit direction; set once some lane hits
+  Vec3<F> origin;     // the point offset to the geometric normal's side; set once some lane hits
 };
 
 template <class F>
@@ -211,8 +212,7 @@ PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
   h.s.error = h.s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
   h.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
   h.material = load_int_lanes<F>(columns.material.data() + first);
-  h.incident = normalize(ray.direction);
-  h.origin = offset_origin(h.s.position, h.s.error, h.s.geometric);
+  h.direction = ray.direction;
   return h;
 }
 
@@ -379,7 +379,7 @@ template <class F>
 void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveShadingOutput& out, std::size_t first) {
   const Scene& scene = *in.scene;
   const MaterialTable& table = *in.materials;
-  const PacketHits<F> h = load_packet_hits<F>(in, first);
+  PacketHits<F> h = load_packet_hits<F>(in, first);
   out.counts.hits += std::popcount(lane_bits(h.hit_mask));
 
   // Ambient ka Ia colour where a surface is hit; the background on a miss.
@@ -390,6 +390,8 @@ void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   store_lanes(emitted.y, out.emitted_g.data() + first);
   store_lanes(emitted.z, out.emitted_b.data() + first);
   if (none(h.hit_mask)) return;
+  h.incident = normalize(h.direction);
+  h.origin = offset_origin(h.s.position, h.s.error, h.s.geometric);
 
   const F kd = gather_lanes<F>(table.kd.data(), h.material);
   const F ks = gather_lanes<F>(table.ks.data(), h.material);

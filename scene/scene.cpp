@@ -257,17 +257,33 @@ struct SceneInputs {
   KindInput<ConeDesc> cones;
 };
 
-// The one list of directly stored kinds: for each, fn(its input, its
-// builder, its store and origins in a layer, its BVH, nullptr for planes,
-// which are always scanned). Stores are numbered and tabulated in this order.
+// One directly stored kind: its input, builder, build report, store and
+// origins in a layer, and BVH (nullptr for planes, which are always scanned).
+template <class Input, class Builder, class Store, class Bvhs>
+struct StoredKind {
+  Input& input;
+  Builder builder;
+  BuildReport& report;
+  Store GeometryLayer::*store;
+  std::vector<PrimitiveOrigin> GeometryLayer::*origins;
+  Bvhs bvh;
+};
+template <class Input, class Builder, class Store, class Bvhs>
+StoredKind(Input&, Builder, BuildReport&, Store GeometryLayer::*, std::vector<PrimitiveOrigin> GeometryLayer::*, Bvhs)
+    -> StoredKind<Input, Builder, Store, Bvhs>;
+
+// The one list of directly stored kinds: fn(StoredKind) for each. Stores
+// are numbered and tabulated in this order.
 template <class Fn>
 void for_each_stored_kind(SceneInputs& inputs, Scene& scene, Fn fn) {
-  fn(inputs.spheres, build_spheres, &GeometryLayer::spheres, &GeometryLayer::sphere_origin, &scene.sphere_bvh);
-  fn(inputs.planes, build_planes, &GeometryLayer::planes, &GeometryLayer::plane_origin, nullptr);
-  fn(inputs.triangles, build_triangles, &GeometryLayer::triangles, &GeometryLayer::triangle_origin,
-     &scene.triangle_bvh);
-  fn(inputs.polygons, build_polygons, &GeometryLayer::polygons, &GeometryLayer::polygon_origin, &scene.polygon_bvh);
-  fn(inputs.cones, build_cones, &GeometryLayer::cones, &GeometryLayer::cone_origin, &scene.cone_bvh);
+  SceneCounts& n = scene.counts;
+  using G = GeometryLayer;
+  fn(StoredKind{inputs.spheres, build_spheres, n.spheres, &G::spheres, &G::sphere_origin, &scene.sphere_bvh});
+  fn(StoredKind{inputs.planes, build_planes, n.planes, &G::planes, &G::plane_origin, nullptr});
+  fn(StoredKind{inputs.triangles, build_triangles, n.triangles, &G::triangles, &G::triangle_origin,
+                &scene.triangle_bvh});
+  fn(StoredKind{inputs.polygons, build_polygons, n.polygons, &G::polygons, &G::polygon_origin, &scene.polygon_bvh});
+  fn(StoredKind{inputs.cones, build_cones, n.cones, &G::cones, &G::cone_origin, &scene.cone_bvh});
 }
 
 // Appends each item's description to its material's layer of input.
@@ -312,42 +328,36 @@ SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissi
 // order (opaque layer first), and the per-id material tables. Returns the
 // next free id.
 std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene) {
-  BuildReport* const reports[] = {&scene.counts.spheres, &scene.counts.planes, &scene.counts.triangles,
-                                  &scene.counts.polygons, &scene.counts.cones};
-  int kind = 0;
-  for_each_stored_kind(inputs, scene, [&](auto& input, auto builder, auto store, auto origins, auto bvh) {
-    for (bool t : {false, true}) {
-      GeometryLayer& g = t ? scene.transmissive : scene.opaque;
-      build_store(input.layer(t), builder, *reports[kind], g.*store, g.*origins);
+  GeometryLayer& o = scene.opaque;
+  GeometryLayer& t = scene.transmissive;
+  for_each_stored_kind(inputs, scene, [&](const auto& k) {
+    build_store(k.input.layer(false), k.builder, k.report, o.*k.store, o.*k.origins);
+    build_store(k.input.layer(true), k.builder, k.report, t.*k.store, t.*k.origins);
+    if constexpr (!std::is_null_pointer_v<decltype(k.bvh)>) {
+      index_stores(k.input, k.builder, options, o.*k.store, o.*k.origins, t.*k.store, t.*k.origins, *k.bvh);
     }
-    GeometryLayer& o = scene.opaque;
-    GeometryLayer& t = scene.transmissive;
-    if constexpr (!std::is_null_pointer_v<decltype(bvh)>) {
-      index_stores(input, builder, options, o.*store, o.*origins, t.*store, t.*origins, *bvh);
-    }
-    ++kind;
   });
   std::int32_t next_id = 0;
-  for (GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    for_each_stored_kind(inputs, scene, [&](auto&, auto, auto store, auto, auto) {
-      (g->*store).id_base = next_id;
-      next_id += static_cast<std::int32_t>((g->*store).count);
+  for (GeometryLayer* g : {&o, &t}) {
+    for_each_stored_kind(inputs, scene, [&](const auto& k) {
+      (g->*k.store).id_base = next_id;
+      next_id += static_cast<std::int32_t>((g->*k.store).count);
     });
   }
   scene.material_of_id.resize(scene.primitive_count());
   scene.plain_of_id.resize(scene.primitive_count());
-  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    for_each_stored_kind(inputs, scene, [&](auto&, auto, auto store, auto origins, auto) {
-      const auto& kind_store = g->*store;
+  for (const GeometryLayer* g : {&o, &t}) {
+    for_each_stored_kind(inputs, scene, [&](const auto& k) {
+      const auto& store = g->*k.store;
       bool interpolated = false;
-      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(kind_store)>, TriangleSoA>) {
-        interpolated = kind_store.has_normals();
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(store)>, TriangleSoA>) {
+        interpolated = store.has_normals();
       }
-      const std::vector<PrimitiveOrigin>& kind_origins = g->*origins;
-      for (std::size_t k = 0; k < kind_origins.size(); ++k) {
-        const std::size_t id = std::size_t(kind_store.id_base) + k;
-        scene.material_of_id[id] = kind_origins[k].material;
-        scene.plain_of_id[id] = !interpolated && !scene.materials[kind_origins[k].material].texture ? 1 : 0;
+      const std::vector<PrimitiveOrigin>& origins = g->*k.origins;
+      for (std::size_t i = 0; i < origins.size(); ++i) {
+        const std::size_t id = std::size_t(store.id_base) + i;
+        scene.material_of_id[id] = origins[i].material;
+        scene.plain_of_id[id] = !interpolated && !scene.materials[origins[i].material].texture ? 1 : 0;
       }
     });
   }
