@@ -9,16 +9,14 @@ namespace quiver {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kKindNames{"spheres", "planes", "triangles", "polygons", "cones"};
+// Per kind, in list order (geometry/kinds.h).
+template <class T>
+using ByKind = std::array<T, kKindCount>;
 
-template <class Vec>
-std::size_t bytes_of(const Vec& v) {
-  return v.capacity() * sizeof(typename Vec::value_type);
-}
-
-template <class... Vecs>
-std::size_t sum_bytes(const Vecs&... vs) {
-  return (bytes_of(vs) + ...);
+ByKind<std::string_view> kind_plurals() {
+  ByKind<std::string_view> names;
+  for_each_kind([&]<class K>(K) { names[kind_index(K::tag)] = K::plural; });
+  return names;
 }
 
 // Shortest decimal text that reads back as the same float.
@@ -72,17 +70,16 @@ std::string_view wrap_name(WrapMode wrap) {
   return "?";
 }
 
-std::array<std::size_t, 5> read_counts(const SceneDesc& desc) {
-  return {desc.spheres.size(), desc.planes.size(), desc.triangles.size(), desc.polygons.size(), desc.cones.size()};
+ByKind<std::size_t> read_counts(const SceneDesc& desc) {
+  ByKind<std::size_t> counts;
+  for_each_kind([&]<class K>(K) { counts[kind_index(K::tag)] = (desc.*SceneEntries<K>::of).size(); });
+  return counts;
 }
 
-std::array<const BuildReport*, 5> build_reports(const Scene& scene) {
-  const SceneCounts& c = scene.counts;
-  return {&c.spheres, &c.planes, &c.triangles, &c.polygons, &c.cones};
-}
-
-std::array<std::size_t, 5> layer_counts(const GeometryLayer& g) {
-  return {g.spheres.count, g.planes.count, g.triangles.count, g.polygons.count, g.cones.count};
+ByKind<std::size_t> layer_counts(const GeometryLayer& g) {
+  ByKind<std::size_t> counts;
+  g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) { counts[kind_index(K::tag)] = k.store.count; });
+  return counts;
 }
 
 // One table row: a left-aligned name, then right-aligned columns.
@@ -96,7 +93,8 @@ void write_row(std::ostream& out, std::string_view name, std::initializer_list<s
 
 void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
   const auto read = read_counts(desc);
-  const auto reports = build_reports(scene);
+  const auto& reports = scene.counts.kinds;
+  const auto names = kind_plurals();
   const auto opaque = layer_counts(scene.opaque);
   const auto transmissive = layer_counts(scene.transmissive);
   const std::initializer_list<std::size_t> widths{8, 8, 12, 12, 8, 14};
@@ -104,11 +102,11 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
          "transmissive\n";
   write_row(out, "", {"read", "kept", "non-finite", "degenerate", "opaque", "transmissive"}, widths);
   std::array<std::size_t, 6> totals{};
-  for (std::size_t k = 0; k < 5; ++k) {
-    const std::array<std::size_t, 6> row{read[k],     reports[k]->kept, reports[k]->dropped_non_finite,
-                                         reports[k]->dropped_degenerate, opaque[k], transmissive[k]};
+  for (std::size_t k = 0; k < kKindCount; ++k) {
+    const std::array<std::size_t, 6> row{read[k],     reports[k].kept, reports[k].dropped_non_finite,
+                                         reports[k].dropped_degenerate, opaque[k], transmissive[k]};
     for (std::size_t c = 0; c < row.size(); ++c) totals[c] += row[c];
-    write_row(out, kKindNames[k],
+    write_row(out, names[k],
               {std::to_string(row[0]), std::to_string(row[1]), std::to_string(row[2]), std::to_string(row[3]),
                std::to_string(row[4]), std::to_string(row[5])},
               widths);
@@ -121,7 +119,7 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
   std::size_t patches = 0, patch_triangles = 0;
   for (const ScenePolygon& p : desc.polygons) patches += p.normals.empty() ? 0 : 1;
   for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    for (const PrimitiveOrigin& o : g->triangle_origin) patch_triangles += o.kind == PrimitiveKind::polygon ? 1 : 0;
+    for (const PrimitiveOrigin& o : g->origins<TriangleKind>()) patch_triangles += o.kind == PrimitiveKind::polygon ? 1 : 0;
   }
   if (patches > 0) {
     out << "  polygons read with vertex normals: " << patches << ", built as " << patch_triangles
@@ -230,8 +228,9 @@ void write_memory(std::ostream& out, const Scene& scene) {
   write_row(out, "", {"opaque", "transmissive"}, widths);
   const auto opaque = memory_by_kind(scene.opaque);
   const auto transmissive = memory_by_kind(scene.transmissive);
-  for (std::size_t k = 0; k < 5; ++k) {
-    write_row(out, kKindNames[k], {std::to_string(opaque[k]), std::to_string(transmissive[k])}, widths);
+  const auto names = kind_plurals();
+  for (std::size_t k = 0; k < kKindCount; ++k) {
+    write_row(out, names[k], {std::to_string(opaque[k]), std::to_string(transmissive[k])}, widths);
   }
   std::size_t texture_bytes = 0;
   for (const Texture& t : scene.textures) texture_bytes += bytes_of(t.image.rgb);
@@ -256,10 +255,7 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
     out << "  " << padded(name, 22, false) << bvh.width << "-wide, " << bvh.node_count << " nodes, depth "
         << bvh.depth << ", " << bvh.memory_bytes() << " bytes\n";
   };
-  write_tree("sphere", scene.sphere_bvh);
-  write_tree("triangle", scene.triangle_bvh);
-  write_tree("polygon", scene.polygon_bvh);
-  write_tree("cone", scene.cone_bvh);
+  for_each_kind([&]<class K>(K) { write_tree(std::string(K::name), scene.bvh<K>()); });
   for (std::size_t k = 0; k < scene.meshes.size(); ++k) write_tree("instanced mesh " + std::to_string(k), scene.meshes[k].bvh);
   write_tree("instances (top level)", scene.instance_bvh);
   if (!any) out << "  none\n";
@@ -268,18 +264,11 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
 
 }  // namespace
 
-std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& g) {
-  std::array<std::size_t, 5> bytes{};
-  const SphereSoA& s = g.spheres;
-  bytes[0] = sum_bytes(s.cx, s.cy, s.cz, s.r2, s.inv_r, s.source, g.sphere_origin);
-  bytes[1] = g.planes.memory_bytes() + bytes_of(g.plane_origin);
-  for (const AlignedFloats* c : const_cast<TriangleSoA&>(g.triangles).columns()) bytes[2] += bytes_of(*c);
-  bytes[2] += sum_bytes(g.triangles.source, g.triangle_origin);
-  const PolygonSoA& q = g.polygons;
-  bytes[3] = q.memory_bytes() + bytes_of(g.polygon_origin);
-  const ConeSoA& c = g.cones;
-  bytes[4] = sum_bytes(c.bx, c.by, c.bz, c.ax, c.ay, c.az, c.height, c.radius0, c.slope, c.facing, c.source,
-                       g.cone_origin);
+std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& g) {
+  std::array<std::size_t, kKindCount> bytes{};
+  g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
+    bytes[kind_index(K::tag)] = k.store.memory_bytes() + bytes_of(k.origins);
+  });
   return bytes;
 }
 

@@ -19,7 +19,7 @@ namespace quiver {
 // Bytes of one layer's stores per kind, indexed by PrimitiveKind: the SoA
 // columns' capacity plus the source and origin arrays. Sums to
 // GeometryLayer::memory_bytes().
-std::array<std::size_t, 5> memory_by_kind(const GeometryLayer& layer);
+std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& layer);
 
 struct SceneInfoContext {
   std::string scene;  // the file as named on the command line

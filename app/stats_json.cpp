@@ -44,11 +44,6 @@ double shortest(float value) {
   return out;
 }
 
-template <class Vec>
-std::size_t bytes_of(const Vec& v) {
-  return v.capacity() * sizeof(typename Vec::value_type);
-}
-
 std::size_t framebuffer_bytes(const Framebuffer& image) {
   return bytes_of(image.rgb) + bytes_of(image.depth) + bytes_of(image.normal) + bytes_of(image.kind) +
          bytes_of(image.id);

@@ -1,5 +1,5 @@
 #include "bench/bench_support.h"
-#include "geometry/cone_streams.h"
+#include "geometry/kind_streams.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"
 

@@ -51,22 +51,22 @@ EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc
   std::vector<std::array<float, 4>> spheres;  // x, y, z, r
   std::vector<Vec3<float>> vertices;          // 3 per triangle
   for (const GeometryLayer* layer : {&scene.opaque, &scene.transmissive}) {
-    for (std::size_t i = 0; i < layer->spheres.count; ++i) {
-      const SphereDesc& s = desc.spheres[layer->sphere_origin[i].index].sphere;
+    for (std::size_t i = 0; i < layer->store<SphereKind>().count; ++i) {
+      const SphereDesc& s = desc.spheres[layer->origins<SphereKind>()[i].index].sphere;
       spheres.push_back({s.center.x, s.center.y, s.center.z, s.radius});
     }
-    for (std::size_t i = 0; i < layer->triangles.count; ++i) {
-      for (int k = 0; k < 3; ++k) vertices.push_back(layer->triangles.vertex(i, k));
+    for (std::size_t i = 0; i < layer->store<TriangleKind>().count; ++i) {
+      for (int k = 0; k < 3; ++k) vertices.push_back(layer->store<TriangleKind>().vertex(i, k));
     }
-    for (std::size_t i = 0; i < layer->polygons.count; ++i) {
-      const PolygonDesc& polygon = desc.polygons[layer->polygon_origin[i].index].polygon;
+    for (std::size_t i = 0; i < layer->store<PolygonKind>().count; ++i) {
+      const PolygonDesc& polygon = desc.polygons[layer->origins<PolygonKind>()[i].index].polygon;
       for (const auto& triangle : triangulate_polygon(polygon)) {
         for (const Vec3<float>& p : triangle) vertices.push_back(p);
       }
       ++out.polygons_triangulated;
     }
-    out.skipped_planes += layer->planes.count;
-    out.skipped_cones += layer->cones.count;
+    out.skipped_planes += layer->store<PlaneKind>().count;
+    out.skipped_cones += layer->store<ConeKind>().count;
   }
 
   out.scene.reset(rtcNewScene(d));

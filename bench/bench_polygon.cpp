@@ -9,8 +9,7 @@
 // cluster that miss every polygon (they reach the planes and often the
 // bounding rectangles, unlike rays that miss by t alone).
 #include "bench/bench_support.h"
-#include "geometry/polygon_streams.h"
-#include "geometry/triangle_streams.h"
+#include "geometry/kind_streams.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"
 

@@ -34,9 +34,12 @@
 #pragma once
 
 #include "geometry/hit.h"
+#include "geometry/method_error.h"
 #include "simd/ray.h"
 
 namespace quiver {
+
+enum class ConeMethod { quadric };
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
@@ -133,6 +136,15 @@ struct ConeQuadric {
     return (ok1 || ok2) && out.t < tmax;
   }
 };
+
+// The cone test: fn(kernel).
+template <class Fn>
+inline auto with_product_method(ConeMethod method, Fn fn) {
+  switch (method) {
+    case ConeMethod::quadric: break;
+  }
+  return fn(ConeQuadric{});
+}
 
 }  // namespace QUIVER_UNIT_NAMESPACE
 

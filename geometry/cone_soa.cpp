@@ -60,4 +60,10 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
   return soa;
 }
 
+std::size_t ConeSoA::memory_bytes() const {
+  std::size_t bytes = bytes_of(source);
+  for (const AlignedFloats* c : {&bx, &by, &bz, &ax, &ay, &az, &height, &radius0, &slope, &facing}) bytes += bytes_of(*c);
+  return bytes;
+}
+
 }  // namespace quiver

@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
+#include "geometry/primitive_kind.h"
 #include "geometry/cone.h"
 #include "geometry/soa.h"
 
@@ -22,6 +24,7 @@ struct ConeSoA {
   std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
+  std::size_t memory_bytes() const;  // columns and source list
   template <class F>
   ConeLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(bx, by, bz, i), broadcast_vec3<F>(ax, ay, az, i), F(height[i]),
@@ -40,5 +43,17 @@ struct ConeSoA {
 // mixed sign, or a radius, slope or squared radius/slope that over- or
 // underflows as degenerate.
 ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report);
+
+// The cone in the scene's list of kinds (geometry/kinds.h).
+struct ConeKind {
+  static constexpr PrimitiveKind tag = PrimitiveKind::cone;
+  static constexpr std::string_view name = "cone", plural = "cones";
+  static constexpr bool bounded = true;
+  using Method = ConeMethod;
+  static constexpr ConeMethod product_method = ConeMethod::quadric;
+  using Desc = ConeDesc;
+  using Store = ConeSoA;
+  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_cones(descs, report); }
+};
 
 }  // namespace quiver

@@ -8,21 +8,9 @@
 
 namespace quiver {
 
-namespace {
-
-template <class Vec>
-std::size_t bytes_of(const Vec& v) {
-  return v.capacity() * sizeof(typename Vec::value_type);
-}
-
-}  // namespace
-
 std::size_t InstancedMesh::memory_bytes() const {
   std::size_t bytes = bvh.memory_bytes();
-  for (const TriangleSoA& s : stores) {
-    for (AlignedFloats* c : const_cast<TriangleSoA&>(s).columns()) bytes += bytes_of(*c);
-    bytes += bytes_of(s.source);
-  }
+  for (const TriangleSoA& s : stores) bytes += s.memory_bytes();
   return bytes;
 }
 

@@ -15,9 +15,12 @@
 #pragma once
 
 #include "geometry/hit.h"
+#include "geometry/method_error.h"
 #include "simd/ray.h"
 
 namespace quiver {
+
+enum class PlaneMethod { seed, anchored };
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
@@ -73,6 +76,17 @@ struct PlaneAnchored : RayAsIs {
     return plane_candidate(ray, plane, t, crosses, tmax, active, out);
   }
 };
+
+// The product's plane test: fn(kernel) for anchored (the seed's is the
+// study's: tests/support/study_streams.h).
+template <class Fn>
+inline auto with_product_method(PlaneMethod method, Fn fn) {
+  switch (method) {
+    case PlaneMethod::anchored: return fn(PlaneAnchored{});
+    case PlaneMethod::seed: break;
+  }
+  throw_study_method("plane", "seed");
+}
 
 }  // namespace QUIVER_UNIT_NAMESPACE
 

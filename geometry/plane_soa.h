@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
+#include "geometry/primitive_kind.h"
 #include "geometry/plane.h"
 #include "geometry/soa.h"
 
@@ -38,5 +40,18 @@ struct PlaneSoA {
 
 // Drops planes with a non-finite number or a zero (or underflowing) normal.
 PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report);
+
+// The plane in the scene's list of kinds (geometry/kinds.h): unbounded, so
+// scanned, never in a BVH.
+struct PlaneKind {
+  static constexpr PrimitiveKind tag = PrimitiveKind::plane;
+  static constexpr std::string_view name = "plane", plural = "planes";
+  static constexpr bool bounded = false;
+  using Method = PlaneMethod;
+  static constexpr PlaneMethod product_method = PlaneMethod::anchored;
+  using Desc = PlaneDesc;
+  using Store = PlaneSoA;
+  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_planes(descs, report); }
+};
 
 }  // namespace quiver

@@ -63,11 +63,14 @@
 #include <cstdint>
 
 #include "geometry/hit.h"
+#include "geometry/method_error.h"
 #include "geometry/plane.h"
 #include "geometry/triangle.h"
 #include "simd/ray.h"
 
 namespace quiver {
+
+enum class PolygonMethod { crossing };
 
 // Per band: u < edges_lo or u > edges_hi: outside (left or right of every
 // edge the band lists); inside_lo < u < inside_hi: inside (an empty range
@@ -317,6 +320,15 @@ struct PolygonCrossing {
     return candidate && inside;
   }
 };
+
+// The polygon test: fn(kernel).
+template <class Fn>
+inline auto with_product_method(PolygonMethod method, Fn fn) {
+  switch (method) {
+    case PolygonMethod::crossing: break;
+  }
+  return fn(PolygonCrossing{});
+}
 
 }  // namespace QUIVER_UNIT_NAMESPACE
 

@@ -11,10 +11,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
+#include "geometry/primitive_kind.h"
 #include "geometry/polygon.h"
 #include "geometry/soa.h"
 
@@ -114,5 +116,17 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 // input build_polygons would drop. A polygon that is not simple still gives
 // n - 2 triangles or fewer, but they need not cover it.
 std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& polygon);
+
+// The polygon in the scene's list of kinds (geometry/kinds.h).
+struct PolygonKind {
+  static constexpr PrimitiveKind tag = PrimitiveKind::polygon;
+  static constexpr std::string_view name = "polygon", plural = "polygons";
+  static constexpr bool bounded = true;
+  using Method = PolygonMethod;
+  static constexpr PolygonMethod product_method = PolygonMethod::crossing;
+  using Desc = PolygonDesc;
+  using Store = PolygonSoA;
+  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_polygons(descs, report); }
+};
 
 }  // namespace quiver

@@ -23,6 +23,12 @@ constexpr std::size_t padded_size(std::size_t n) {
   return n == 0 ? 0 : (n + 2 * kMaxLanes - 2) / kMaxLanes * kMaxLanes;
 }
 
+// Bytes a vector holds (its capacity), for memory reports.
+template <class Vec>
+std::size_t bytes_of(const Vec& v) {
+  return v.capacity() * sizeof(typename Vec::value_type);
+}
+
 // Sizes the column to padded_size(count) and fills [count, padded) with
 // column[count - 1] (zeros when count is 0).
 void pad_column(AlignedFloats& column, std::size_t count);

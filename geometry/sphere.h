@@ -43,9 +43,12 @@
 #pragma once
 
 #include "geometry/hit.h"
+#include "geometry/method_error.h"
 #include "simd/ray.h"
 
 namespace quiver {
+
+enum class SphereMethod { algebraic, geometric, robust };
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
@@ -200,6 +203,18 @@ struct SphereRobust : PreparesSphereRay {
     return real && out.t > ray.tmin && out.t < tmax;
   }
 };
+
+// The product's sphere tests: fn(kernel) for algebraic and robust (the
+// geometric test is the study's: tests/support/study_streams.h).
+template <class Fn>
+inline auto with_product_method(SphereMethod method, Fn fn) {
+  switch (method) {
+    case SphereMethod::algebraic: return fn(SphereAlgebraic{});
+    case SphereMethod::robust: return fn(SphereRobust{});
+    case SphereMethod::geometric: break;
+  }
+  throw_study_method("sphere", "geometric");
+}
 
 }  // namespace QUIVER_UNIT_NAMESPACE
 

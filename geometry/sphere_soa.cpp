@@ -36,4 +36,10 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
   return soa;
 }
 
+std::size_t SphereSoA::memory_bytes() const {
+  std::size_t bytes = bytes_of(source);
+  for (const AlignedFloats* c : {&cx, &cy, &cz, &r2, &inv_r}) bytes += bytes_of(*c);
+  return bytes;
+}
+
 }  // namespace quiver

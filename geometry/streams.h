@@ -33,14 +33,10 @@
 #include <type_traits>
 
 #include "geometry/leaf_loops.h"
+#include "geometry/method_error.h"
 #include "geometry/soa.h"
 
 namespace quiver {
-
-// Thrown by a product streams function asked for a method only the study
-// builds: std::invalid_argument naming it. Out of line (geometry/streams.cpp),
-// so no kernel unit's flags compile the library code it calls.
-[[noreturn]] void throw_study_method(const char* kind, const char* method);
 
 template <class S>
 struct KernelStreams {

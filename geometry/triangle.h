@@ -44,9 +44,12 @@
 #include <cstddef>
 
 #include "geometry/hit.h"
+#include "geometry/method_error.h"
 #include "simd/ray.h"
 
 namespace quiver {
+
+enum class TriangleMethod { moller_trumbore, watertight };
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
@@ -383,6 +386,17 @@ struct TriangleWatertight {
     return in_range && nonzero(ng);
   }
 };
+
+// The product's triangle test: fn(kernel) for watertight (Moller-Trumbore
+// is the study's: tests/support/study_streams.h).
+template <class Fn>
+inline auto with_product_method(TriangleMethod method, Fn fn) {
+  switch (method) {
+    case TriangleMethod::watertight: return fn(TriangleWatertight{});
+    case TriangleMethod::moller_trumbore: break;
+  }
+  throw_study_method("triangle", "moller_trumbore");
+}
 
 }  // namespace QUIVER_UNIT_NAMESPACE
 

@@ -164,4 +164,10 @@ std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> po
   return out;
 }
 
+std::size_t TriangleSoA::memory_bytes() const {
+  std::size_t bytes = bytes_of(source);
+  for (const AlignedFloats* c : const_cast<TriangleSoA&>(*this).columns()) bytes += bytes_of(*c);
+  return bytes;
+}
+
 }  // namespace quiver

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
+#include "geometry/primitive_kind.h"
 #include "geometry/soa.h"
 #include "geometry/triangle.h"
 
@@ -51,6 +53,7 @@ struct TriangleSoA {
   std::array<float, 2> uv(std::size_t i, int k) const;
   // Every column, for padding and checks (the optional ones may be empty).
   std::vector<AlignedFloats*> columns();
+  std::size_t memory_bytes() const;  // columns and source list
 };
 
 // Smallest height / longest edge a kept triangle may have: below half a float
@@ -70,5 +73,17 @@ TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport
 // Throws std::out_of_range for an index past positions.
 std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> positions,
                                                  std::span<const std::array<std::uint32_t, 3>> indices);
+
+// The triangle in the scene's list of kinds (geometry/kinds.h).
+struct TriangleKind {
+  static constexpr PrimitiveKind tag = PrimitiveKind::triangle;
+  static constexpr std::string_view name = "triangle", plural = "triangles";
+  static constexpr bool bounded = true;
+  using Method = TriangleMethod;
+  static constexpr TriangleMethod product_method = TriangleMethod::watertight;
+  using Desc = TriangleDesc;
+  using Store = TriangleSoA;
+  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_triangles(descs, report); }
+};
 
 }  // namespace quiver

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/primitive_kind.h"
+#include "geometry/primitive_kind.h"
 
 namespace quiver {
 

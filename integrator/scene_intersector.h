@@ -12,12 +12,8 @@
 // into their meshes' triangle BVHs, with the same triangle method.
 #pragma once
 
-#include "geometry/cone_streams.h"
 #include "geometry/instance_streams.h"
-#include "geometry/plane_streams.h"
-#include "geometry/polygon_streams.h"
-#include "geometry/sphere_streams.h"
-#include "geometry/triangle_streams.h"
+#include "geometry/kind_streams.h"
 #include "scene/scene.h"
 
 namespace quiver {
@@ -43,17 +39,10 @@ inline constexpr double kAlgebraicSphereMaxDistanceRatio = 10.0;
 // ratio above (per_scene); robust otherwise.
 SphereMethod choose_sphere_method(const Scene& scene, MethodChoice choice);
 
-// The streams a SceneIntersector runs, one set per kind, all of one unit.
+// The streams a SceneIntersector runs, one set per kind and the instances'
+// top level, all of one unit.
 struct SceneStreams {
-  KernelStreams<SphereSoA> spheres;
-  KernelStreams<PlaneSoA> planes;
-  KernelStreams<TriangleSoA> triangles;
-  KernelStreams<PolygonSoA> polygons;
-  KernelStreams<ConeSoA> cones;
-  BvhStreams<SphereSoA> sphere_bvh;
-  BvhStreams<TriangleSoA> triangle_bvh;
-  BvhStreams<PolygonSoA> polygon_bvh;
-  BvhStreams<ConeSoA> cone_bvh;
+  ProductStreams kinds;
   BvhStreams<InstanceLeaves> instance_bvh;
 };
 
@@ -79,9 +68,6 @@ class SceneIntersector {
   void occluded(const Scene& scene, const RaySoA& rays, OcclusionSoA& result, Layers layers) const;
 
  private:
-  // Calls fn with each bounded kind's stores, BVH and streams.
-  template <class Fn>
-  void for_each_bounded_kind(const Scene& scene, Fn fn) const;
   InstanceLeaves instance_leaves(const Scene& scene, Layers layers) const;
 
   KernelUnit unit_;

@@ -97,10 +97,11 @@ struct MappedHit {
   std::size_t row;
 };
 
-// Each kind's mapping sets s's (u, v) (where textured), its shading normal
-// and the normal's change, and du, dv: (u, v)'s change per film axis.
+// Each kind's mapping (map_surface, reached through the list of kinds) sets
+// s's (u, v) (where textured), its shading normal and the normal's change,
+// and du, dv: (u, v)'s change per film axis.
 
-void map_sphere(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+void map_surface(SphereKind, const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   const GeometryLayer& g = m.g;
   const std::uint32_t i = m.i;
   const bool textured = m.textured;
@@ -108,7 +109,7 @@ void map_sphere(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) 
   const Vec3<float>* const dp = m.dp;
   Vec3<float>* const dn[2] = {&s.normal_dx, &s.normal_dy};
   if (!textured && footprint == nullptr) return;
-  const Vec3<float> c{g.spheres.cx[i], g.spheres.cy[i], g.spheres.cz[i]};
+  const Vec3<float> c{g.store<SphereKind>().cx[i], g.store<SphereKind>().cy[i], g.store<SphereKind>().cz[i]};
   const Vec3<float> d = normalize(m.position - c);
   if (textured) {
     s.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
@@ -117,14 +118,14 @@ void map_sphere(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) 
   if (footprint == nullptr) return;
   for (int a = 0; a < 2; ++a) {
     // The unit outward normal d's change: dp less its radial part, over r.
-    const Vec3<float> dd = (dp[a] - d * dot(d, dp[a])) * g.spheres.inv_r[i];
+    const Vec3<float> dd = (dp[a] - d * dot(d, dp[a])) * g.store<SphereKind>().inv_r[i];
     *dn[a] = dd;
     du[a] = longitude_change(d.x, -d.z, dd.x, -dd.z);
     dv[a] = dd.y / std::sqrt(std::max(1.f - d.y * d.y, 0.f)) * kInvPi;
   }
 }
 
-void map_plane(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+void map_surface(PlaneKind, const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   if (!m.textured) return;
   const Vec3<float>* const dp = m.dp;
   Vec3<float> t1, t2;
@@ -137,7 +138,7 @@ void map_plane(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   }
 }
 
-void map_triangle(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+void map_surface(TriangleKind, const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   const Hit<float>& hit = m.hit;
   const std::uint32_t i = m.i;
   const PointDifferentials* const footprint = m.footprint;
@@ -181,12 +182,12 @@ void map_triangle(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]
   }
 }
 
-void map_polygon(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+void map_surface(PolygonKind, const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   const Hit<float>& hit = m.hit;
   const std::uint32_t i = m.i;
   const PointDifferentials* const footprint = m.footprint;
   const Vec3<float>* const dp = m.dp;
-  const PolygonSoA& p = m.g.polygons;
+  const PolygonSoA& p = m.g.store<PolygonKind>();
   const int axis_u = p.axis_u[i], axis_v = p.axis_v[i];
   for (int a = 0; a < 2; ++a) {
     du[a] = dp[a][axis_u];
@@ -208,12 +209,12 @@ void map_polygon(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2])
   }
 }
 
-void map_cone(const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
+void map_surface(ConeKind, const MappedHit& m, SurfaceDetail& s, float du[2], float dv[2]) {
   if (!m.textured) return;
   const std::uint32_t i = m.i;
   const Vec3<float>& position = m.position;
   const Vec3<float>* const dp = m.dp;
-  const ConeSoA& c = m.g.cones;
+  const ConeSoA& c = m.g.store<ConeKind>();
   const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
   const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
   const Vec3<float> radial = position - base - axis * dot(position - base, axis);
@@ -284,13 +285,7 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
   }
   // Per film axis (x, y): the change of (u, v).
   float du[2] = {0.f, 0.f}, dv[2] = {0.f, 0.f};
-  switch (s.ref.kind) {
-    case PrimitiveKind::sphere: map_sphere(m, s, du, dv); break;
-    case PrimitiveKind::plane: map_plane(m, s, du, dv); break;
-    case PrimitiveKind::triangle: map_triangle(m, s, du, dv); break;
-    case PrimitiveKind::polygon: map_polygon(m, s, du, dv); break;
-    case PrimitiveKind::cone: map_cone(m, s, du, dv); break;
-  }
+  visit_kind(s.ref.kind, [&](auto kind) { map_surface(kind, m, s, du, dv); });
   s.color = surface_colour(scene, s, m, du, dv);
   return s;
 }

@@ -210,7 +210,9 @@ PYBIND11_MODULE(quiver, m) {
   m.attr("__version__") = QUIVER_VERSION;
   py::register_exception<ParseError>(m, "ParseError", PyExc_ValueError);
   py::register_exception<UsageError>(m, "UsageError", PyExc_ValueError);
-  m.attr("KINDS") = py::make_tuple("sphere", "plane", "triangle", "polygon", "cone");
+  py::list kinds;
+  for_each_kind([&]<class K>(K) { kinds.append(std::string(K::name)); });
+  m.attr("KINDS") = py::tuple(kinds);
 
   py::class_<PythonScene, SceneHandle>(m, "Scene", "A scene built for queries and renders (quiver.load, quiver.from_arrays)")
       .def_property_readonly("name", [](const PythonScene& s) { return s.name; })

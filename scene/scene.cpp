@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -19,10 +20,10 @@ struct LayerInput {
   std::vector<PrimitiveOrigin> origins;
 };
 
-template <class Desc>
+template <class K>
 struct KindInput {
-  LayerInput<Desc> opaque, transmissive;
-  LayerInput<Desc>& layer(bool t) { return t ? transmissive : opaque; }
+  LayerInput<typename K::Desc> opaque, transmissive;
+  LayerInput<typename K::Desc>& layer(bool t) { return t ? transmissive : opaque; }
 };
 
 // The origins of the primitives a builder kept, in store order.
@@ -57,32 +58,34 @@ std::vector<TriangleDesc> patch_triangles(const ScenePolygon& patch) {
 }
 
 void layer_bounds(const GeometryLayer& g, Box& bounds) {
-  for (std::size_t i = 0; i < g.spheres.count; ++i) grow(bounds, primitive_box(g.spheres, i));
-  for (std::size_t i = 0; i < g.triangles.count; ++i) grow(bounds, primitive_box(g.triangles, i));
-  for (std::size_t i = 0; i < g.polygons.count; ++i) grow(bounds, primitive_box(g.polygons, i));
-  for (std::size_t i = 0; i < g.cones.count; ++i) grow(bounds, primitive_box(g.cones, i));
+  g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
+    if constexpr (K::bounded) {
+      for (std::size_t i = 0; i < k.store.count; ++i) grow(bounds, primitive_box(k.store, i));
+    }
+  });
 }
 
 // Builds one kind's store for one layer and the origins of what it kept.
-template <class Store, class Desc, class Builder>
-void build_store(const LayerInput<Desc>& input, Builder builder, BuildReport& report, Store& store,
+template <class K>
+void build_store(const LayerInput<typename K::Desc>& input, BuildReport& report, typename K::Store& store,
                  std::vector<PrimitiveOrigin>& origins) {
-  store = builder(std::span<const Desc>(input.descs), report);
+  store = K::build(std::span<const typename K::Desc>(input.descs), report);
   origins = kept_origins(store.source, input.origins);
 }
 
 // With options.acceleration == bvh and enough primitives in both layers
 // together, builds the kind's BVH over both stores and puts each store and
 // its origins in leaf order.
-template <class Store, class Desc, class Builder>
-void index_stores(const KindInput<Desc>& input, Builder builder, const SceneBuildOptions& options, Store& opaque,
-                  std::vector<PrimitiveOrigin>& opaque_origins, Store& transmissive,
+template <class K>
+void index_stores(const KindInput<K>& input, const SceneBuildOptions& options, typename K::Store& opaque,
+                  std::vector<PrimitiveOrigin>& opaque_origins, typename K::Store& transmissive,
                   std::vector<PrimitiveOrigin>& transmissive_origins, Bvh& bvh) {
   if (options.acceleration != Acceleration::bvh || opaque.count + transmissive.count < options.bvh_min_primitives) {
     return;
   }
+  using Desc = typename K::Desc;
   bvh = reorder_for_bvh(std::span<const Desc>(input.opaque.descs), opaque,
-                        std::span<const Desc>(input.transmissive.descs), transmissive, builder, options.bvh);
+                        std::span<const Desc>(input.transmissive.descs), transmissive, K::build, options.bvh);
   opaque_origins = kept_origins(opaque.source, input.opaque.origins);
   transmissive_origins = kept_origins(transmissive.source, input.transmissive.origins);
 }
@@ -98,7 +101,7 @@ void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, O
   scene.meshes.resize(desc.meshes.size());
   scene.mesh_origins.resize(desc.meshes.size());
   for (std::size_t m = 0; m < desc.meshes.size(); ++m) {
-    KindInput<TriangleDesc> input;
+    KindInput<TriangleKind> input;
     const std::vector<SceneTriangle>& triangles = desc.meshes[m].triangles;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
       auto& in = input.layer(is_transmissive(triangles[i].material));
@@ -108,13 +111,13 @@ void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, O
     InstancedMesh& mesh = scene.meshes[m];
     std::array<std::vector<PrimitiveOrigin>, 2>& origins = scene.mesh_origins[m].of_store;
     for (bool t : {false, true}) {
-      build_store(input.layer(t), build_triangles, scene.counts.mesh_triangles, mesh.stores[t ? 1 : 0],
-                  origins[t ? 1 : 0]);
+      build_store<TriangleKind>(input.layer(t), scene.counts.mesh_triangles, mesh.stores[t ? 1 : 0],
+                                origins[t ? 1 : 0]);
     }
     SceneBuildOptions always = options;
     always.acceleration = Acceleration::bvh;
     always.bvh_min_primitives = 1;
-    index_stores(input, build_triangles, always, mesh.stores[0], origins[0], mesh.stores[1], origins[1], mesh.bvh);
+    index_stores(input, always, mesh.stores[0], origins[0], mesh.stores[1], origins[1], mesh.bvh);
     mesh.stores[0].id_base = 0;
     mesh.stores[1].id_base = static_cast<std::int32_t>(mesh.stores[0].count);
     for (const TriangleSoA& store : mesh.stores) {
@@ -138,34 +141,23 @@ void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, O
   scene.instance_bvh = build_instances(placements, scene.meshes, first_id, top, scene.instances);
 }
 
-template <class Vec>
-std::size_t bytes_of(const Vec& v) {
-  return v.capacity() * sizeof(typename Vec::value_type);
-}
-
 }  // namespace
+
+std::size_t GeometryLayer::primitive_count() const {
+  std::size_t count = 0;
+  kinds.for_each([&](auto, const auto& k) { count += k.store.count; });
+  return count;
+}
 
 std::size_t GeometryLayer::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const AlignedFloats* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r2, &spheres.inv_r, &cones.bx,
-                                 &cones.by, &cones.bz, &cones.ax, &cones.ay, &cones.az, &cones.height, &cones.radius0, &cones.slope, &cones.facing}) {
-    bytes += bytes_of(*c);
-  }
-  bytes += planes.memory_bytes();  // with its source list
-  for (AlignedFloats* c : const_cast<TriangleSoA&>(triangles).columns()) bytes += bytes_of(*c);
-  bytes += polygons.memory_bytes();  // with its source list
-  for (const auto* s : {&spheres.source, &triangles.source, &cones.source}) {
-    bytes += bytes_of(*s);
-  }
-  for (const auto* o : {&sphere_origin, &plane_origin, &triangle_origin, &polygon_origin, &cone_origin}) {
-    bytes += bytes_of(*o);
-  }
+  kinds.for_each([&](auto, const auto& k) { bytes += k.store.memory_bytes() + bytes_of(k.origins); });
   return bytes;
 }
 
 std::size_t Scene::acceleration_bytes() const {
-  std::size_t bytes = sphere_bvh.memory_bytes() + triangle_bvh.memory_bytes() + polygon_bvh.memory_bytes() +
-                      cone_bvh.memory_bytes() + instance_bvh.memory_bytes();
+  std::size_t bytes = instance_bvh.memory_bytes();
+  for (const Bvh& bvh : kind_bvhs) bytes += bvh.memory_bytes();
   for (const InstancedMesh& m : meshes) bytes += m.bvh.memory_bytes();
   return bytes;
 }
@@ -183,24 +175,23 @@ PrimitiveRef Scene::locate(std::int32_t id) const {
     }
     throw std::out_of_range("no primitive with hit id " + std::to_string(id));
   }
+  std::optional<PrimitiveRef> found;
   for (bool t : {false, true}) {
-    const GeometryLayer& g = layer(t);
-    const std::pair<std::int32_t, std::size_t> ranges[] = {
-        {g.spheres.id_base, g.spheres.count},     {g.planes.id_base, g.planes.count},
-        {g.triangles.id_base, g.triangles.count}, {g.polygons.id_base, g.polygons.count},
-        {g.cones.id_base, g.cones.count}};
-    for (int k = 0; k < 5; ++k) {
-      const auto [base, count] = ranges[k];
+    layer(t).kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
+      if (found) return;  // the first kind whose range holds the id
+      const std::int32_t base = k.store.id_base;
+      const std::size_t count = k.store.count;
       if (id >= base && std::size_t(id - base) < count) {
-        return {t, static_cast<PrimitiveKind>(k), static_cast<std::uint32_t>(id - base)};
+        found = PrimitiveRef{t, K::tag, static_cast<std::uint32_t>(id - base)};
       }
-    }
+    });
+    if (found) return *found;
   }
   throw std::out_of_range("no primitive with hit id " + std::to_string(id));
 }
 
 const TriangleSoA& Scene::triangles_of(const PrimitiveRef& ref) const {
-  if (ref.instance < 0) return layer(ref.transmissive).triangles;
+  if (ref.instance < 0) return layer(ref.transmissive).store<TriangleKind>();
   return meshes[instances.mesh[std::size_t(ref.instance)]].stores[ref.transmissive ? 1 : 0];
 }
 
@@ -223,14 +214,9 @@ const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
     return mesh_origins[instances.mesh[std::size_t(ref.instance)]].of_store[ref.transmissive ? 1 : 0][ref.local];
   }
   const GeometryLayer& g = layer(ref.transmissive);
-  switch (ref.kind) {
-    case PrimitiveKind::sphere: return g.sphere_origin[ref.local];
-    case PrimitiveKind::plane: return g.plane_origin[ref.local];
-    case PrimitiveKind::triangle: return g.triangle_origin[ref.local];
-    case PrimitiveKind::polygon: return g.polygon_origin[ref.local];
-    case PrimitiveKind::cone: break;
-  }
-  return g.cone_origin[ref.local];
+  return visit_kind(ref.kind, [&](auto k) -> const PrimitiveOrigin& {
+    return g.origins<decltype(k)>()[ref.local];
+  });
 }
 
 std::size_t Scene::memory_bytes() const {
@@ -247,53 +233,29 @@ std::size_t Scene::memory_bytes() const {
 
 namespace {
 
-// The scene's primitives of every directly stored kind, split by layer
-// (patches with normals become triangles), with their origins.
-struct SceneInputs {
-  KindInput<SphereDesc> spheres;
-  KindInput<PlaneDesc> planes;
-  KindInput<TriangleDesc> triangles;
-  KindInput<PolygonDesc> polygons;
-  KindInput<ConeDesc> cones;
-};
+// The scene's primitives of every kind, split by layer (patches with
+// normals become triangles), with their origins.
+using SceneInputs = PerKind<KindInput>;
 
-// One directly stored kind: its input, builder, build report, store and
-// origins in a layer, and BVH (nullptr for planes, which are always scanned).
-template <class Input, class Builder, class Store, class Bvhs>
-struct StoredKind {
-  Input& input;
-  Builder builder;
-  BuildReport& report;
-  Store GeometryLayer::*store;
-  std::vector<PrimitiveOrigin> GeometryLayer::*origins;
-  Bvhs bvh;
-};
-template <class Input, class Builder, class Store, class Bvhs>
-StoredKind(Input&, Builder, BuildReport&, Store GeometryLayer::*, std::vector<PrimitiveOrigin> GeometryLayer::*, Bvhs)
-    -> StoredKind<Input, Builder, Store, Bvhs>;
-
-// The one list of directly stored kinds: fn(StoredKind) for each. Stores
-// are numbered and tabulated in this order.
-template <class Fn>
-void for_each_stored_kind(SceneInputs& inputs, Scene& scene, Fn fn) {
-  SceneCounts& n = scene.counts;
-  using G = GeometryLayer;
-  fn(StoredKind{inputs.spheres, build_spheres, n.spheres, &G::spheres, &G::sphere_origin, &scene.sphere_bvh});
-  fn(StoredKind{inputs.planes, build_planes, n.planes, &G::planes, &G::plane_origin, nullptr});
-  fn(StoredKind{inputs.triangles, build_triangles, n.triangles, &G::triangles, &G::triangle_origin,
-                &scene.triangle_bvh});
-  fn(StoredKind{inputs.polygons, build_polygons, n.polygons, &G::polygons, &G::polygon_origin, &scene.polygon_bvh});
-  fn(StoredKind{inputs.cones, build_cones, n.cones, &G::cones, &G::cone_origin, &scene.cone_bvh});
-}
-
-// Appends each item's description to its material's layer of input.
-template <class Item, class Desc, class OriginOf, class IsTransmissive>
-void split_by_layer(const std::vector<Item>& items, Desc Item::*desc, PrimitiveKind kind, OriginOf origin_of,
-                    IsTransmissive is_transmissive, KindInput<Desc>& input) {
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    const PrimitiveOrigin o = origin_of(items[i].material, kind, i);
-    auto& in = input.layer(is_transmissive(items[i].material));
-    in.descs.push_back(items[i].*desc);
+// Appends each entry's description to its material's layer of input.
+template <class K, class OriginOf, class IsTransmissive>
+void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is_transmissive, SceneInputs& inputs) {
+  const auto& entries = desc.*SceneEntries<K>::of;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const auto& entry = entries[i];
+    const PrimitiveOrigin o = origin_of(entry.material, K::tag, i);
+    if constexpr (std::is_same_v<K, PolygonKind>) {
+      if (!entry.normals.empty()) {  // an NFF patch: triangles with normals, kind polygon
+        auto& in = inputs.of<TriangleKind>().layer(is_transmissive(entry.material));
+        for (TriangleDesc& t : patch_triangles(entry)) {
+          in.descs.push_back(std::move(t));
+          in.origins.push_back(o);
+        }
+        continue;
+      }
+    }
+    auto& in = inputs.of<K>().layer(is_transmissive(entry.material));
+    in.descs.push_back(entry.*SceneEntries<K>::desc);
     in.origins.push_back(o);
   }
 }
@@ -301,26 +263,7 @@ void split_by_layer(const std::vector<Item>& items, Desc Item::*desc, PrimitiveK
 template <class OriginOf, class IsTransmissive>
 SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is_transmissive) {
   SceneInputs inputs;
-  split_by_layer(desc.spheres, &SceneSphere::sphere, PrimitiveKind::sphere, origin_of, is_transmissive, inputs.spheres);
-  split_by_layer(desc.planes, &ScenePlane::plane, PrimitiveKind::plane, origin_of, is_transmissive, inputs.planes);
-  split_by_layer(desc.triangles, &SceneTriangle::triangle, PrimitiveKind::triangle, origin_of, is_transmissive,
-                 inputs.triangles);
-  for (std::size_t i = 0; i < desc.polygons.size(); ++i) {
-    const ScenePolygon& p = desc.polygons[i];
-    const PrimitiveOrigin o = origin_of(p.material, PrimitiveKind::polygon, i);
-    if (!p.normals.empty()) {
-      auto& in = inputs.triangles.layer(is_transmissive(p.material));
-      for (TriangleDesc& t : patch_triangles(p)) {
-        in.descs.push_back(std::move(t));
-        in.origins.push_back(o);
-      }
-      continue;
-    }
-    auto& in = inputs.polygons.layer(is_transmissive(p.material));
-    in.descs.push_back(p.polygon);
-    in.origins.push_back(o);
-  }
-  split_by_layer(desc.cones, &SceneCone::cone, PrimitiveKind::cone, origin_of, is_transmissive, inputs.cones);
+  for_each_kind([&]<class K>(K) { split_by_layer<K>(desc, origin_of, is_transmissive, inputs); });
   return inputs;
 }
 
@@ -328,32 +271,32 @@ SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissi
 // order (opaque layer first), and the per-id material tables. Returns the
 // next free id.
 std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene) {
-  GeometryLayer& o = scene.opaque;
-  GeometryLayer& t = scene.transmissive;
-  for_each_stored_kind(inputs, scene, [&](const auto& k) {
-    build_store(k.input.layer(false), k.builder, k.report, o.*k.store, o.*k.origins);
-    build_store(k.input.layer(true), k.builder, k.report, t.*k.store, t.*k.origins);
-    if constexpr (!std::is_null_pointer_v<decltype(k.bvh)>) {
-      index_stores(k.input, k.builder, options, o.*k.store, o.*k.origins, t.*k.store, t.*k.origins, *k.bvh);
+  for_each_kind([&]<class K>(K) {
+    const KindInput<K>& input = inputs.of<K>();
+    KindStore<K>& o = scene.opaque.kinds.of<K>();
+    KindStore<K>& t = scene.transmissive.kinds.of<K>();
+    BuildReport& report = scene.counts.kinds[kind_index(K::tag)];
+    build_store<K>(input.opaque, report, o.store, o.origins);
+    build_store<K>(input.transmissive, report, t.store, t.origins);
+    if constexpr (K::bounded) {
+      index_stores(input, options, o.store, o.origins, t.store, t.origins, scene.kind_bvhs[kind_index(K::tag)]);
     }
   });
   std::int32_t next_id = 0;
-  for (GeometryLayer* g : {&o, &t}) {
-    for_each_stored_kind(inputs, scene, [&](const auto& k) {
-      (g->*k.store).id_base = next_id;
-      next_id += static_cast<std::int32_t>((g->*k.store).count);
+  for (GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    g->kinds.for_each([&](auto, auto& k) {
+      k.store.id_base = next_id;
+      next_id += static_cast<std::int32_t>(k.store.count);
     });
   }
   scene.material_of_id.resize(scene.primitive_count());
   scene.plain_of_id.resize(scene.primitive_count());
-  for (const GeometryLayer* g : {&o, &t}) {
-    for_each_stored_kind(inputs, scene, [&](const auto& k) {
-      const auto& store = g->*k.store;
+  for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
+    g->kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
+      const auto& store = k.store;
       bool interpolated = false;
-      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(store)>, TriangleSoA>) {
-        interpolated = store.has_normals();
-      }
-      const std::vector<PrimitiveOrigin>& origins = g->*k.origins;
+      if constexpr (std::is_same_v<K, TriangleKind>) interpolated = store.has_normals();
+      const std::vector<PrimitiveOrigin>& origins = k.origins;
       for (std::size_t i = 0; i < origins.size(); ++i) {
         const std::size_t id = std::size_t(store.id_base) + i;
         scene.material_of_id[id] = origins[i].material;

@@ -14,13 +14,8 @@
 #include <vector>
 
 #include "geometry/bvh.h"
-#include "geometry/cone_soa.h"
 #include "geometry/instances.h"
-#include "geometry/plane_soa.h"
-#include "geometry/polygon_soa.h"
-#include "geometry/sphere_soa.h"
-#include "geometry/triangle_soa.h"
-#include "scene/primitive_kind.h"
+#include "geometry/kinds.h"
 #include "scene/scene_desc.h"
 #include "scene/texture.h"
 
@@ -34,18 +29,31 @@ struct PrimitiveOrigin {
   std::uint32_t index;
 };
 
-struct GeometryLayer {
-  SphereSoA spheres;
-  PlaneSoA planes;
-  TriangleSoA triangles;
-  PolygonSoA polygons;
-  ConeSoA cones;
-  // Per built primitive, in store order.
-  std::vector<PrimitiveOrigin> sphere_origin, plane_origin, triangle_origin, polygon_origin, cone_origin;
+// One kind's store in a layer and the origin of each built primitive, in
+// store order.
+template <class K>
+struct KindStore {
+  typename K::Store store;
+  std::vector<PrimitiveOrigin> origins;
+};
 
-  std::size_t primitive_count() const {
-    return spheres.count + planes.count + triangles.count + polygons.count + cones.count;
+// A layer's store of every kind (geometry/kinds.h).
+struct GeometryLayer {
+  PerKind<KindStore> kinds;
+
+  template <class K>
+  typename K::Store& store() {
+    return kinds.of<K>().store;
   }
+  template <class K>
+  const typename K::Store& store() const {
+    return kinds.of<K>().store;
+  }
+  template <class K>
+  const std::vector<PrimitiveOrigin>& origins() const {
+    return kinds.of<K>().origins;
+  }
+  std::size_t primitive_count() const;
   std::size_t memory_bytes() const;  // stores and origins
 };
 
@@ -82,7 +90,7 @@ struct SceneBuildOptions {
 };
 
 struct SceneCounts {
-  BuildReport spheres, planes, triangles, polygons, cones;
+  std::array<BuildReport, kKindCount> kinds;  // by kind_index
   BuildReport mesh_triangles;  // of the instanced meshes, each counted once
   std::size_t instances = 0;   // placed (instances of meshes left empty are dropped)
 };
@@ -95,9 +103,10 @@ struct Scene {
   std::vector<MaterialDesc> materials;
   std::vector<Texture> textures;
   GeometryLayer opaque, transmissive;
-  // Per bounded kind, over both layers' stores (store 0 opaque, store 1
-  // transmissive); empty when the kind is scanned (see SceneBuildOptions).
-  Bvh sphere_bvh, triangle_bvh, polygon_bvh, cone_bvh;
+  // Per kind (by kind_index), over both layers' stores (store 0 opaque,
+  // store 1 transmissive); empty when the kind is scanned (unbounded kinds
+  // always are; see SceneBuildOptions).
+  std::array<Bvh, kKindCount> kind_bvhs;
   SceneCounts counts;
   // Instancing (geometry/instances.h): the meshes stored once, the
   // placements and the top-level BVH over them; their hit ids follow every
@@ -114,6 +123,10 @@ struct Scene {
   std::vector<std::uint8_t> plain_of_id;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
 
+  template <class K>
+  const Bvh& bvh() const {
+    return kind_bvhs[kind_index(K::tag)];
+  }
   PrimitiveRef locate(std::int32_t id) const;
   bool is_plain(std::int32_t id) const {
     return std::size_t(id) < plain_of_id.size() && plain_of_id[std::size_t(id)] != 0;

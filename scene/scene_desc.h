@@ -166,4 +166,39 @@ struct SceneDesc {
   std::vector<std::string> warnings;
 };
 
+// Each kind's entries in a SceneDesc and the description in an entry, for
+// code that iterates the list of kinds (geometry/kinds.h).
+struct SphereKind;
+struct PlaneKind;
+struct TriangleKind;
+struct PolygonKind;
+struct ConeKind;
+template <class K>
+struct SceneEntries;
+template <>
+struct SceneEntries<SphereKind> {
+  static constexpr auto of = &SceneDesc::spheres;
+  static constexpr auto desc = &SceneSphere::sphere;
+};
+template <>
+struct SceneEntries<PlaneKind> {
+  static constexpr auto of = &SceneDesc::planes;
+  static constexpr auto desc = &ScenePlane::plane;
+};
+template <>
+struct SceneEntries<TriangleKind> {
+  static constexpr auto of = &SceneDesc::triangles;
+  static constexpr auto desc = &SceneTriangle::triangle;
+};
+template <>
+struct SceneEntries<PolygonKind> {
+  static constexpr auto of = &SceneDesc::polygons;
+  static constexpr auto desc = &ScenePolygon::polygon;
+};
+template <>
+struct SceneEntries<ConeKind> {
+  static constexpr auto of = &SceneDesc::cones;
+  static constexpr auto desc = &SceneCone::cone;
+};
+
 }  // namespace quiver

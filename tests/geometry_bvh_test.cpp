@@ -16,11 +16,8 @@
 
 #include "geometry/bvh.h"
 #include "geometry/bvh_store.h"
-#include "geometry/cone_streams.h"
-#include "geometry/polygon_streams.h"
+#include "geometry/kind_streams.h"
 #include "geometry/primitive_bounds.h"
-#include "geometry/sphere_streams.h"
-#include "geometry/triangle_streams.h"
 #include "tests/support/kernel_checks.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/plane_streams.h"
+#include "geometry/kind_streams.h"
 #include "tests/support/kernel_checks.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"

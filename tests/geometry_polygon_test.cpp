@@ -8,8 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/polygon_streams.h"
-#include "geometry/triangle_streams.h"
+#include "geometry/kind_streams.h"
 #include "tests/support/kernel_checks.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/sphere_streams.h"
+#include "geometry/kind_streams.h"
 #include "tests/support/kernel_checks.h"
 #include "tests/support/ray_sampling.h"
 #include "tests/support/study_streams.h"

@@ -98,7 +98,7 @@ TEST(SceneIntersector, EveryNodeWidthGivesTheScansHitsInEveryUnit) {
     indexed.bvh_min_primitives = 1;
     indexed.bvh.width = width;
     const Scene scene = build_scene(desc, indexed);
-    ASSERT_FALSE(scene.triangle_bvh.empty());
+    ASSERT_FALSE(scene.bvh<TriangleKind>().empty());
     ASSERT_FALSE(scene.instance_bvh.empty());
     for (const KernelUnit unit : kKernelUnits) {
       if (!kernel_unit_supported(unit)) continue;  // this CPU lacks it: the others still run
@@ -143,17 +143,18 @@ TEST(SceneIntersector, TheProductWalksItsNodeWidthOnly) {
 }
 
 TEST(SceneIntersector, TheProductsKindsRefuseTheStudysMethods) {
-  EXPECT_THROW(sphere_streams<KernelUnit::scalar>(SphereMethod::geometric), std::invalid_argument);
-  EXPECT_THROW(sphere_bvh_streams<KernelUnit::scalar>(SphereMethod::geometric), std::invalid_argument);
-  EXPECT_THROW(triangle_streams<KernelUnit::scalar>(TriangleMethod::moller_trumbore), std::invalid_argument);
-  EXPECT_THROW(triangle_bvh_streams<KernelUnit::scalar>(TriangleMethod::moller_trumbore), std::invalid_argument);
-  EXPECT_THROW(plane_streams<KernelUnit::scalar>(PlaneMethod::seed), std::invalid_argument);
-  // The product runs packets: no scan orientation, one node width.
-  const KernelStreams<TriangleSoA> product = triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight);
-  EXPECT_NE(product.closest_packets, nullptr);
-  EXPECT_EQ(product.closest_scan, nullptr);
-  const BvhStreams<TriangleSoA> walks = triangle_bvh_streams<KernelUnit::scalar>(TriangleMethod::watertight);
-  for (int width : kStudyNodeWidths) EXPECT_EQ(walks.walks(width), width == kProductNodeWidth) << width;
+  constexpr KernelUnit U = KernelUnit::scalar;
+  EXPECT_THROW((product_streams_of<U, SphereKind>(SphereMethod::geometric)), std::invalid_argument);
+  EXPECT_THROW((product_streams_of<U, TriangleKind>(TriangleMethod::moller_trumbore)), std::invalid_argument);
+  EXPECT_THROW((product_streams_of<U, PlaneKind>(PlaneMethod::seed)), std::invalid_argument);
+  // The product runs packets: no scan orientation, one node width; no walks for unbounded kinds.
+  const ProductStreams product = product_kind_streams<U>(KindMethods{});
+  for_each_kind([&]<class K>(K) {
+    const KindStreams<K>& streams = product.of<K>();
+    EXPECT_NE(streams.scan.closest_packets, nullptr) << K::name;
+    EXPECT_EQ(streams.scan.closest_scan, nullptr) << K::name;
+    for (int width : kStudyNodeWidths) EXPECT_EQ(streams.tree.walks(width), K::bounded && width == kProductNodeWidth) << K::name << " " << width;
+  });
 }
 
 }  // namespace

@@ -52,11 +52,11 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
   }
   const Scene scene = build_scene(desc, {});
   for (const GeometryLayer* layer : {&scene.opaque, &scene.transmissive}) {
-    EXPECT_EQ(layer->cones.count, 2u);
-    expect_held(scene, layer->spheres);
-    expect_held(scene, layer->triangles);
-    expect_held(scene, layer->polygons);
-    expect_held(scene, layer->cones);
+    EXPECT_EQ(layer->store<ConeKind>().count, 2u);
+    expect_held(scene, layer->store<SphereKind>());
+    expect_held(scene, layer->store<TriangleKind>());
+    expect_held(scene, layer->store<PolygonKind>());
+    expect_held(scene, layer->store<ConeKind>());
   }
   // A scene of one cone alone is bounded by it.
   SceneDesc cone_alone;
@@ -64,7 +64,7 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
   cone_alone.materials = {MaterialDesc{}};
   cone_alone.cones.push_back({{{5.f, 5.f, 5.f}, 1.f, {5.f, 8.f, 5.f}, 1.f}, 0});
   const Scene alone = build_scene(cone_alone, {});
-  expect_held(alone, alone.opaque.cones);
+  expect_held(alone, alone.opaque.store<ConeKind>());
   EXPECT_GE(alone.bounds_min.x, 3.f);
 }
 

@@ -1,6 +1,6 @@
 // The intersector methods the accuracy study compares, one primitive store
 // per case, and three ways to run a method on it: a kernel unit's packet
-// stream (float, width 1, 4 or 8; geometry/*_streams.h), the same kernel
+// stream (float, width 1, 4 or 8; geometry/kind_streams.h), the same kernel
 // template at double precision (bench/accuracy/lane64.h), and the oracle
 // (bench/accuracy/oracle.h).
 #pragma once
@@ -11,11 +11,7 @@
 #include <vector>
 
 #include "bench/accuracy/oracle.h"
-#include "geometry/cone_streams.h"
-#include "geometry/plane_streams.h"
-#include "geometry/polygon_streams.h"
-#include "geometry/sphere_streams.h"
-#include "geometry/triangle_streams.h"
+#include "geometry/kind_streams.h"
 
 namespace quiver::accuracy {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/plane_streams.h"
+#include "geometry/kind_streams.h"
 
 int main() {
   quiver::BuildReport report;
@@ -15,7 +15,7 @@ int main() {
   quiver::HitSoA hits(rays);
   const quiver::KernelUnit unit = quiver::kernel_unit_for(quiver::isa_from_environment());
   const auto streams = quiver::with_kernel_unit(
-      unit, [](auto u) { return quiver::plane_streams<decltype(u)::value>(quiver::PlaneMethod::anchored); });
+      unit, [](auto u) { return quiver::product_streams_of<decltype(u)::value, quiver::PlaneKind>(quiver::PlaneMethod::anchored).scan; });
   streams.closest_packets(rays, planes, hits);
   std::printf("%s unit: hit id %d at t %g\n", std::string(quiver::kernel_unit_name(unit)).c_str(), hits.id[0],
               double(hits.t[0]));

@@ -16,12 +16,12 @@ KernelStreams<PlaneSoA> study_plane_streams(PlaneMethod method) {
 
 template <KernelUnit U>
 KernelStreams<PolygonSoA> study_polygon_streams(PolygonMethod method) {
-  return polygon_streams<U>(method);  // packets only: no scan orientation
+  return product_streams_of<U, PolygonKind>(method).scan;  // packets only: no scan orientation
 }
 
 template <KernelUnit U>
 BvhStreams<PolygonSoA> study_polygon_bvh_streams(PolygonMethod method) {
-  return with_study_widths<U, PolygonCrossing>(polygon_bvh_streams<U>(method));
+  return with_study_widths<U, PolygonCrossing>(product_streams_of<U, PolygonKind>(method).tree);
 }
 
 template <KernelUnit U>
@@ -34,7 +34,7 @@ KernelStreams<ConeSoA> study_cone_streams(ConeMethod method) {
 
 template <KernelUnit U>
 BvhStreams<ConeSoA> study_cone_bvh_streams(ConeMethod method) {
-  return with_study_widths<U, ConeQuadric>(cone_bvh_streams<U>(method));
+  return with_study_widths<U, ConeQuadric>(product_streams_of<U, ConeKind>(method).tree);
 }
 
 template <KernelUnit U>

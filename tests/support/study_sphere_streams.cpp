@@ -16,8 +16,8 @@ KernelStreams<SphereSoA> study_sphere_streams(SphereMethod method) {
 template <KernelUnit U>
 BvhStreams<SphereSoA> study_sphere_bvh_streams(SphereMethod method) {
   if (method == SphereMethod::geometric) return make_bvh_streams<U, SphereGeometric, SphereSoA>();
-  if (method == SphereMethod::algebraic) return with_study_widths<U, SphereAlgebraic>(sphere_bvh_streams<U>(method));
-  return with_study_widths<U, SphereRobust>(sphere_bvh_streams<U>(method));
+  if (method == SphereMethod::algebraic) return with_study_widths<U, SphereAlgebraic>(product_streams_of<U, SphereKind>(method).tree);
+  return with_study_widths<U, SphereRobust>(product_streams_of<U, SphereKind>(method).tree);
 }
 
 template KernelStreams<SphereSoA> study_sphere_streams<kThisUnit>(SphereMethod);

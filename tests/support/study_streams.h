@@ -1,17 +1,13 @@
 // The study's streams: every method of every kind, in both orientations
 // (packets and, where a kind has it, scan), and BVH walks of node widths 2,
 // 4 and 8, for the tests, benchmarks and accuracy study that compare them.
-// The product (geometry/<kind>_streams.h) builds only what quiver runs;
+// The product (geometry/kind_streams.h) builds only what quiver runs;
 // these return the product's own function pointers where they coincide.
 // Non-product methods walk BVHs of kProductNodeWidth only.
 #pragma once
 
-#include "geometry/cone_streams.h"
+#include "geometry/kind_streams.h"
 #include "geometry/instance_streams.h"
-#include "geometry/plane_streams.h"
-#include "geometry/polygon_streams.h"
-#include "geometry/sphere_streams.h"
-#include "geometry/triangle_streams.h"
 #include "integrator/scene_intersector.h"
 
 namespace quiver {

@@ -15,7 +15,7 @@ KernelStreams<TriangleSoA> study_triangle_streams(TriangleMethod method) {
 template <KernelUnit U>
 BvhStreams<TriangleSoA> study_triangle_bvh_streams(TriangleMethod method) {
   if (method == TriangleMethod::moller_trumbore) return make_bvh_streams<U, TriangleMollerTrumbore, TriangleSoA>();
-  return with_study_widths<U, TriangleWatertight>(triangle_bvh_streams<U>(method));
+  return with_study_widths<U, TriangleWatertight>(product_streams_of<U, TriangleKind>(method).tree);
 }
 
 template KernelStreams<TriangleSoA> study_triangle_streams<kThisUnit>(TriangleMethod);
