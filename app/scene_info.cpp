@@ -15,7 +15,7 @@ using ByKind = std::array<T, kKindCount>;
 
 ByKind<std::string_view> kind_plurals() {
   ByKind<std::string_view> names;
-  for_each_kind([&]<class K>(K) { names[kind_index(K::tag)] = K::plural; });
+  for_each_kind([&]<class K>(K) { names[kind_index(kind_tag<K>)] = K::plural; });
   return names;
 }
 
@@ -72,13 +72,13 @@ std::string_view wrap_name(WrapMode wrap) {
 
 ByKind<std::size_t> read_counts(const SceneDesc& desc) {
   ByKind<std::size_t> counts;
-  for_each_kind([&]<class K>(K) { counts[kind_index(K::tag)] = (desc.*SceneEntries<K>::of).size(); });
+  for_each_kind([&]<class K>(K) { counts[kind_index(kind_tag<K>)] = (desc.*SceneEntries<K>::of).size(); });
   return counts;
 }
 
 ByKind<std::size_t> layer_counts(const GeometryLayer& g) {
   ByKind<std::size_t> counts;
-  g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) { counts[kind_index(K::tag)] = k.store.count; });
+  g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) { counts[kind_index(kind_tag<K>)] = k.store.count; });
   return counts;
 }
 
@@ -119,7 +119,7 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
   std::size_t patches = 0, patch_triangles = 0;
   for (const ScenePolygon& p : desc.polygons) patches += p.normals.empty() ? 0 : 1;
   for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    for (const PrimitiveOrigin& o : g->origins<TriangleKind>()) patch_triangles += o.kind == PrimitiveKind::polygon ? 1 : 0;
+    for (const PrimitiveOrigin& o : g->origins<TriangleKind>()) patch_triangles += o.kind == kind_tag<PolygonKind> ? 1 : 0;
   }
   if (patches > 0) {
     out << "  polygons read with vertex normals: " << patches << ", built as " << patch_triangles
@@ -267,7 +267,7 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
 std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& g) {
   std::array<std::size_t, kKindCount> bytes{};
   g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
-    bytes[kind_index(K::tag)] = k.store.memory_bytes() + bytes_of(k.origins);
+    bytes[kind_index(kind_tag<K>)] = k.store.memory_bytes() + bytes_of(k.origins);
   });
   return bytes;
 }

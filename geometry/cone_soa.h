@@ -9,7 +9,6 @@
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
-#include "geometry/primitive_kind.h"
 #include "geometry/cone.h"
 #include "geometry/soa.h"
 
@@ -46,7 +45,6 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report);
 
 // The cone in the scene's list of kinds (geometry/kinds.h).
 struct ConeKind {
-  static constexpr PrimitiveKind tag = PrimitiveKind::cone;
   static constexpr std::string_view name = "cone", plural = "cones";
   static constexpr bool bounded = true;
   using Method = ConeMethod;

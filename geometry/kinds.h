@@ -1,10 +1,11 @@
 // The one list of primitive kinds a scene stores. Each kind is described
-// once, next to its store (geometry/<kind>_soa.h): a struct with its tag
-// (PrimitiveKind), name and plural, whether it is bounded (BVH-indexed), its
+// once, next to its store (geometry/<kind>_soa.h): a struct with its name
+// and plural, whether it is bounded (BVH-indexed), its
 // method enum and the product's method, its description, store and
 // builder. Whatever is done per kind (building the stores, numbering hits,
 // the intersector's queries, surface mapping, reports) iterates this list
-// or dispatches on a tag through it; adding a kind adds one entry here.
+// or dispatches on a tag (its position here) through it; adding a kind adds
+// one entry here.
 #pragma once
 
 #include <array>
@@ -31,12 +32,16 @@ struct KindList {
 using PrimitiveKinds = KindList<SphereKind, PlaneKind, TriangleKind, PolygonKind, ConeKind>;
 inline constexpr std::size_t kKindCount = PrimitiveKinds::size;
 
-template <class... Kinds>
-constexpr bool tags_follow_the_list(KindList<Kinds...>) {
-  std::size_t i = 0;
-  return ((static_cast<std::size_t>(Kinds::tag) == i++) && ...);
+template <class K, class... Kinds>
+constexpr std::size_t position_in(KindList<Kinds...>) {
+  std::size_t i = 0, at = sizeof...(Kinds);
+  ((std::is_same_v<K, Kinds> ? (at = i, ++i) : ++i), ...);
+  return at;
 }
-static_assert(tags_follow_the_list(PrimitiveKinds{}), "PrimitiveKind values must number the list from 0");
+
+// A kind's tag: its position in the list.
+template <class K>
+inline constexpr PrimitiveKind kind_tag = static_cast<PrimitiveKind>(position_in<K>(PrimitiveKinds{}));
 
 // Index of a kind's entries in per-kind arrays.
 constexpr std::size_t kind_index(PrimitiveKind tag) { return static_cast<std::size_t>(tag); }
@@ -52,7 +57,7 @@ decltype(auto) visit_kind_in(PrimitiveKind tag, Fn& fn, KindList<K, Rest...>) {
   if constexpr (sizeof...(Rest) == 0) {
     return fn(K{});  // the last kind: the tag is its
   } else {
-    if (tag == K::tag) return fn(K{});
+    if (tag == kind_tag<K>) return fn(K{});
     return visit_kind_in(tag, fn, KindList<Rest...>{});
   }
 }

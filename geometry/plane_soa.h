@@ -9,7 +9,6 @@
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
-#include "geometry/primitive_kind.h"
 #include "geometry/plane.h"
 #include "geometry/soa.h"
 
@@ -44,7 +43,6 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report);
 // The plane in the scene's list of kinds (geometry/kinds.h): unbounded, so
 // scanned, never in a BVH.
 struct PlaneKind {
-  static constexpr PrimitiveKind tag = PrimitiveKind::plane;
   static constexpr std::string_view name = "plane", plural = "planes";
   static constexpr bool bounded = false;
   using Method = PlaneMethod;

@@ -16,7 +16,6 @@
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
-#include "geometry/primitive_kind.h"
 #include "geometry/polygon.h"
 #include "geometry/soa.h"
 
@@ -119,7 +118,6 @@ std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& p
 
 // The polygon in the scene's list of kinds (geometry/kinds.h).
 struct PolygonKind {
-  static constexpr PrimitiveKind tag = PrimitiveKind::polygon;
   static constexpr std::string_view name = "polygon", plural = "polygons";
   static constexpr bool bounded = true;
   using Method = PolygonMethod;

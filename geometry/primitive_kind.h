@@ -1,12 +1,13 @@
-// The primitive kinds a scene holds, as hits, AOVs and stats name them.
+// A primitive kind as hits, AOVs and stats name it: its position in the
+// list of kinds (geometry/kinds.h, kind_tag), so the list alone numbers them.
 #pragma once
 
 #include <cstdint>
 
 namespace quiver {
 
-// kNoKind stands for a miss.
-enum class PrimitiveKind : std::int32_t { sphere = 0, plane = 1, triangle = 2, polygon = 3, cone = 4 };
+enum class PrimitiveKind : std::int32_t {};
+// A miss.
 inline constexpr std::int32_t kNoKind = -1;
 
 }  // namespace quiver

@@ -8,7 +8,6 @@
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
-#include "geometry/primitive_kind.h"
 #include "geometry/soa.h"
 #include "geometry/sphere.h"
 
@@ -42,7 +41,6 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
 
 // The sphere in the scene's list of kinds (geometry/kinds.h).
 struct SphereKind {
-  static constexpr PrimitiveKind tag = PrimitiveKind::sphere;
   static constexpr std::string_view name = "sphere", plural = "spheres";
   static constexpr bool bounded = true;
   using Method = SphereMethod;

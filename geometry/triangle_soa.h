@@ -12,7 +12,6 @@
 
 #include "geometry/build_report.h"
 #include "geometry/primitive_desc.h"
-#include "geometry/primitive_kind.h"
 #include "geometry/soa.h"
 #include "geometry/triangle.h"
 
@@ -76,7 +75,6 @@ std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> po
 
 // The triangle in the scene's list of kinds (geometry/kinds.h).
 struct TriangleKind {
-  static constexpr PrimitiveKind tag = PrimitiveKind::triangle;
   static constexpr std::string_view name = "triangle", plural = "triangles";
   static constexpr bool bounded = true;
   using Method = TriangleMethod;

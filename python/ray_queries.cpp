@@ -57,7 +57,7 @@ void intersect_rays(const PythonScene& scene, const RayArrays& rays, const RayIn
       } else {  // an instance's triangle: its index in its mesh
         const PrimitiveRef ref = scene.built.locate(hits.id[i]);
         out.primitive[k] = static_cast<std::int32_t>(scene.built.origin(ref).index);
-        out.kind[k] = static_cast<std::int32_t>(PrimitiveKind::triangle);
+        out.kind[k] = static_cast<std::int32_t>(kind_tag<TriangleKind>);
         out.instance[k] = static_cast<std::int32_t>(scene.built.instances.source[std::size_t(ref.instance)]);
       }
       out.u[k] = hits.u[i];

@@ -105,7 +105,7 @@ void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, O
     const std::vector<SceneTriangle>& triangles = desc.meshes[m].triangles;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
       auto& in = input.layer(is_transmissive(triangles[i].material));
-      in.origins.push_back(origin_of(triangles[i].material, PrimitiveKind::triangle, i));
+      in.origins.push_back(origin_of(triangles[i].material, kind_tag<TriangleKind>, i));
       in.descs.push_back(triangles[i].triangle);
     }
     InstancedMesh& mesh = scene.meshes[m];
@@ -168,9 +168,9 @@ PrimitiveRef Scene::locate(std::int32_t id) const {
     const std::size_t row = std::size_t(std::upper_bound(bases.begin(), bases.end(), id) - bases.begin()) - 1;
     const TriangleSoA& first = meshes[instances.mesh[row]].stores[0];
     const std::uint32_t local = static_cast<std::uint32_t>(id - bases[row]);
-    if (local < first.count) return {false, PrimitiveKind::triangle, local, static_cast<std::int32_t>(row)};
+    if (local < first.count) return {false, kind_tag<TriangleKind>, local, static_cast<std::int32_t>(row)};
     if (local - first.count < meshes[instances.mesh[row]].stores[1].count) {
-      return {true, PrimitiveKind::triangle, static_cast<std::uint32_t>(local - first.count),
+      return {true, kind_tag<TriangleKind>, static_cast<std::uint32_t>(local - first.count),
               static_cast<std::int32_t>(row)};
     }
     throw std::out_of_range("no primitive with hit id " + std::to_string(id));
@@ -182,7 +182,7 @@ PrimitiveRef Scene::locate(std::int32_t id) const {
       const std::int32_t base = k.store.id_base;
       const std::size_t count = k.store.count;
       if (id >= base && std::size_t(id - base) < count) {
-        found = PrimitiveRef{t, K::tag, static_cast<std::uint32_t>(id - base)};
+        found = PrimitiveRef{t, kind_tag<K>, static_cast<std::uint32_t>(id - base)};
       }
     });
     if (found) return *found;
@@ -243,7 +243,7 @@ void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is
   const auto& entries = desc.*SceneEntries<K>::of;
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& entry = entries[i];
-    const PrimitiveOrigin o = origin_of(entry.material, K::tag, i);
+    const PrimitiveOrigin o = origin_of(entry.material, kind_tag<K>, i);
     if constexpr (std::is_same_v<K, PolygonKind>) {
       if (!entry.normals.empty()) {  // an NFF patch: triangles with normals, kind polygon
         auto& in = inputs.of<TriangleKind>().layer(is_transmissive(entry.material));
@@ -275,11 +275,11 @@ std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options,
     const KindInput<K>& input = inputs.of<K>();
     KindStore<K>& o = scene.opaque.kinds.of<K>();
     KindStore<K>& t = scene.transmissive.kinds.of<K>();
-    BuildReport& report = scene.counts.kinds[kind_index(K::tag)];
+    BuildReport& report = scene.counts.kinds[kind_index(kind_tag<K>)];
     build_store<K>(input.opaque, report, o.store, o.origins);
     build_store<K>(input.transmissive, report, t.store, t.origins);
     if constexpr (K::bounded) {
-      index_stores(input, options, o.store, o.origins, t.store, t.origins, scene.kind_bvhs[kind_index(K::tag)]);
+      index_stores(input, options, o.store, o.origins, t.store, t.origins, scene.kind_bvhs[kind_index(kind_tag<K>)]);
     }
   });
   std::int32_t next_id = 0;

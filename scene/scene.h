@@ -125,7 +125,7 @@ struct Scene {
 
   template <class K>
   const Bvh& bvh() const {
-    return kind_bvhs[kind_index(K::tag)];
+    return kind_bvhs[kind_index(kind_tag<K>)];
   }
   PrimitiveRef locate(std::int32_t id) const;
   bool is_plain(std::int32_t id) const {

@@ -65,14 +65,14 @@ TEST(SceneInfo, MemoryByKindAddsUpToEachLayer) {
     EXPECT_EQ(sum, layer->memory_bytes());
   }
   const auto opaque = memory_by_kind(scene.opaque);
-  EXPECT_GT(opaque[std::size_t(PrimitiveKind::sphere)], 0u);
-  EXPECT_GT(opaque[std::size_t(PrimitiveKind::plane)], 0u);
-  EXPECT_GT(opaque[std::size_t(PrimitiveKind::polygon)], 0u);
-  EXPECT_EQ(opaque[std::size_t(PrimitiveKind::cone)], 0u);
+  EXPECT_GT(opaque[std::size_t(kind_tag<SphereKind>)], 0u);
+  EXPECT_GT(opaque[std::size_t(kind_tag<PlaneKind>)], 0u);
+  EXPECT_GT(opaque[std::size_t(kind_tag<PolygonKind>)], 0u);
+  EXPECT_EQ(opaque[std::size_t(kind_tag<ConeKind>)], 0u);
   const auto transmissive = memory_by_kind(scene.transmissive);
-  EXPECT_GT(transmissive[std::size_t(PrimitiveKind::cone)], 0u);
-  EXPECT_GT(transmissive[std::size_t(PrimitiveKind::triangle)], 0u);
-  EXPECT_EQ(transmissive[std::size_t(PrimitiveKind::plane)], 0u);
+  EXPECT_GT(transmissive[std::size_t(kind_tag<ConeKind>)], 0u);
+  EXPECT_GT(transmissive[std::size_t(kind_tag<TriangleKind>)], 0u);
+  EXPECT_EQ(transmissive[std::size_t(kind_tag<PlaneKind>)], 0u);
 }
 
 TEST(SceneInfo, CountRows) {

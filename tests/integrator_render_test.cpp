@@ -527,7 +527,7 @@ TEST(Render, ATexturedQuadTakesTheBilinearRootInsideIt) {
   settings.isa = best_supported_isa();
   settings.trace.filter_textures = false;
   const Framebuffer image = render(build_scene(desc, {}), settings).image;
-  ASSERT_EQ(image.kind[0], static_cast<std::int32_t>(PrimitiveKind::polygon));
+  ASSERT_EQ(image.kind[0], static_cast<std::int32_t>(kind_tag<PolygonKind>));
   EXPECT_NEAR(image.rgb[0], 0.3f, 1e-5f);
 }
 
@@ -598,7 +598,7 @@ TEST(Render, DepthZeroOneTwoDifferOnlyWhereMirrorsAre) {
     const Framebuffer d0 = render_at_depth(desc, 0), d1 = render_at_depth(desc, 1), d2 = render_at_depth(desc, 2);
     std::size_t changed_on_mirror = 0, changed_elsewhere = 0;
     for (std::size_t p = 0; p < d0.pixel_count(); ++p) {
-      const bool mirror = d0.kind[p] == static_cast<std::int32_t>(PrimitiveKind::sphere);
+      const bool mirror = d0.kind[p] == static_cast<std::int32_t>(kind_tag<SphereKind>);
       const bool changed = std::memcmp(&d0.rgb[3 * p], &d1.rgb[3 * p], 3 * sizeof(float)) != 0;
       (mirror ? changed_on_mirror : changed_elsewhere) += changed;
     }
@@ -643,7 +643,7 @@ float centre_red(const SceneDesc& desc) {
   settings.isa = best_supported_isa();
   settings.trace.max_depth = 0;
   const Framebuffer image = render(scene, settings).image;
-  EXPECT_EQ(image.kind[16 * 33 + 16], static_cast<std::int32_t>(PrimitiveKind::plane));
+  EXPECT_EQ(image.kind[16 * 33 + 16], static_cast<std::int32_t>(kind_tag<PlaneKind>));
   return image.rgb[(16 * 33 + 16) * 3];
 }
 
@@ -833,7 +833,7 @@ TEST(Render, TintedGlassFiltersEachCrossingButNotTotalInternalReflections) {
     settings.trace.max_depth = 6;
     const Framebuffer image = render(scene, settings).image;
     const std::size_t centre = 16 * 33 + 16;
-    ASSERT_EQ(image.kind[centre], static_cast<std::int32_t>(PrimitiveKind::polygon));
+    ASSERT_EQ(image.kind[centre], static_cast<std::int32_t>(kind_tag<PolygonKind>));
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(image.rgb[3 * centre + std::size_t(c)], expected[c], 1e-5f) << "channel " << c;
     }
@@ -937,7 +937,7 @@ TEST(Render, NoAcneWhenTheSceneIsScaled) {
     const Framebuffer floor = render(build_scene(scaled(bare, k), {}), bare_settings).image;
     std::size_t floor_pixels = 0, dark = 0;
     for (std::size_t p = 0; p < floor.pixel_count(); ++p) {
-      if (floor.kind[p] != static_cast<std::int32_t>(PrimitiveKind::plane)) continue;
+      if (floor.kind[p] != static_cast<std::int32_t>(kind_tag<PlaneKind>)) continue;
       ++floor_pixels;
       dark += floor.rgb[3 * p] < 0.01f;
     }
