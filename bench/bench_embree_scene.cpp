@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/polygon_soa.h"
+#include "geometry/kinds/polygon.h"
 
 namespace quiver::bench {
 

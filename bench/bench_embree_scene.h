@@ -3,7 +3,7 @@
 // geometry (x, y, z, r); triangles (also NFF `pp` patches, which quiver
 // stores as triangles) -> one RTC_GEOMETRY_TYPE_TRIANGLE mesh, 3 vertices per
 // triangle (quiver's TriangleSoA is unshared too); polygons -> the same mesh,
-// ear-clipped by quiver's own triangulate_polygon (geometry/polygon_soa.h);
+// ear-clipped by quiver's own triangulate_polygon (geometry/kinds/polygon.h);
 // infinite planes and cones have no Embree counterpart here and are counted
 // as skipped (the benchmark warns: hit counts then cannot agree). Only the
 // primitives quiver's builders kept are passed on. Memory is what Embree's

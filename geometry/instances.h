@@ -17,7 +17,7 @@
 #include "geometry/affine_transform.h"
 #include "geometry/box.h"
 #include "geometry/bvh.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/kinds/triangle.h"
 
 namespace quiver {
 

@@ -1,5 +1,5 @@
 // The one list of primitive kinds a scene stores. Each kind is described
-// once, next to its store (geometry/<kind>_soa.h): a struct with its name
+// once, next to its store (geometry/kinds/<kind>.h): a struct with its name
 // and plural, whether it is bounded (BVH-indexed), its
 // method enum and the product's method, its description, store and
 // builder. Whatever is done per kind (building the stores, numbering hits,
@@ -14,12 +14,12 @@
 #include <type_traits>
 #include <utility>
 
-#include "geometry/cone_soa.h"
-#include "geometry/plane_soa.h"
-#include "geometry/polygon_soa.h"
+#include "geometry/kinds/cone.h"
+#include "geometry/kinds/plane.h"
+#include "geometry/kinds/polygon.h"
 #include "geometry/primitive_kind.h"
-#include "geometry/sphere_soa.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/kinds/sphere.h"
+#include "geometry/kinds/triangle.h"
 
 namespace quiver {
 

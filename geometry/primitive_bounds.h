@@ -1,25 +1,18 @@
-// Conservative axis-aligned boxes of stored primitives, one function per
-// kind: the surface the kernels intersect, as stored (a sphere's r^2, a
-// polygon's projected vertices on its stored plane, a cone's rims), computed
-// in double and rounded outward to float. Triangle vertices are exact.
+// Conservative axis-aligned boxes of stored primitives: each kind's
+// primitive_box (geometry/kinds/<kind>.h) bounds the surface the kernels
+// intersect, as stored, computed in double and rounded outward to float.
 // Infinite planes have no box.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
-#include "geometry/bvh.h"
-#include "geometry/cone_soa.h"
-#include "geometry/polygon_soa.h"
-#include "geometry/sphere_soa.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/box.h"
 
 namespace quiver {
 
-Box primitive_box(const SphereSoA& spheres, std::size_t i);
-Box primitive_box(const TriangleSoA& triangles, std::size_t i);
-Box primitive_box(const PolygonSoA& polygons, std::size_t i);
-Box primitive_box(const ConeSoA& cones, std::size_t i);
+// Grows b by the points c +- r per axis (c and r in double), rounded outward.
+void grow_ball(Box& b, const double c[3], double r);
 
 // The boxes of primitives [0, store.count).
 template <class Store>

@@ -10,7 +10,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "geometry/polygon_soa.h"
+#include "geometry/kinds/polygon.h"
 #include "io/parse_error.h"
 #include "io/text_file.h"
 

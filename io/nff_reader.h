@@ -15,7 +15,7 @@ namespace quiver {
 // Largest NFF input read, in bytes.
 inline constexpr std::size_t kMaxNffBytes = std::size_t{1} << 30;
 // Largest `resolution` side and pixel count: kMaxImageSide, kMaxImagePixels (scene/scene_desc.h).
-// Largest `p` / `pp` vertex count: kMaxPolygonVertices (geometry/polygon_soa.h).
+// Largest `p` / `pp` vertex count: kMaxPolygonVertices (geometry/kinds/polygon.h).
 
 // An NFF `f` line as written: colour, diffuse weight, specular (and mirror)
 // weight, Phong exponent, transmitted fraction, index of refraction.

@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/polygon_soa.h"
+#include "geometry/kinds/polygon.h"
 #include "geometry/vertex_normals.h"
 #include "io/parse_error.h"
 #include "io/reader_warnings.h"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "geometry/affine_transform.h"
-#include "geometry/primitive_desc.h"
+#include "geometry/kinds.h"
 #include "scene/anti_aliasing.h"
 #include "simd/vec3.h"
 

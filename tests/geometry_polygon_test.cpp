@@ -60,7 +60,7 @@ bool crossing_reference(const std::vector<Point2>& poly, double x, double y) {
   return inside;
 }
 
-// The kernel's ray-space rule (geometry/polygon.h) in double for a ray along
+// The kernel's ray-space rule (geometry/kinds/polygon.h) in double for a ray along
 // -z through (x, y): kz = z, swapped (d.z < 0), so the sheared frame is
 // x' = Y - y, y' = X - x; an edge straddles iff its ends differ in y' > 0
 // and crosses iff lo.x' hi.y' - lo.y' hi.x' > 0 (lo, hi: its ends below and above).

@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/polygon_soa.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/kinds/polygon.h"
+#include "geometry/kinds/triangle.h"
 #include "simd/vec3.h"
 
 namespace quiver::accuracy {

@@ -44,7 +44,7 @@ inline Lane64 abs(Lane64 a) { return Lane64(std::fabs(a.value)); }
 inline bool isfinite_lanes(Lane64 a) { return std::isfinite(a.value); }
 // Rounded to float: the polygon kernel picks an edge band from it, and
 // rounding is monotonic, so the band still holds every edge the double v
-// straddles (geometry/polygon.h).
+// straddles (geometry/kinds/polygon.h).
 inline void store_lanes(Lane64 v, float* p) { *p = static_cast<float>(v.value); }
 
 }  // namespace quiver::accuracy

@@ -16,11 +16,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "geometry/cone_soa.h"
-#include "geometry/plane_soa.h"
-#include "geometry/polygon_soa.h"
-#include "geometry/sphere_soa.h"
-#include "geometry/triangle_soa.h"
+#include "geometry/kinds/cone.h"
+#include "geometry/kinds/plane.h"
+#include "geometry/kinds/polygon.h"
+#include "geometry/kinds/sphere.h"
+#include "geometry/kinds/triangle.h"
 
 namespace quiver::accuracy {
 

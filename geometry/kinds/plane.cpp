@@ -1,0 +1,47 @@
+#include "geometry/kinds/plane.h"
+
+#include <cmath>
+
+namespace quiver {
+
+PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
+  PlaneSoA soa;
+  for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(planes.size()));
+  for (const PlaneDesc& p : planes) {
+    if (!all_finite(p.point) || !all_finite(p.normal)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    const float len = length(p.normal);
+    if (!(len > 0.f) || !std::isfinite(len)) {
+      ++report.dropped_degenerate;
+      continue;
+    }
+    const Vec3<float> n = p.normal / len;
+    const float d = -dot(n, p.point);
+    if (!std::isfinite(d)) {
+      ++report.dropped_non_finite;
+      continue;
+    }
+    soa.source.push_back(static_cast<std::uint32_t>(&p - planes.data()));
+    soa.nx.push_back(n.x);
+    soa.ny.push_back(n.y);
+    soa.nz.push_back(n.z);
+    soa.d.push_back(d);
+    soa.px.push_back(p.point.x);
+    soa.py.push_back(p.point.y);
+    soa.pz.push_back(p.point.z);
+  }
+  soa.count = soa.nx.size();
+  report.kept += soa.count;
+  for (AlignedFloats* c : soa.columns()) pad_column(*c, soa.count);
+  return soa;
+}
+
+std::size_t PlaneSoA::memory_bytes() const {
+  std::size_t bytes = source.capacity() * sizeof(std::uint32_t);
+  for (const AlignedFloats* c : {&nx, &ny, &nz, &d, &px, &py, &pz}) bytes += c->capacity() * sizeof(float);
+  return bytes;
+}
+
+}  // namespace quiver

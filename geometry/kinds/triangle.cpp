@@ -1,0 +1,179 @@
+#include "geometry/kinds/triangle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace quiver {
+
+namespace {
+
+bool finite(const TriangleDesc& t) {
+  for (const Vec3<float>& p : t.p) {
+    if (!all_finite(p)) return false;
+  }
+  if (t.normals) {
+    for (const Vec3<float>& n : *t.normals) {
+      if (!all_finite(n)) return false;
+    }
+  }
+  if (t.uvs) {
+    for (const auto& uv : *t.uvs) {
+      if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) return false;
+    }
+  }
+  return true;
+}
+
+Vec3<double> to_double(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
+
+enum class Shape { ok, non_finite, degenerate };
+
+Shape classify(const TriangleDesc& t) {
+  if (!finite(t)) return Shape::non_finite;
+  // The kernels' own edges and normal, in float: must be finite and not zero.
+  const Vec3<float> e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+  const Vec3<float> ng = cross(e1, e2);
+  if (!all_finite(e1) || !all_finite(e2) || !all_finite(t.p[2] - t.p[1]) || !all_finite(ng)) return Shape::non_finite;
+  if (ng.x == 0.f && ng.y == 0.f && ng.z == 0.f) return Shape::degenerate;
+  // Height over the longest edge, in double: 2 area / longest^2.
+  const Vec3<double> a = to_double(t.p[0]), b = to_double(t.p[1]), c = to_double(t.p[2]);
+  const Vec3<double> n = cross(b - a, c - a);
+  const double twice_area = std::sqrt(dot(n, n));
+  const double longest2 = std::max({dot(b - a, b - a), dot(c - a, c - a), dot(c - b, c - b)});
+  if (!(twice_area > kMinTriangleRelativeHeight * longest2)) return Shape::degenerate;
+  return Shape::ok;
+}
+
+Vec3<float> unit_or(const Vec3<float>& n, const Vec3<float>& fallback) {
+  const Vec3<double> d = to_double(n);
+  const double len = std::sqrt(dot(d, d));
+  if (!(len > 0.0)) return fallback;
+  const Vec3<double> u = d / len;
+  return {float(u.x), float(u.y), float(u.z)};
+}
+
+}  // namespace
+
+Vec3<float> TriangleSoA::vertex(std::size_t i, int k) const {
+  switch (k) {
+    case 0: return {v0x[i], v0y[i], v0z[i]};
+    case 1: return {v1x[i], v1y[i], v1z[i]};
+    default: return {v2x[i], v2y[i], v2z[i]};
+  }
+}
+
+Vec3<float> TriangleSoA::normal(std::size_t i, int k) const {
+  switch (k) {
+    case 0: return {n0x[i], n0y[i], n0z[i]};
+    case 1: return {n1x[i], n1y[i], n1z[i]};
+    default: return {n2x[i], n2y[i], n2z[i]};
+  }
+}
+
+std::array<float, 2> TriangleSoA::uv(std::size_t i, int k) const {
+  switch (k) {
+    case 0: return {uv0u[i], uv0v[i]};
+    case 1: return {uv1u[i], uv1v[i]};
+    default: return {uv2u[i], uv2v[i]};
+  }
+}
+
+std::vector<AlignedFloats*> TriangleSoA::columns() {
+  return {&v0x, &v0y, &v0z, &v1x, &v1y, &v1z, &v2x, &v2y, &v2z, &n0x, &n0y, &n0z, &n1x, &n1y,
+          &n1z, &n2x, &n2y, &n2z, &uv0u, &uv0v, &uv1u, &uv1v, &uv2u, &uv2v};
+}
+
+TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport& report) {
+  std::vector<const TriangleDesc*> kept;
+  kept.reserve(triangles.size());
+  bool any_normals = false, any_uvs = false;
+  for (const TriangleDesc& t : triangles) {
+    switch (classify(t)) {
+      case Shape::non_finite: ++report.dropped_non_finite; break;
+      case Shape::degenerate: ++report.dropped_degenerate; break;
+      case Shape::ok:
+        kept.push_back(&t);
+        any_normals = any_normals || t.normals.has_value();
+        any_uvs = any_uvs || t.uvs.has_value();
+        break;
+    }
+  }
+
+  TriangleSoA soa;
+  soa.count = kept.size();
+  soa.source.reserve(kept.size());
+  for (const TriangleDesc* t : kept) soa.source.push_back(static_cast<std::uint32_t>(t - triangles.data()));
+  const std::size_t padded = padded_size(soa.count);
+  AlignedFloats* vertex_columns[3][3] = {{&soa.v0x, &soa.v0y, &soa.v0z},
+                                         {&soa.v1x, &soa.v1y, &soa.v1z},
+                                         {&soa.v2x, &soa.v2y, &soa.v2z}};
+  AlignedFloats* normal_columns[3][3] = {{&soa.n0x, &soa.n0y, &soa.n0z},
+                                         {&soa.n1x, &soa.n1y, &soa.n1z},
+                                         {&soa.n2x, &soa.n2y, &soa.n2z}};
+  AlignedFloats* uv_columns[3][2] = {{&soa.uv0u, &soa.uv0v}, {&soa.uv1u, &soa.uv1v}, {&soa.uv2u, &soa.uv2v}};
+  for (int k = 0; k < 3; ++k) {
+    for (AlignedFloats* c : vertex_columns[k]) c->resize(padded);
+    if (any_normals) {
+      for (AlignedFloats* c : normal_columns[k]) c->resize(padded);
+    }
+    if (any_uvs) {
+      for (AlignedFloats* c : uv_columns[k]) c->resize(padded);
+    }
+  }
+
+  constexpr float kDefaultUv[3][2] = {{0.f, 0.f}, {1.f, 0.f}, {0.f, 1.f}};
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const TriangleDesc& t = *kept[i];
+    const Vec3<float> geometric = unit_or(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), {0.f, 0.f, 1.f});
+    for (int k = 0; k < 3; ++k) {
+      for (int axis = 0; axis < 3; ++axis) (*vertex_columns[k][axis])[i] = t.p[k][axis];
+      if (any_normals) {
+        const Vec3<float> n = t.normals ? unit_or((*t.normals)[k], geometric) : geometric;
+        for (int axis = 0; axis < 3; ++axis) (*normal_columns[k][axis])[i] = n[axis];
+      }
+      if (any_uvs) {
+        for (int j = 0; j < 2; ++j) (*uv_columns[k][j])[i] = t.uvs ? (*t.uvs)[k][j] : kDefaultUv[k][j];
+      }
+    }
+  }
+  for (AlignedFloats* c : soa.columns()) {
+    if (!c->empty()) pad_column(*c, soa.count);
+  }
+  report.kept += soa.count;
+  return soa;
+}
+
+std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> positions,
+                                                 std::span<const std::array<std::uint32_t, 3>> indices) {
+  std::vector<TriangleDesc> out;
+  out.reserve(indices.size());
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    TriangleDesc t;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t index = indices[i][k];
+      if (index >= positions.size()) {
+        throw std::out_of_range("triangle " + std::to_string(i) + " has vertex index " + std::to_string(index) +
+                                " but the mesh has " + std::to_string(positions.size()) + " positions");
+      }
+      t.p[k] = positions[index];
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+std::size_t TriangleSoA::memory_bytes() const {
+  std::size_t bytes = bytes_of(source);
+  for (const AlignedFloats* c : const_cast<TriangleSoA&>(*this).columns()) bytes += bytes_of(*c);
+  return bytes;
+}
+
+Box primitive_box(const TriangleSoA& t, std::size_t i) {
+  Box b = empty_box();
+  for (int k = 0; k < 3; ++k) grow(b, t.vertex(i, k));
+  return b;  // the vertices are stored exactly
+}
+
+}  // namespace quiver
