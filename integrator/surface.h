@@ -1,14 +1,7 @@
 // What shading needs at a hit: the point, its error bound, normals, texture
-// coordinates and the material, per primitive kind:
-//   sphere: spherical (u, v) = (longitude, latitude) / (2 pi, pi) around +y,
-//     u = 0.5 at +x growing with a right-handed turn about +y (0.75 at -z),
-//     v = 0.5 at the equator, 1 at +y;
-//   plane: planar (u, v), the point in two axes of the plane;
-//   triangle: per-vertex UVs (or the barycentrics) and normals interpolated
-//     with the kernel's barycentrics;
-//   polygon: a quad's bilinear (u, v) (inverse bilinear mapping in the
-//     polygon's 2D projection); other polygons planar, like planes;
-//   cone: cylindrical (u = angle / 2 pi, v = s / h along the axis).
+// coordinates and the material. Each kind maps its own surface (texture
+// coordinates, shading normal and their change: map_surface in
+// geometry/kinds/<kind>.cpp), reached through the list of kinds.
 // An instance's triangle is shaded in its mesh's coordinates (the point and
 // footprint carried in, so solid textures move with the instance), its
 // normals carried out by the inverse transpose.

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "scene/camera_frame.h"
 
@@ -34,19 +35,11 @@ struct Bounds {
 
 Bounds scene_bounds(const SceneDesc& scene) {
   Bounds b;
-  for (const SceneSphere& s : scene.spheres) b.add(s.sphere.center, std::fabs(double(s.sphere.radius)));
-  for (const ScenePlane& p : scene.planes) b.add(p.plane.point);
-  for (const SceneTriangle& t : scene.triangles) {
-    for (const Vec3<float>& p : t.triangle.p) b.add(p);
-  }
-  for (const ScenePolygon& p : scene.polygons) {
-    for (const Vec3<float>& v : p.polygon.vertices) b.add(v);
-  }
-  for (const SceneCone& c : scene.cones) {
-    const double r = std::max(std::fabs(double(c.cone.base_radius)), std::fabs(double(c.cone.apex_radius)));
-    b.add(c.cone.base, r);
-    b.add(c.cone.apex, r);
-  }
+  for_each_kind([&]<class K>(K) {
+    for (const auto& entry : scene.*SceneEntries<K>::of) {
+      K::extent(entry.*SceneEntries<K>::desc, [&](const Vec3<float>& p, double margin) { b.add(p, margin); });
+    }
+  });
   // Instances: the corners of their mesh's box, placed.
   std::vector<Bounds> mesh_bounds(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -164,8 +157,11 @@ std::string axis_name(const Vec3<double>& v) {
 
 DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up) {
   const Vec3<double> y{0.0, 1.0, 0.0}, z{0.0, 0.0, 1.0};
-  const bool mesh = scene.triangles.size() >= kViewMeshTriangles && scene.spheres.empty() && scene.planes.empty() &&
-                    scene.polygons.empty() && scene.cones.empty();
+  bool only_triangles = true;
+  for_each_kind([&]<class K>(K) {
+    if constexpr (!std::is_same_v<K, TriangleKind>) only_triangles = only_triangles && (scene.*SceneEntries<K>::of).empty();
+  });
+  const bool mesh = scene.triangles.size() >= kViewMeshTriangles && only_triangles;
   DefaultView view{y, z, "+y, the default", "+z, the default"};
   if (up) {
     view.up = unit(*up);

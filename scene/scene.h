@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/bvh.h"
@@ -133,6 +134,15 @@ struct Scene {
   }
   // The triangles a triangle ref's primitive is in (its instance's mesh's, if any).
   const TriangleSoA& triangles_of(const PrimitiveRef& ref) const;
+  // The store a ref's primitive is in (for triangles, triangles_of).
+  template <class K>
+  const typename K::Store& store_of(const PrimitiveRef& ref) const {
+    if constexpr (std::is_same_v<K, TriangleKind>) {
+      return triangles_of(ref);
+    } else {
+      return layer(ref.transmissive).store<K>();
+    }
+  }
   const GeometryLayer& layer(bool transmissive_layer) const { return transmissive_layer ? transmissive : opaque; }
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
   // Stored primitives: each instanced mesh counted once.

@@ -83,4 +83,22 @@ Box primitive_box(const ConeSoA& c, std::size_t i) {
   return b;
 }
 
+// Cylindrical (u, v): u = the angle about the axis / 2 pi, v = s / h along it.
+void map_surface(const ConeSoA& c, const MappingQuery& q, SurfaceMapping& out) {
+  if (!q.textured) return;
+  const std::uint32_t i = q.index;
+  const Vec3<float> axis{c.ax[i], c.ay[i], c.az[i]};
+  const Vec3<float> base{c.bx[i], c.by[i], c.bz[i]};
+  const Vec3<float> radial = q.position - base - axis * dot(q.position - base, axis);
+  Vec3<float> t1, t2;
+  tangent_axes(axis, t1, t2);
+  out.u = 0.5f + std::atan2(dot(radial, t2), dot(radial, t1)) * kInvTwoPi;
+  out.v = q.hit.u;
+  for (int a = 0; a < 2; ++a) {
+    const Vec3<float> radial_change = q.dp[a] - axis * dot(q.dp[a], axis);
+    out.du[a] = longitude_change(dot(radial, t1), dot(radial, t2), dot(radial_change, t1), dot(radial_change, t2));
+    out.dv[a] = dot(q.dp[a], axis) / c.height[i];
+  }
+}
+
 }  // namespace quiver

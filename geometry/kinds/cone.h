@@ -37,6 +37,8 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -47,6 +49,7 @@
 #include "geometry/build_report.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
+#include "geometry/surface_mapping.h"
 #include "geometry/soa.h"
 #include "simd/ray.h"
 
@@ -204,6 +207,9 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report);
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const ConeSoA& store, std::size_t i);
 
+// Its surface at a hit (geometry/surface_mapping.h).
+void map_surface(const ConeSoA& store, const MappingQuery& query, SurfaceMapping& out);
+
 // The cone in the scene's list of kinds (geometry/kinds.h).
 struct ConeKind {
   static constexpr std::string_view name = "cone", plural = "cones";
@@ -213,6 +219,13 @@ struct ConeKind {
   using Desc = ConeDesc;
   using Store = ConeSoA;
   static Store build(std::span<const Desc> descs, BuildReport& report) { return build_cones(descs, report); }
+  // add(point, margin) for points and margins whose boxes hold the described surface.
+  template <class Add>
+  static void extent(const Desc& d, Add add) {
+    const double r = std::max(std::fabs(double(d.base_radius)), std::fabs(double(d.apex_radius)));
+    add(d.base, r);
+    add(d.apex, r);
+  }
 };
 
 }  // namespace quiver

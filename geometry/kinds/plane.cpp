@@ -44,4 +44,17 @@ std::size_t PlaneSoA::memory_bytes() const {
   return bytes;
 }
 
+// Planar (u, v): the point along the two tangent axes of the normal.
+void map_surface(const PlaneSoA&, const MappingQuery& q, SurfaceMapping& out) {
+  if (!q.textured) return;
+  Vec3<float> t1, t2;
+  tangent_axes(normalize(q.hit.ng), t1, t2);
+  out.u = dot(q.position, t1);
+  out.v = dot(q.position, t2);
+  for (int a = 0; a < 2; ++a) {
+    out.du[a] = dot(q.dp[a], t1);
+    out.dv[a] = dot(q.dp[a], t2);
+  }
+}
+
 }  // namespace quiver

@@ -18,6 +18,8 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -28,6 +30,7 @@
 #include "geometry/build_report.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
+#include "geometry/surface_mapping.h"
 #include "geometry/soa.h"
 #include "simd/ray.h"
 
@@ -135,6 +138,9 @@ struct PlaneSoA {
 // Drops planes with a non-finite number or a zero (or underflowing) normal.
 PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report);
 
+// Its surface at a hit (geometry/surface_mapping.h).
+void map_surface(const PlaneSoA& store, const MappingQuery& query, SurfaceMapping& out);
+
 // The plane in the scene's list of kinds (geometry/kinds.h): unbounded, so
 // scanned, never in a BVH.
 struct PlaneKind {
@@ -145,6 +151,12 @@ struct PlaneKind {
   using Desc = PlaneDesc;
   using Store = PlaneSoA;
   static Store build(std::span<const Desc> descs, BuildReport& report) { return build_planes(descs, report); }
+  // add(point, margin) for points and margins whose boxes hold the described
+  // surface: the plane's point (the plane itself has no box).
+  template <class Add>
+  static void extent(const Desc& d, Add add) {
+    add(d.point, 0.0);
+  }
 };
 
 }  // namespace quiver

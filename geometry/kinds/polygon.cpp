@@ -410,4 +410,63 @@ Box primitive_box(const PolygonSoA& g, std::size_t i) {
   return b;
 }
 
+namespace {
+
+double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+// (s, t) with p = a + s e + t f + s t g for a quad a, b, c, d in 2D
+// (e = b - a, f = d - a, g = a - b + c - d): t from the quadratic
+// cross(h - t f, e + t g) = 0, s from the better-conditioned axis.
+void inverse_bilinear(const double q[4][2], double px, double py, float& s_out, float& t_out) {
+  const double ex = q[1][0] - q[0][0], ey = q[1][1] - q[0][1];
+  const double fx = q[3][0] - q[0][0], fy = q[3][1] - q[0][1];
+  const double gx = q[0][0] - q[1][0] + q[2][0] - q[3][0], gy = q[0][1] - q[1][1] + q[2][1] - q[3][1];
+  const double hx = px - q[0][0], hy = py - q[0][1];
+  const double k2 = cross2(gx, gy, fx, fy);
+  const double k1 = cross2(ex, ey, fx, fy) + cross2(hx, hy, gx, gy);
+  const double k0 = cross2(hx, hy, ex, ey);
+  double t;
+  if (std::fabs(k2) <= 1e-12 * std::fabs(k1)) {
+    t = k1 != 0.0 ? -k0 / k1 : 0.0;  // a parallelogram: linear
+  } else {
+    const double w = std::sqrt(std::max(k1 * k1 - 4.0 * k0 * k2, 0.0));
+    const double t1 = (-k1 - w) / (2.0 * k2), t2 = (-k1 + w) / (2.0 * k2);
+    t = (t1 >= -1e-6 && t1 <= 1.0 + 1e-6) ? t1 : t2;
+  }
+  const double dx = ex + gx * t, dy = ey + gy * t;
+  const double s = std::fabs(dx) >= std::fabs(dy) ? (dx != 0.0 ? (hx - fx * t) / dx : 0.0)
+                                                  : (hy - fy * t) / dy;
+  s_out = float(s);
+  t_out = float(t);
+}
+
+}  // namespace
+
+// A quad's bilinear (u, v) (inverse bilinear mapping in the polygon's 2D
+// projection); other polygons keep the kernel's (u, v), the point in the
+// projection's two axes, like a plane's.
+void map_surface(const PolygonSoA& p, const MappingQuery& q, SurfaceMapping& out) {
+  const Hit<float>& hit = q.hit;
+  const std::uint32_t i = q.index;
+  const int axis_u = p.axis_u[i], axis_v = p.axis_v[i];
+  for (int a = 0; a < 2; ++a) {
+    out.du[a] = q.dp[a][axis_u];
+    out.dv[a] = q.dp[a][axis_v];
+  }
+  if (!q.textured || p.vertex_count[i] != 4) return;
+  double quad[4][2];
+  for (int k = 0; k < 4; ++k) {
+    quad[k][0] = p.pu[p.first_vertex[i] + k];
+    quad[k][1] = p.pv[p.first_vertex[i] + k];
+  }
+  inverse_bilinear(quad, hit.u, hit.v, out.u, out.v);
+  // The bilinear map's change by a finite difference over the footprint.
+  for (int a = 0; a < 2 && q.footprint; ++a) {
+    float u_moved, v_moved;
+    inverse_bilinear(quad, double(hit.u) + out.du[a], double(hit.v) + out.dv[a], u_moved, v_moved);
+    out.du[a] = u_moved - out.u;
+    out.dv[a] = v_moved - out.v;
+  }
+}
+
 }  // namespace quiver

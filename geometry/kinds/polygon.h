@@ -68,7 +68,9 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -81,6 +83,7 @@
 #include "geometry/kinds/plane.h"
 #include "geometry/kinds/triangle.h"
 #include "geometry/method_error.h"
+#include "geometry/surface_mapping.h"
 #include "geometry/soa.h"
 #include "simd/ray.h"
 
@@ -453,6 +456,9 @@ std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& p
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const PolygonSoA& store, std::size_t i);
 
+// Its surface at a hit (geometry/surface_mapping.h).
+void map_surface(const PolygonSoA& store, const MappingQuery& query, SurfaceMapping& out);
+
 // The polygon in the scene's list of kinds (geometry/kinds.h).
 struct PolygonKind {
   static constexpr std::string_view name = "polygon", plural = "polygons";
@@ -462,6 +468,11 @@ struct PolygonKind {
   using Desc = PolygonDesc;
   using Store = PolygonSoA;
   static Store build(std::span<const Desc> descs, BuildReport& report) { return build_polygons(descs, report); }
+  // add(point, margin) for points and margins whose boxes hold the described surface.
+  template <class Add>
+  static void extent(const Desc& d, Add add) {
+    for (const Vec3<float>& p : d.vertices) add(p, 0.0);
+  }
 };
 
 }  // namespace quiver

@@ -1,5 +1,6 @@
 #include "geometry/kinds/sphere.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -49,6 +50,28 @@ Box primitive_box(const SphereSoA& s, std::size_t i) {
   Box b = empty_box();
   grow_ball(b, c, std::sqrt(static_cast<double>(s.r2[i])));  // the kernels use r^2
   return b;
+}
+
+// Spherical (u, v) = (longitude, latitude) / (2 pi, pi) around +y: u = 0.5
+// at +x growing with a right-handed turn about +y (0.75 at -z), v = 0.5 at
+// the equator, 1 at +y; the shading normal is the outward one.
+void map_surface(const SphereSoA& spheres, const MappingQuery& q, SurfaceMapping& out) {
+  if (!q.textured && !q.footprint) return;
+  const std::uint32_t i = q.index;
+  const Vec3<float> c{spheres.cx[i], spheres.cy[i], spheres.cz[i]};
+  const Vec3<float> d = normalize(q.position - c);
+  if (q.textured) {
+    out.u = 0.5f + std::atan2(-d.z, d.x) * kInvTwoPi;
+    out.v = 0.5f + std::asin(std::clamp(d.y, -1.f, 1.f)) * kInvPi;
+  }
+  if (!q.footprint) return;
+  for (int a = 0; a < 2; ++a) {
+    // The unit outward normal d's change: dp less its radial part, over r.
+    const Vec3<float> dd = (q.dp[a] - d * dot(d, q.dp[a])) * spheres.inv_r[i];
+    out.normal_change[a] = dd;
+    out.du[a] = longitude_change(d.x, -d.z, dd.x, -dd.z);
+    out.dv[a] = dd.y / std::sqrt(std::max(1.f - d.y * d.y, 0.f)) * kInvPi;
+  }
 }
 
 }  // namespace quiver

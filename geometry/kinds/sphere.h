@@ -45,6 +45,8 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -55,6 +57,7 @@
 #include "geometry/build_report.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
+#include "geometry/surface_mapping.h"
 #include "geometry/soa.h"
 #include "simd/ray.h"
 
@@ -264,6 +267,9 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const SphereSoA& store, std::size_t i);
 
+// Its surface at a hit (geometry/surface_mapping.h).
+void map_surface(const SphereSoA& store, const MappingQuery& query, SurfaceMapping& out);
+
 // The sphere in the scene's list of kinds (geometry/kinds.h).
 struct SphereKind {
   static constexpr std::string_view name = "sphere", plural = "spheres";
@@ -275,6 +281,11 @@ struct SphereKind {
   using Desc = SphereDesc;
   using Store = SphereSoA;
   static Store build(std::span<const Desc> descs, BuildReport& report) { return build_spheres(descs, report); }
+  // add(point, margin) for points and margins whose boxes hold the described surface.
+  template <class Add>
+  static void extent(const Desc& d, Add add) {
+    add(d.center, std::fabs(double(d.radius)));
+  }
 };
 
 }  // namespace quiver

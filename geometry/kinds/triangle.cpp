@@ -176,4 +176,62 @@ Box primitive_box(const TriangleSoA& t, std::size_t i) {
   return b;  // the vertices are stored exactly
 }
 
+namespace {
+
+// The change of the barycentrics (b1, b2) of a triangle with edges e1, e2
+// for a change dp of the point in its plane (least squares in double).
+void barycentric_change(const Vec3<float>& e1, const Vec3<float>& e2, const Vec3<float>& dp, double& db1,
+                        double& db2) {
+  const Vec3<double> a(e1.x, e1.y, e1.z), b(e2.x, e2.y, e2.z), d(dp.x, dp.y, dp.z);
+  const double aa = dot(a, a), ab = dot(a, b), bb = dot(b, b);
+  const double da = dot(d, a), db = dot(d, b);
+  const double det = aa * bb - ab * ab;
+  db1 = (bb * da - ab * db) / det;
+  db2 = (aa * db - ab * da) / det;
+}
+
+}  // namespace
+
+// Per-vertex (u, v) (or the barycentrics) and normals, interpolated with
+// the kernel's barycentrics.
+void map_surface(const TriangleSoA& tri, const MappingQuery& q, SurfaceMapping& out) {
+  const Hit<float>& hit = q.hit;
+  const std::uint32_t i = q.index;
+  const float w0 = 1.f - hit.u - hit.v;
+  double db1[2] = {0.0, 0.0}, db2[2] = {0.0, 0.0};
+  if (q.footprint) {
+    const Vec3<float> v0 = tri.vertex(i, 0);
+    for (int a = 0; a < 2; ++a) barycentric_change(tri.vertex(i, 1) - v0, tri.vertex(i, 2) - v0, q.dp[a], db1[a], db2[a]);
+  }
+  for (int a = 0; a < 2; ++a) {
+    out.du[a] = float(db1[a]);
+    out.dv[a] = float(db2[a]);
+  }
+  if (tri.has_uvs()) {
+    const auto a = tri.uv(i, 0), b = tri.uv(i, 1), c = tri.uv(i, 2);
+    out.u = w0 * a[0] + hit.u * b[0] + hit.v * c[0];
+    out.v = w0 * a[1] + hit.u * b[1] + hit.v * c[1];
+    for (int k = 0; k < 2 && q.footprint; ++k) {
+      out.du[k] = float(db1[k] * (double(b[0]) - a[0]) + db2[k] * (double(c[0]) - a[0]));
+      out.dv[k] = float(db1[k] * (double(b[1]) - a[1]) + db2[k] * (double(c[1]) - a[1]));
+    }
+  }
+  if (!tri.has_normals()) return;
+  // An instance's normals in world space (not unit: interpolation commutes with the map).
+  const auto world_normal = [&](int k) {
+    return q.world_to_object != nullptr ? apply_normal(*q.world_to_object, tri.normal(i, k)) : tri.normal(i, k);
+  };
+  const Vec3<float> n0 = world_normal(0), n1 = world_normal(1), n2 = world_normal(2);
+  const Vec3<float> n = n0 * w0 + n1 * hit.u + n2 * hit.v;
+  if (!(dot(n, n) > 0.f)) return;
+  out.smooth = true;
+  out.interpolated = normalize(n);
+  // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
+  const float length = std::sqrt(dot(n, n));
+  for (int a = 0; a < 2 && q.footprint; ++a) {
+    const Vec3<float> change = (n1 - n0) * float(db1[a]) + (n2 - n0) * float(db2[a]);
+    out.normal_change[a] = (change - out.interpolated * dot(out.interpolated, change)) / length;
+  }
+}
+
 }  // namespace quiver

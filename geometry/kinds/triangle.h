@@ -45,7 +45,9 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -57,6 +59,7 @@
 #include "geometry/build_report.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
+#include "geometry/surface_mapping.h"
 #include "geometry/soa.h"
 #include "simd/ray.h"
 
@@ -478,6 +481,9 @@ std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> po
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const TriangleSoA& store, std::size_t i);
 
+// Its surface at a hit (geometry/surface_mapping.h).
+void map_surface(const TriangleSoA& store, const MappingQuery& query, SurfaceMapping& out);
+
 // The triangle in the scene's list of kinds (geometry/kinds.h).
 struct TriangleKind {
   static constexpr std::string_view name = "triangle", plural = "triangles";
@@ -487,6 +493,11 @@ struct TriangleKind {
   using Desc = TriangleDesc;
   using Store = TriangleSoA;
   static Store build(std::span<const Desc> descs, BuildReport& report) { return build_triangles(descs, report); }
+  // add(point, margin) for points and margins whose boxes hold the described surface.
+  template <class Add>
+  static void extent(const Desc& d, Add add) {
+    for (const Vec3<float>& p : d.p) add(p, 0.0);
+  }
 };
 
 }  // namespace quiver
