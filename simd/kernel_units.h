@@ -1,10 +1,10 @@
 // The kernel units: the kernel sources compiled once per unit, each with its
-// own compiler flags, one of them picked at run time (simd/isa.h). The
-// table kKernelUnitSpecs is the one list of units: CMakeLists.txt reads
-// each unit's name and flags from its lines here, simd/isa.cpp its names,
-// widths, ISA choice and CPU features, with_kernel_unit dispatches over it,
-// and the typed tests enumerate it. A unit's lane type is UnitLanes<U>
-// (simd/lanes.h). Adding a unit: an enumerator, a table line, its lane type.
+// own compiler flags, one of them picked at run time (simd/isa.h). Their one
+// list is simd/kernel_units.cmake: CMake compiles the units from it and
+// generates the table kKernelUnitSpecs included here, which simd/isa.cpp
+// reads (names, widths, ISA choice, CPU features), with_kernel_unit
+// dispatches over and the typed tests enumerate. A unit's lane type is
+// UnitLanes<U> (simd/lanes.h).
 //
 // Every function compiled in a kernel unit lives in an inline namespace
 // named after the unit (quiver::unit_avx2, ...; quiver::unit_host for code
@@ -33,8 +33,6 @@ namespace quiver {
 // The --simd choices (QUIVER_SIMD), by lane width.
 enum class Isa { scalar, sse4, avx2, avx512 };
 
-enum class KernelUnit { scalar, scalar_fma, sse4, avx2, avx512 };
-
 // CPU features a unit's instructions need (GCC's __builtin_cpu_supports
 // names; avx also means the OS saves AVX state).
 enum class CpuFeature : unsigned { avx, fma, sse4_2, avx2, avx512f, avx512cd, avx512dq, avx512bw, avx512vl };
@@ -45,33 +43,11 @@ constexpr unsigned cpu_features(std::initializer_list<CpuFeature> features) {
   return bits;
 }
 
-struct KernelUnitSpec {
-  KernelUnit unit;
-  std::string_view name;
-  Isa isa;                       // the --simd choice it runs
-  int lanes;
-  std::string_view flags;        // compiler flags (CMakeLists.txt reads them from this file)
-  unsigned required_features;    // cpu_features(...)
-};
+}  // namespace quiver
 
-// Narrowest first. Two scalar units: `scalar` runs on any x86-64 and is the
-// reference; `scalar_fma` is the same source built with -mfma, so the
-// kernels' explicit fma is an instruction rather than a libm call (they
-// agree bit for bit: std::fma is correctly rounded either way). The 4-wide
-// unit needs FMA3 so that fma is fused as in scalar code (-mfma implies the
-// AVX encoding). One unit per line, name and flags first: CMake parses them.
-inline constexpr std::array kKernelUnitSpecs = {
-    KernelUnitSpec{KernelUnit::scalar, "scalar", Isa::scalar, 1, "", 0},
-    KernelUnitSpec{KernelUnit::scalar_fma, "scalar_fma", Isa::scalar, 1, "-mfma",
-                   cpu_features({CpuFeature::avx, CpuFeature::fma})},
-    KernelUnitSpec{KernelUnit::sse4, "sse4", Isa::sse4, 4, "-msse4.2 -mfma",
-                   cpu_features({CpuFeature::sse4_2, CpuFeature::avx, CpuFeature::fma})},
-    KernelUnitSpec{KernelUnit::avx2, "avx2", Isa::avx2, 8, "-mavx2 -mfma",
-                   cpu_features({CpuFeature::avx2, CpuFeature::fma})},
-    KernelUnitSpec{KernelUnit::avx512, "avx512", Isa::avx512, 16, "-mavx512f -mavx512cd -mavx512dq -mavx512bw -mavx512vl -mfma",
-                   cpu_features({CpuFeature::avx2, CpuFeature::fma, CpuFeature::avx512f, CpuFeature::avx512cd,
-                                 CpuFeature::avx512dq, CpuFeature::avx512bw, CpuFeature::avx512vl})},
-};
+#include "simd/kernel_unit_table.h"  // generated: KernelUnit, KernelUnitSpec, kKernelUnitSpecs
+
+namespace quiver {
 
 constexpr const KernelUnitSpec& spec_of(KernelUnit unit) {
   for (const KernelUnitSpec& spec : kKernelUnitSpecs) {
