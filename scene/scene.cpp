@@ -1,7 +1,6 @@
 #include "scene/scene.h"
 
 #include <algorithm>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -175,17 +174,12 @@ PrimitiveRef Scene::locate(std::int32_t id) const {
     }
     throw std::out_of_range("no primitive with hit id " + std::to_string(id));
   }
-  std::optional<PrimitiveRef> found;
-  for (bool t : {false, true}) {
-    layer(t).kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
-      if (found) return;  // the first kind whose range holds the id
-      const std::int32_t base = k.store.id_base;
-      const std::size_t count = k.store.count;
-      if (id >= base && std::size_t(id - base) < count) {
-        found = PrimitiveRef{t, kind_tag<K>, static_cast<std::uint32_t>(id - base)};
-      }
-    });
-    if (found) return *found;
+  for (const IdRange& range : id_ranges) {
+    const std::int32_t base = range.base;
+    const std::size_t count = range.count;
+    if (id >= base && std::size_t(id - base) < count) {
+      return {range.transmissive, range.kind, static_cast<std::uint32_t>(id - base)};
+    }
   }
   throw std::out_of_range("no primitive with hit id " + std::to_string(id));
 }
@@ -283,9 +277,11 @@ std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options,
     }
   });
   std::int32_t next_id = 0;
-  for (GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    g->kinds.for_each([&](auto, auto& k) {
+  for (bool transmissive : {false, true}) {
+    GeometryLayer& g = transmissive ? scene.transmissive : scene.opaque;
+    g.kinds.for_each([&]<class K>(K, KindStore<K>& k) {
       k.store.id_base = next_id;
+      if (k.store.count > 0) scene.id_ranges.push_back({next_id, k.store.count, transmissive, kind_tag<K>});
       next_id += static_cast<std::int32_t>(k.store.count);
     });
   }

@@ -72,6 +72,14 @@ struct PrimitiveRef {
   std::int32_t instance = -1;  // -1: not instanced
 };
 
+// A store's hit ids, [base, base + count), with its layer and kind.
+struct IdRange {
+  std::int32_t base;
+  std::size_t count;
+  bool transmissive;
+  PrimitiveKind kind;
+};
+
 // Where an instanced mesh's triangles came from, per store (0 opaque, 1
 // transmissive): material, and index in SceneDesc::meshes[m].triangles.
 struct MeshOrigins {
@@ -120,6 +128,7 @@ struct Scene {
   // primitive's material, and 1 where its surface is plain (no interpolated
   // normals, no texture), so the material alone says how it looks. Instance
   // hits are never plain (shading needs their transform).
+  std::vector<IdRange> id_ranges;  // of the non-empty stores above, ascending
   std::vector<std::uint32_t> material_of_id;
   std::vector<std::uint8_t> plain_of_id;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
