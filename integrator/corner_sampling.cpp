@@ -42,6 +42,19 @@ float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
   return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
 }
 
+}  // namespace
+
+bool corners_differ(const std::array<Vec3<float>, 4>& c, float threshold) {
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) {
+      if (max_difference(c[a], c[b]) > threshold) return true;
+    }
+  }
+  return false;
+}
+
+namespace {
+
 // A square of the lattice: its top-left point and side, in lattice steps.
 struct Square {
   int X, Y, size;
@@ -93,14 +106,8 @@ class AdaptiveTile {
   // Whether the square's corners differ by more than the threshold.
   bool splits(const Square& s) const {
     if (s.size <= 1) return false;
-    const Vec3<float> c[4] = {at(s.X, s.Y), at(s.X + s.size, s.Y), at(s.X, s.Y + s.size),
-                              at(s.X + s.size, s.Y + s.size)};
-    for (int a = 0; a < 4; ++a) {
-      for (int b = a + 1; b < 4; ++b) {
-        if (max_difference(c[a], c[b]) > target_.settings.aa.threshold) return true;
-      }
-    }
-    return false;
+    return corners_differ({at(s.X, s.Y), at(s.X + s.size, s.Y), at(s.X, s.Y + s.size), at(s.X + s.size, s.Y + s.size)},
+                          target_.settings.aa.threshold);
   }
 
  private:

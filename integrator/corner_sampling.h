@@ -9,6 +9,7 @@
 //            pixel is the area-weighted mean of its squares.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,10 @@ void render_corners(const TileTarget& target, const PixelTile& tile, SampleBatch
 
 // Each pixel of image the mean of its four corners.
 void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image);
+
+// Whether an adaptive square splits: two of its corners' colours (any
+// order) differ by more than threshold in some channel.
+bool corners_differ(const std::array<Vec3<float>, 4>& corners, float threshold);
 
 // adaptive's per-worker buffer: the sample index per lattice point (-1 unset).
 struct AdaptiveLattice {

@@ -23,7 +23,7 @@ CameraFrame camera_frame(const CameraDesc& camera) {
   CameraFrame frame;
   frame.eye = to_double(camera.from);
   frame.forward = to_double(camera.at) - frame.eye;
-  if (!normalize_in_place(frame.forward)) throw std::invalid_argument("camera 'at' must differ from 'from'");
+  if (!normalize_in_place(frame.forward)) throw std::invalid_argument("camera 'at' must differ from 'from', at a finite distance");
   frame.right = cross(frame.forward, to_double(camera.up));
   if (!normalize_in_place(frame.right)) {
     throw std::invalid_argument("camera 'up' must not be parallel to the view direction");

@@ -1,7 +1,9 @@
 // The NFF pixel-ray convention: `angle` spans the centres of the outermost
 // pixel columns; up need not be perpendicular; film y grows downward.
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -69,6 +71,14 @@ TEST(Camera, RejectsDegenerateViews) {
   EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 45.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
   EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}, 45.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
   EXPECT_THROW(Camera(CameraDesc{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 180.f, 0.f, 4, 4}, 4, 4), std::invalid_argument);
+  // A view direction of no finite length is no view, and the error names 'at'.
+  const float inf = std::numeric_limits<float>::infinity();
+  try {
+    Camera(CameraDesc{{0, 0, 0}, {inf, 0, 1}, {0, 1, 0}, 45.f, 0.f, 4, 4}, 4, 4);
+    ADD_FAILURE() << "an infinitely far 'at' made a camera";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'at'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(AntiAliasing, ParsesEveryModeAndRejectsTheRest) {

@@ -154,7 +154,10 @@ TEST(AutoView, KeepsWhatTheSceneHas) {
   // Beside the scene's own camera, up and to its right (+x here).
   EXPECT_GT(scene.lights[0].position.x, 0.f);
   EXPECT_GT(scene.lights[0].position.y, 0.f);
-  EXPECT_EQ(scene.ambient.x, 0.1f);  // a zero ambient becomes 0.1
+  // A zero ambient becomes grey 0.1, every channel.
+  EXPECT_EQ(scene.ambient.x, 0.1f);
+  EXPECT_EQ(scene.ambient.y, 0.1f);
+  EXPECT_EQ(scene.ambient.z, 0.1f);
 
   LightDesc light;
   light.position = {1.f, 2.f, 3.f};

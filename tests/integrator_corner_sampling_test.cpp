@@ -1,0 +1,66 @@
+// Corner sampling (integrator/corner_sampling.h): when an adaptive square
+// splits, and what an adaptive pixel is made of.
+#include <array>
+#include <cstddef>
+
+#include <gtest/gtest.h>
+
+#include "integrator/corner_sampling.h"
+#include "integrator/render.h"
+#include "scene/anti_aliasing.h"
+#include "scene/scene.h"
+
+namespace quiver {
+namespace {
+
+TEST(CornerSampling, ASquareSplitsWhenAnyTwoCornersDifferByMoreThanTheThreshold) {
+  const Vec3<float> grey{0.5f, 0.5f, 0.5f};
+  const float threshold = 0.25f;
+  // One corner apart from the other three, in one channel: every corner
+  // and every channel is compared.
+  for (int lone = 0; lone < 4; ++lone) {
+    for (int channel = 0; channel < 3; ++channel) {
+      std::array<Vec3<float>, 4> corners{grey, grey, grey, grey};
+      corners[std::size_t(lone)][channel] = 0.5f + 0.375f;
+      EXPECT_TRUE(corners_differ(corners, threshold)) << "corner " << lone << ", channel " << channel;
+      // A difference of exactly the threshold is not more than it.
+      corners[std::size_t(lone)][channel] = 0.5f + threshold;
+      EXPECT_FALSE(corners_differ(corners, threshold)) << "corner " << lone << ", channel " << channel;
+    }
+  }
+  // Equal corners never split, even at threshold 0.
+  EXPECT_FALSE(corners_differ({grey, grey, grey, grey}, 0.f));
+}
+
+// A white background behind a black sphere (no light, no ambient): the
+// split pixels along its outline are area-weighted means of their samples,
+// so each lies between black and white, and a pixel of one colour stays it.
+TEST(CornerSampling, AnAdaptivePixelIsAWeightedMeanOfItsSamples) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 24, 24};
+  desc.background = {1.f, 1.f, 1.f};
+  desc.ambient = {0.f, 0.f, 0.f};
+  MaterialDesc black;
+  black.color = {0.f, 0.f, 0.f};
+  desc.materials.push_back(black);
+  desc.spheres.push_back({{{0.3f, 0.2f, 0.f}, 1.f}, 0});
+  RenderSettings settings;
+  settings.width = settings.height = 24;
+  settings.threads = 1;
+  settings.aa = parse_anti_aliasing("adaptive:0.1:3");
+  const RenderResult result = render(build_scene(desc, {}), settings);
+  const std::size_t corners = 25 * 25;
+  ASSERT_GT(result.stats.rays.primary, corners);  // some squares split
+  std::size_t between = 0;
+  for (float value : result.image.rgb) {
+    EXPECT_GE(value, 0.f);
+    EXPECT_LE(value, 1.f);
+    between += value > 0.f && value < 1.f ? 1 : 0;
+  }
+  EXPECT_GT(between, 0u);
+  EXPECT_EQ(result.image.rgb[0], 1.f);                      // a corner of the image: background
+  EXPECT_EQ(result.image.rgb[(12 * 24 + 12) * 3], 0.f);  // the sphere's middle
+}
+
+}  // namespace
+}  // namespace quiver
