@@ -282,7 +282,11 @@ int main(int argc, char** argv) {
     if (raw_trace.height_option->count()) trace_args.options.height = raw_trace.height;
     if (raw_trace.simd_option->count()) trace_args.options.simd = raw_trace.simd;
     if (raw_trace.crease_angle_option->count()) trace_args.options.crease_angle = raw_trace.crease_angle;
-    trace_args.options.camera = quiver::cli::given_camera_flags(raw_trace.camera);
+    try {
+      trace_args.options.camera = quiver::cli::given_camera_flags(raw_trace.camera);
+    } catch (const UsageError& error) {
+      return report(error.what(), kExitUsage);
+    }
     return run_trace(trace_args);
   }
   if (info_crease_angle_option->count()) info_load_options.crease_angle_degrees = info_crease_angle;

@@ -86,9 +86,9 @@ inline void add_camera_flags(CLI::App& command, RawCameraFlags& raw) {
 // The camera flags that were given.
 inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
   quiver::CameraFlags flags;
-  if (raw.look_from_option->count()) flags.look_from = raw.look_from;
-  if (raw.look_at_option->count()) flags.look_at = raw.look_at;
-  if (raw.up_option->count()) flags.up = raw.up;
+  if (raw.look_from_option->count()) flags.look_from = quiver::parse_vector_flag("--look-from", raw.look_from);
+  if (raw.look_at_option->count()) flags.look_at = quiver::parse_vector_flag("--look-at", raw.look_at);
+  if (raw.up_option->count()) flags.up = quiver::parse_vector_flag("--up", raw.up);
   if (raw.fov_option->count()) flags.fov = raw.fov;
   return flags;
 }
@@ -206,7 +206,7 @@ inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
   add_procedure_flags(render, args, raw);
 }
 
-// Copies the flags that were given into the optional fields.
+// The flags that were given, parsed into the optional fields (UsageError).
 inline void collect_render_flags(const RawRenderFlags& raw, RenderOptions& options) {
   if (raw.width_option->count()) options.width = raw.width;
   if (raw.height_option->count()) options.height = raw.height;
@@ -214,10 +214,10 @@ inline void collect_render_flags(const RawRenderFlags& raw, RenderOptions& optio
   if (raw.min_weight_option->count()) options.min_weight = raw.min_weight;
   if (raw.crease_angle_option->count()) options.crease_angle = raw.crease_angle;
   options.camera = given_camera_flags(raw.camera);
-  if (raw.aa_option->count()) options.aa = raw.aa;
+  if (raw.aa_option->count()) options.aa = quiver::parse_aa_flag(raw.aa);
   if (raw.simd_option->count()) options.simd = raw.simd;
-  if (raw.aov_option->count()) options.aov = raw.aov;
-  if (raw.texture_filter_option->count()) options.texture_filter = raw.texture_filter;
+  if (raw.aov_option->count()) options.aov = quiver::parse_aov_list(raw.aov);
+  if (raw.texture_filter_option->count()) options.filter_textures = quiver::parse_texture_filter(raw.texture_filter);
   if (raw.preset_option->count() && raw.preset != "spd") {
     throw UsageError("--preset: expected spd, found '" + raw.preset + "'");
   }

@@ -54,7 +54,7 @@ CheckedRenderArgs check_render_args(const RenderArgs& args, const char* simd_env
   check_render_options(args.options);
   check_outputs_are_regular_files(checked.outputs);
   checked.isa = choose_isa(args.options.simd, simd_environment);
-  const bool has_aovs = args.options.aov && parse_aov_list(*args.options.aov).any();
+  const bool has_aovs = args.options.aov && args.options.aov->any();
   check_output_path(checked.output, has_aovs);
   if (!args.stats.empty()) check_stats_path(args.stats);
   std::vector<RoleFile> scene_file;

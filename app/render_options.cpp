@@ -40,14 +40,6 @@ void check_size(int width, int height) {
   }
 }
 
-AntiAliasing parse_aa_flag(const std::string& text) {
-  try {
-    return parse_anti_aliasing(text);
-  } catch (const std::invalid_argument& error) {
-    throw UsageError(std::string("--aa: ") + error.what());
-  }
-}
-
 
 // The other side for one given side, keeping aspect = other / given.
 int scaled_side(int given, double aspect) {
@@ -58,6 +50,14 @@ int scaled_side(int given, double aspect) {
 }
 
 }  // namespace
+
+AntiAliasing parse_aa_flag(std::string_view text) {
+  try {
+    return parse_anti_aliasing(text);
+  } catch (const std::invalid_argument& error) {
+    throw UsageError(std::string("--aa: ") + error.what());
+  }
+}
 
 std::uint64_t parse_seed(std::string_view text) {
   std::uint64_t seed = 0;
@@ -121,15 +121,11 @@ void check_render_options(const RenderOptions& options) {
     throw UsageError("--threads: expected an integer in [0, " + std::to_string(kMaxThreads) + "], found " +
                      std::to_string(options.threads));
   }
-  if (options.aov) parse_aov_list(*options.aov);
-  if (options.texture_filter) parse_texture_filter(*options.texture_filter);
   check_crease_angle(options.crease_angle);
   check_camera_flags(options.camera);
-  std::optional<AntiAliasing> aa;
-  if (options.aa) aa = parse_aa_flag(*options.aa);
   if (!options.preset_spd) return;
-  if (aa && aa->mode != AntiAliasing::Mode::corners) {
-    throw UsageError("--preset spd samples pixel corners (--aa corners); it contradicts --aa " + *options.aa);
+  if (options.aa && options.aa->mode != AntiAliasing::Mode::corners) {
+    throw UsageError("--preset spd samples pixel corners (--aa corners); it contradicts --aa " + to_string(*options.aa));
   }
   if (options.max_depth && *options.max_depth != kSpdMaxDepth) {
     throw UsageError("--preset spd sets --max-depth " + std::to_string(kSpdMaxDepth) + "; it contradicts --max-depth " +
@@ -163,18 +159,15 @@ Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text) {
 }
 
 void check_camera_flags(const CameraFlags& flags) {
-  if (flags.look_from) parse_vector_flag("--look-from", *flags.look_from);
-  if (flags.look_at) parse_vector_flag("--look-at", *flags.look_at);
-  if (flags.up) parse_vector_flag("--up", *flags.up);
   if (flags.fov && !(*flags.fov > 0.0 && *flags.fov < 180.0)) {
     throw UsageError("--fov: expected degrees in (0, 180), found " + format_flag_number(*flags.fov));
   }
 }
 
 void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera) {
-  if (flags.look_from) camera.from = parse_vector_flag("--look-from", *flags.look_from);
-  if (flags.look_at) camera.at = parse_vector_flag("--look-at", *flags.look_at);
-  if (flags.up) camera.up = parse_vector_flag("--up", *flags.up);
+  if (flags.look_from) camera.from = *flags.look_from;
+  if (flags.look_at) camera.at = *flags.look_at;
+  if (flags.up) camera.up = *flags.up;
   if (flags.fov) camera.angle_degrees = static_cast<float>(*flags.fov);
   try {
     camera_frame(camera);
@@ -187,8 +180,7 @@ void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height) 
   if (!desc.camera) {
     std::optional<Vec3<double>> up;
     if (flags.up) {
-      const Vec3<float> given = parse_vector_flag("--up", *flags.up);
-      up = Vec3<double>{double(given.x), double(given.y), double(given.z)};
+      up = Vec3<double>{double(flags.up->x), double(flags.up->y), double(flags.up->z)};
       if (!(dot(*up, *up) > 0.0)) throw UsageError("--up: expected a direction, found 0,0,0");
     }
     add_default_view(desc, width, height, up);
@@ -223,7 +215,7 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   if (options.preset_spd) {
     s.aa.mode = AntiAliasing::Mode::corners;
   } else if (options.aa) {
-    s.aa = parse_aa_flag(*options.aa);
+    s.aa = *options.aa;
   } else if (scene.render.aa) {
     s.aa = *scene.render.aa;
   } else {
@@ -261,14 +253,13 @@ RenderPlan plan_render(const RenderOptions& options, const SceneDesc& scene, Isa
   }
 
   s.trace.seed = options.seed;
-  if (options.texture_filter) s.trace.filter_textures = parse_texture_filter(*options.texture_filter);
+  if (options.filter_textures) s.trace.filter_textures = *options.filter_textures;
   s.threads = options.threads;
   s.isa = isa;
   if (options.aov) {
-    const AovSelection aovs = parse_aov_list(*options.aov);
-    s.aov_depth = aovs.depth;
-    s.aov_normal = aovs.normal;
-    s.aov_id = aovs.id;
+    s.aov_depth = options.aov->depth;
+    s.aov_normal = options.aov->normal;
+    s.aov_id = options.aov->id;
   }
   plan.build.all_two_sided = options.preset_spd || options.two_sided;
   s.methods = options.robust_methods ? MethodChoice::most_robust : MethodChoice::per_scene;

@@ -37,35 +37,37 @@ inline constexpr int kMaxThreads = 1024;
 inline constexpr int kSpdMaxDepth = 4;
 
 // --look-from, --look-at, --up, --fov (render and trace): each field over
-// the scene's camera (or the default view's); points and the up direction
-// as "x,y,z", the field of view in degrees.
+// the scene's camera (or the default view's), parsed ("x,y,z":
+// parse_vector_flag) where they are given; the field of view in degrees.
 struct CameraFlags {
-  std::optional<std::string> look_from, look_at, up;
+  std::optional<Vec3<float>> look_from, look_at, up;
   std::optional<double> fov;
-};
-
-struct RenderOptions {
-  std::optional<int> width, height;
-  std::optional<std::string> aa;
-  std::optional<int> max_depth;
-  std::optional<double> min_weight;
-  int threads = 0;                  // 0: every core
-  std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
-  std::uint64_t seed = 0;
-  std::optional<std::string> aov;   // comma list of depth, normal, id
-  bool preset_spd = false;
-  bool two_sided = false;
-  bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
-  std::optional<std::string> texture_filter;  // box (the default) or none
-  std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
-  bool strict = false;                 // SceneLoadOptions::strict
-  bool allow_outside_paths = false;    // SceneLoadOptions::allow_outside_paths
-  CameraFlags camera;
 };
 
 struct AovSelection {
   bool depth = false, normal = false, id = false;
   bool any() const { return depth || normal || id; }
+};
+
+// Typed values, parsed once where they are given (the command line, the
+// Python module); check_render_options checks their ranges and agreement.
+struct RenderOptions {
+  std::optional<int> width, height;
+  std::optional<AntiAliasing> aa;
+  std::optional<int> max_depth;
+  std::optional<double> min_weight;
+  int threads = 0;                  // 0: every core
+  std::optional<std::string> simd;  // absent: QUIVER_SIMD, else auto
+  std::uint64_t seed = 0;
+  std::optional<AovSelection> aov;  // --aov: parse_aov_list
+  bool preset_spd = false;
+  bool two_sided = false;
+  bool robust_methods = false;      // the robust sphere test even where the scene allows the cheaper one
+  std::optional<bool> filter_textures;  // --texture-filter: parse_texture_filter
+  std::optional<double> crease_angle;  // degrees, every OBJ mesh's (SceneLoadOptions)
+  bool strict = false;                 // SceneLoadOptions::strict
+  bool allow_outside_paths = false;    // SceneLoadOptions::allow_outside_paths
+  CameraFlags camera;
 };
 
 // --texture-filter: "box" (true) or "none" (false); throws UsageError.
@@ -84,8 +86,11 @@ AovSelection parse_aov_list(std::string_view list);
 // when unset), else auto. Unknown or unsupported choices throw UsageError.
 Isa choose_isa(const std::optional<std::string>& flag, const char* environment_value);
 
-// Checks every flag on its own and against --preset spd, before any scene
-// is read.
+// --aa: parse_anti_aliasing's modes; throws UsageError naming the flag.
+AntiAliasing parse_aa_flag(std::string_view text);
+
+// Checks every flag's range and the flags against --preset spd, before any
+// scene is read.
 void check_render_options(const RenderOptions& options);
 
 // --crease-angle (of render, info and trace): degrees in [0, 180].
@@ -94,7 +99,7 @@ void check_crease_angle(const std::optional<double>& degrees);
 // "x,y,z": three finite numbers; throws UsageError naming the flag.
 Vec3<float> parse_vector_flag(std::string_view flag, std::string_view text);
 
-// Each camera flag alone (three finite numbers; fov in (0, 180)); throws UsageError.
+// The field of view in (0, 180); throws UsageError.
 void check_camera_flags(const CameraFlags& flags);
 
 // The camera flags over the camera; throws UsageError when the result has

@@ -10,6 +10,8 @@
 #include <system_error>
 #include <vector>
 
+#include "app/render_options.h"
+
 namespace py = pybind11;
 
 namespace quiver {
@@ -185,11 +187,11 @@ RayArrays ray_arrays(const py::handle& origins_object, const py::handle& directi
   return {origins.rows.data, directions.rows.data, origins.rows.rows, origins.rows.type};
 }
 
-std::optional<std::string> vector_flag(const py::object& value, const char* name) {
+std::optional<Vec3<float>> vector_flag(const py::object& value, const char* name, const char* flag) {
   if (value.is_none()) return std::nullopt;
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::str>(value)) return parse_vector_flag(flag, value.cast<std::string>());
   const std::array<double, 3> xyz = three_numbers(value, name);
-  return number_text(xyz[0]) + "," + number_text(xyz[1]) + "," + number_text(xyz[2]);
+  return parse_vector_flag(flag, number_text(xyz[0]) + "," + number_text(xyz[1]) + "," + number_text(xyz[2]));
 }
 
 }  // namespace quiver

@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "python/ray_arrays.h"
+#include "simd/vec3.h"
 #include "python/scene_arrays.h"
 
 namespace quiver {
@@ -53,9 +54,9 @@ std::optional<int> optional_integer(const pybind11::object& value, const char* n
 // whose UsageError names what it refuses); TypeError for anything else.
 std::string integer_text(const pybind11::handle& value, const char* name);
 
-// A camera flag's "x,y,z" text (as the CLI's --look-from, --look-at, --up
-// take it), or nullopt for None; the numbers are written so that they read
-// back to the same doubles.
-std::optional<std::string> vector_flag(const pybind11::object& value, const char* name);
+// A camera flag's point or direction, or nullopt for None: "x,y,z" text or
+// three numbers (written so that they read back to the same doubles), parsed
+// as the CLI's `flag` (--look-from, --look-at, --up) parses it.
+std::optional<Vec3<float>> vector_flag(const pybind11::object& value, const char* name, const char* flag);
 
 }  // namespace quiver

@@ -125,7 +125,8 @@ SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object
 
 CameraFlags camera_flags(const py::object& look_from, const py::object& look_at, const py::object& up,
                          const std::optional<double>& fov) {
-  CameraFlags flags{vector_flag(look_from, "look_from"), vector_flag(look_at, "look_at"), vector_flag(up, "up"), fov};
+  CameraFlags flags{vector_flag(look_from, "look_from", "--look-from"), vector_flag(look_at, "look_at", "--look-at"),
+                    vector_flag(up, "up", "--up"), fov};
   check_camera_flags(flags);
   return flags;
 }
@@ -147,18 +148,18 @@ py::object render_arrays(const PythonScene& scene, const py::object& width, cons
   RenderOptions options;
   options.width = optional_integer(width, "width");
   options.height = optional_integer(height, "height");
-  options.aa = std::move(aa);
+  if (aa) options.aa = parse_aa_flag(*aa);
   options.max_depth = optional_integer(max_depth, "max_depth");
   options.min_weight = min_weight;
   options.threads = integer_argument(threads, "threads");
   options.simd = std::move(simd);
   options.seed = parse_seed(integer_text(seed, "seed"));
-  options.aov = std::move(aov);
+  if (aov) options.aov = parse_aov_list(*aov);
   if (preset) check_preset(*preset);
   options.preset_spd = preset.has_value();
   options.two_sided = two_sided;
   options.robust_methods = robust_methods;
-  options.texture_filter = std::move(texture_filter);
+  if (texture_filter) options.filter_textures = parse_texture_filter(*texture_filter);
   options.camera = camera_flags(look_from, look_at, up, fov);
   Framebuffer image;
   {
