@@ -311,6 +311,11 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
   EXPECT_TRUE(error_at(camera + "width = 0\n", 4, 9, "an integer from 1 to 65536"));
   EXPECT_TRUE(error_at(camera + "width = 65537\n", 4, 9, "an integer from 1 to 65536"));
   EXPECT_TRUE(error_at(camera + "width = 65536\nheight = 4097\n", 5, 10, "at most 268435456 pixels"));
+  // Exactly the pixel budget is within it.
+  const SceneDesc widest =
+      parse(camera + "width = 65536\nheight = 4096\n[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n");
+  ASSERT_TRUE(widest.camera.has_value());
+  EXPECT_EQ(std::int64_t{widest.camera->width} * widest.camera->height, kMaxImagePixels);
   EXPECT_TRUE(error_at("[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 5]\n", 3, 6, "a point different from 'from'"));
   EXPECT_TRUE(error_at(camera + "up = [0, 0, 2]\n", 4, 6, "not parallel to at - from"));
   EXPECT_TRUE(error_at("[camera]\nfrom = [0, 5, 0]\nat = [0, 0, 0]\n", 1, 1, "an 'up' key in [camera]"));
