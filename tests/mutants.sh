@@ -139,7 +139,8 @@ EOF
 results=$scratch/results.tsv
 : >"$results"
 killed=0 survived=0 broken=0 stale=0
-while IFS= read -r raw; do
+# The list is read on fd 3: a build or test that reads stdin cannot eat a line.
+while IFS= read -r -u 3 raw; do
   [[ -z ${raw//[[:space:]]/} || $raw =~ ^[[:space:]]*# ]] && continue
   # Split on " @@ " into id, file, text, replacement and an optional nth.
   mapfile -t f < <(python3 -c 'import sys; [print(p.strip()) for p in sys.argv[1].split(" @@ ")]' "$raw")
@@ -173,7 +174,7 @@ while IFS= read -r raw; do
   # Restored as a new file (a later time than its objects), so the next build recompiles it.
   cp "$scratch/original" "$tree/$file"
   printf '%s\t%s\t%s\n' "$id" "$verdict" "$detail" | tee -a "$results"
-done <"$list"
+done 3<"$list"
 
 echo
 printf '%-34s %-16s %s\n' mutant verdict detail
