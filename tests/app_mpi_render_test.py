@@ -12,6 +12,9 @@
   bad-input         a bad scene, a bad flag, a stale checkpoint, a checkpoint
                     naming an output under another spelling or a FIFO, under
                     -np 2: one error line, the right exit code, no output
+  checkpoint-interval  the checkpoint is written once the interval has
+                    passed, not before: one write (the last) under an hour's
+                    interval, several under a microsecond's (stats)
 
 Usage: app_mpi_render_test.py QUIVER QUIVER_MPI MPIRUN SOURCE_DIR CASE [ARG]
 (run by ctest; exit 77 = skipped, saying why).
@@ -272,6 +275,26 @@ def case_bad_input(work):
         fail("files left behind: %s" % left)
 
 
+def case_checkpoint_interval(work):
+    scene, flags = SCENES["builtin-adaptive-aovs"]
+    writes = {}
+    for interval in ("3600", "0.000001"):
+        out, stats = os.path.join(work, "interval.exr"), os.path.join(work, "interval.json")
+        done = run(mpirun(2) + [QUIVER_MPI, *scene, *flags, "-o", out, "--stats", stats, "--quiet",
+                                "--checkpoint", os.path.join(work, "interval.checkpoint"),
+                                "--checkpoint-interval", interval])
+        if done.returncode != 0:
+            fail("--checkpoint-interval %s exited %d:\n%s" % (interval, done.returncode, done.stderr))
+        m = read_json(stats)["mpi"]
+        writes[interval] = m["checkpoints"]
+        print("--checkpoint-interval %s: %d checkpoint writes for %d tiles" % (interval, m["checkpoints"], m["tiles"]))
+    if writes["3600"] != 1:
+        fail("an hour's interval wrote the checkpoint %d times in a short render (expected once, at the end)"
+             % writes["3600"])
+    if writes["0.000001"] < 2:
+        fail("a microsecond's interval wrote the checkpoint %d times" % writes["0.000001"])
+
+
 def main():
     if not os.access(MPIRUN, os.X_OK):
         print("SKIP: no mpirun (%s)" % MPIRUN)
@@ -285,6 +308,8 @@ def main():
             case_killed(work, 1)
         elif CASE == "bad-input":
             case_bad_input(work)
+        elif CASE == "checkpoint-interval":
+            case_checkpoint_interval(work)
         else:
             fail("unknown case " + CASE)
     print("PASS")
