@@ -118,8 +118,8 @@ class RefineTile {
     for (std::size_t k = 0; k < batch_.film.size(); ++k) {
       RefinedPixel& px = b_.pixels[b_.owner[k]];
       if (first_pass) {
-        const SampleSurface& met = b_.surfaces[k];
-        const float distance = met.material < 0 ? std::numeric_limits<float>::infinity() : met.distance;
+        const FirstSurface& met = b_.surfaces[k];
+        const float distance = met.depth;  // infinity where nothing was met
         if (px.count == 0) px.material = met.material;
         px.mixed_materials = px.mixed_materials || met.material != px.material;
         px.nearest = std::min(px.nearest, distance);

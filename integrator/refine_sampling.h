@@ -43,7 +43,7 @@ struct RefineBuffers {
   std::vector<StratumSample> strata, next_strata;  // per pixel, side^2 strata at a time
   std::vector<std::uint32_t> owner;                // the pixel of each traced sample
   std::vector<std::uint8_t> uncertain;             // per pixel, refined in the next pass
-  std::vector<SampleSurface> surfaces;             // the first pass's, per traced sample
+  std::vector<FirstSurface> surfaces;             // the first pass's, per traced sample
 };
 
 void render_refined(const TileTarget& target, const PixelTile& tile, SampleBatch& batch, RefineBuffers& buffers);

@@ -31,7 +31,7 @@ struct Worker {
   AdaptiveLattice adaptive;
   RefineBuffers refine;
   std::vector<Ray<float>> centre_rays;  // the AOVs' rays through pixel centres
-  std::vector<FirstHit> first;
+  std::vector<FirstSurface> first;
   Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
       : batch(scene, intersector, settings) {}
 };
@@ -78,7 +78,7 @@ class TileRenderer {
     for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
       for (int x = tile.x0; x < tile.x0 + tile.width; ++x, ++k) {
         const std::size_t p = std::size_t(y) * std::size_t(image.width) + std::size_t(x);
-        const FirstHit& f = w.first[k];
+        const FirstSurface& f = w.first[k];
         if (settings.aov_depth) image.depth[p] = f.depth;
         if (settings.aov_normal) {
           image.normal[3 * p] = f.normal.x;

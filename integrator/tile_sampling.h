@@ -37,7 +37,7 @@ struct TileTarget {
   // Starts a batch of camera samples; cells are kept when rays carry differentials.
   void start_batch(SampleBatch& batch) const { batch.film.clear(differentials); }
   // Traces the batch into batch.colors (and, given, each sample's first surface).
-  void trace(SampleBatch& batch, std::span<SampleSurface> surfaces = {}) const {
+  void trace(SampleBatch& batch, std::span<FirstSurface> surfaces = {}) const {
     batch.colors.resize(batch.film.size());
     batch.tracer.trace(camera, batch.film, batch.colors, batch.stats, surfaces);
   }

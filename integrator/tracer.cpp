@@ -10,8 +10,6 @@ namespace quiver {
 
 namespace {
 
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
 std::size_t padded_to(std::size_t n, std::size_t w) { return (n + w - 1) / w * w; }
 
 std::size_t light_slot_count(const Scene& scene) {
@@ -45,7 +43,7 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
       transmittance_(slots_.size()) {}
 
 void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3<float>> colors, TraceStats& stats,
-                   std::span<SampleSurface> surfaces) {
+                   std::span<FirstSurface> surfaces) {
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
   start_at_camera(camera, film, stats);
   PhaseClock clock;
@@ -110,11 +108,20 @@ void Tracer::start_at_camera(const Camera& camera, const FilmSamples& film, Trac
   primary.issued_uncompacted += padded_to(n, width_);
 }
 
-void Tracer::record_first_surfaces(std::span<SampleSurface> surfaces) const {
+FirstSurface first_surface(const Scene& scene, const Ray<float>& ray, float t, const PrimitiveRef& ref,
+                           std::uint32_t material) {
+  const PrimitiveOrigin& o = scene.origin(ref);
+  return {distance_along(ray, t), {0.f, 0.f, 0.f}, static_cast<std::int32_t>(o.kind), static_cast<std::int32_t>(o.index),
+          static_cast<std::int32_t>(material)};
+}
+
+void Tracer::record_first_surfaces(std::span<FirstSurface> surfaces) const {
   for (std::size_t i = 0; i < rays_.count; ++i) {
-    const Ray<float> ray = rays_.get(i);
+    const std::int32_t id = hits_.id[i];
     surfaces[std::size_t(paths_.sample[i])] =
-        hits_.id[i] == kNoHit ? SampleSurface{} : SampleSurface{surfaces_.material[i], distance_along(ray, hits_.t[i])};
+        id == kNoHit ? FirstSurface{}
+                     : first_surface(scene_, rays_.get(i), hits_.t[i], scene_.locate(id),
+                                     static_cast<std::uint32_t>(surfaces_.material[i]));
   }
 }
 
@@ -337,7 +344,7 @@ void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
   }
 }
 
-void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out) {
+void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstSurface> out) {
   rays_.clear();
   for (const Ray<float>& r : rays) rays_.push(r);
   rays_.pad();
@@ -346,13 +353,12 @@ void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> ou
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Hit<float> h = hits_.get(i);
     if (h.id == kNoHit) {
-      out[i] = {kInfinity, {0.f, 0.f, 0.f}, kNoKind, -1};
+      out[i] = FirstSurface{};
       continue;
     }
     const SurfacePoint s = surface_at(scene_, rays[i], h);
-    const PrimitiveOrigin& o = scene_.origin(s.ref);
-    out[i] = {distance_along(rays[i], h.t), s.shading,
-              static_cast<std::int32_t>(o.kind), static_cast<std::int32_t>(o.index)};
+    out[i] = first_surface(scene_, rays[i], h.t, s.ref, s.material_index);
+    out[i].normal = s.shading;
   }
 }
 

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -53,22 +54,23 @@ struct TraceSettings {
 // ask for filtering and the scene has a texture to filter.
 bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings);
 
-// First-hit data for AOVs: distance along the unit ray, shading normal
-// facing the ray, and the primitive's kind and index in the SceneDesc.
-struct FirstHit {
-  float depth;
-  Vec3<float> normal;
-  std::int32_t kind;
-  std::int32_t id;
+// What a camera ray met first, for the AOVs and refine's edge test: nothing
+// (the defaults), or the distance along the ray (in units of its
+// direction's length times that length: the distance for any direction),
+// the primitive's kind and index in the SceneDesc, its material and, where
+// the AOVs ask for it, the shading normal facing the ray.
+struct FirstSurface {
+  float depth = std::numeric_limits<float>::infinity();
+  Vec3<float> normal{0.f, 0.f, 0.f};
+  std::int32_t kind = kNoKind;
+  std::int32_t id = -1;
+  std::int32_t material = -1;
 };
 
-// What a camera sample's ray met first: the material (-1: nothing) and the
-// distance along the ray in units of its direction's length times that
-// length (the distance for any direction), for refine's edge test.
-struct SampleSurface {
-  std::int32_t material = -1;
-  float distance = 0.f;
-};
+// The first surface of ray at distance t, on primitive ref of that material
+// (the normal left for the caller).
+FirstSurface first_surface(const Scene& scene, const Ray<float>& ray, float t, const PrimitiveRef& ref,
+                           std::uint32_t material);
 
 class Tracer {
  public:
@@ -81,16 +83,16 @@ class Tracer {
   // on the point when the batch keeps no cells). With `surfaces` (as long as
   // the batch), also what each sample met first.
   void trace(const Camera& camera, const FilmSamples& film, std::span<Vec3<float>> colors, TraceStats& stats,
-             std::span<SampleSurface> surfaces = {});
+             std::span<FirstSurface> surfaces = {});
 
   // The first hit of each ray (unit directions).
-  void first_hits(std::span<const Ray<float>> rays, std::span<FirstHit> out);
+  void first_hits(std::span<const Ray<float>> rays, std::span<FirstSurface> out);
 
  private:
   // Wave 0: the film's camera rays, their paths and differentials.
   void start_at_camera(const Camera& camera, const FilmSamples& film, TraceStats& stats);
   // Each camera ray's first surface, by its sample.
-  void record_first_surfaces(std::span<SampleSurface> surfaces) const;
+  void record_first_surfaces(std::span<FirstSurface> surfaces) const;
   // Shades the wave into shaded_ (the emitted light, shadow streams and the
   // next wave's rays); depth: the wave's.
   void shade(int depth);
