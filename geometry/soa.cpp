@@ -17,7 +17,7 @@ void pad_column(AlignedFloats& column, std::size_t count) { pad_any(column, coun
 void pad_column(AlignedInts& column, std::size_t count) { pad_any(column, count); }
 
 RaySoA::RaySoA(std::size_t n) : count(n) {
-  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->assign(padded_size(n), 0.f);
+  for (AlignedFloats* c : columns()) c->assign(padded_size(n), 0.f);
 }
 
 void RaySoA::set(std::size_t i, const Ray<float>& ray) {
@@ -32,7 +32,7 @@ void RaySoA::set(std::size_t i, const Ray<float>& ray) {
 }
 
 void RaySoA::clear() {
-  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->clear();
+  for (AlignedFloats* c : columns()) c->clear();
   count = 0;
 }
 
@@ -49,7 +49,7 @@ void RaySoA::push(const Ray<float>& ray) {
 }
 
 void RaySoA::resize(std::size_t n) {
-  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) c->resize(padded_size(n));
+  for (AlignedFloats* c : columns()) c->resize(padded_size(n));
   count = n;
 }
 
@@ -58,7 +58,7 @@ Ray<float> RaySoA::get(std::size_t i) const {
 }
 
 void RaySoA::pad() {
-  for (AlignedFloats* c : {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}) pad_column(*c, count);
+  for (AlignedFloats* c : columns()) pad_column(*c, count);
 }
 
 HitSoA::HitSoA(const RaySoA& rays) { reset(rays); }

@@ -4,6 +4,7 @@
 // element (valid numbers, no NaN) and are always masked off.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -73,6 +74,8 @@ struct RaySoA {
   void resize(std::size_t n);
   // Call after the last set(): copies the last ray into the padding lanes.
   void pad();
+  // Every column, the one list of them.
+  std::array<AlignedFloats*, 8> columns() { return {&ox, &oy, &oz, &dx, &dy, &dz, &tmin, &tmax}; }
 
   template <class F>
   [[gnu::always_inline]] Ray<F> load(std::size_t first) const {

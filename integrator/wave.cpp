@@ -3,7 +3,7 @@
 namespace quiver {
 
 void Vec3Columns::clear() {
-  for (AlignedFloats* c : {&x, &y, &z}) c->clear();
+  for (AlignedFloats* c : columns()) c->clear();
 }
 
 void Vec3Columns::push(const Vec3<float>& v) {
@@ -13,11 +13,11 @@ void Vec3Columns::push(const Vec3<float>& v) {
 }
 
 void Vec3Columns::pad(std::size_t count) {
-  for (AlignedFloats* c : {&x, &y, &z}) pad_column(*c, count);
+  for (AlignedFloats* c : columns()) pad_column(*c, count);
 }
 
 void Vec3Columns::assign(std::size_t padded) {
-  for (AlignedFloats* c : {&x, &y, &z}) c->assign(padded, 0.f);
+  for (AlignedFloats* c : columns()) c->assign(padded, 0.f);
 }
 
 void Vec3Columns::set(std::size_t i, const Vec3<float>& v) {
@@ -27,17 +27,24 @@ void Vec3Columns::set(std::size_t i, const Vec3<float>& v) {
 }
 
 void DifferentialColumns::clear() {
-  for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->clear();
-  for (AlignedFloats* c : {&centre_x, &centre_y}) c->clear();
+  for (Vec3Columns* c : vectors()) c->clear();
+  for (AlignedFloats* c : centres()) c->clear();
 }
 
 void DifferentialColumns::pad(std::size_t count) {
-  for (Vec3Columns* c : {&origin_dx, &origin_dy, &direction_dx, &direction_dy}) c->pad(count);
-  for (AlignedFloats* c : {&centre_x, &centre_y}) pad_column(*c, count);
+  for (Vec3Columns* c : vectors()) c->pad(count);
+  for (AlignedFloats* c : centres()) pad_column(*c, count);
+}
+
+void DifferentialColumns::resize(std::size_t size) {
+  for (Vec3Columns* v : vectors()) {
+    for (AlignedFloats* c : v->columns()) c->resize(size);
+  }
+  for (AlignedFloats* c : centres()) c->resize(size);
 }
 
 void PathColumns::clear() {
-  for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) c->clear();
+  for (AlignedFloats* c : weights()) c->clear();
   sample.clear();
   key.clear();
   count = 0;
@@ -55,13 +62,13 @@ void PathColumns::push(std::uint32_t sample_index, const Vec3<float>& weight, st
 void PathColumns::start_at_camera(std::size_t n) {
   sample.resize(n);
   for (std::size_t i = 0; i < n; ++i) sample[i] = static_cast<std::int32_t>(i);
-  for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) c->assign(n, 1.f);
+  for (AlignedFloats* c : weights()) c->assign(n, 1.f);
   key.resize(n);
   count = n;
 }
 
 void PathColumns::pad() {
-  for (AlignedFloats* c : {&weight_r, &weight_g, &weight_b}) pad_column(*c, count);
+  for (AlignedFloats* c : weights()) pad_column(*c, count);
   pad_column(sample, count);
   key.resize(padded_size(count), count > 0 ? key[count - 1] : 0);
 }
@@ -96,10 +103,8 @@ MaterialTable::MaterialTable(const std::vector<MaterialDesc>& scene_materials) {
 }
 
 void ShadowSlot::open(std::size_t capacity) {
-  for (AlignedFloats* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.tmin, &rays.tmax,
-                           &light_r, &light_g, &light_b}) {
-    c->resize(capacity);
-  }
+  for (AlignedFloats* c : rays.columns()) c->resize(capacity);
+  for (AlignedFloats* c : {&light_r, &light_g, &light_b}) c->resize(capacity);
   point.resize(capacity);
   rays.count = 0;
 }
@@ -107,9 +112,7 @@ void ShadowSlot::open(std::size_t capacity) {
 namespace {
 
 void grow_rays(RaySoA& rays, std::size_t size) {
-  for (AlignedFloats* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.tmin, &rays.tmax}) {
-    c->resize(size);
-  }
+  for (AlignedFloats* c : rays.columns()) c->resize(size);
   rays.count = size;
 }
 
@@ -118,17 +121,11 @@ void grow_rays(RaySoA& rays, std::size_t size) {
 std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, DifferentialColumns* differentials) {
   const std::size_t first = rays.ox.size(), size = first + n;
   grow_rays(rays, size);
-  for (AlignedFloats* c : {&paths.weight_r, &paths.weight_g, &paths.weight_b}) c->resize(size);
+  for (AlignedFloats* c : paths.weights()) c->resize(size);
   paths.sample.resize(size);
   paths.key.resize(size);
   paths.count = size;
-  if (differentials != nullptr) {
-    for (Vec3Columns* v : {&differentials->origin_dx, &differentials->origin_dy, &differentials->direction_dx,
-                           &differentials->direction_dy}) {
-      for (AlignedFloats* c : {&v->x, &v->y, &v->z}) c->resize(size);
-    }
-    for (AlignedFloats* c : {&differentials->centre_x, &differentials->centre_y}) c->resize(size);
-  }
+  if (differentials != nullptr) differentials->resize(size);
   return first;
 }
 

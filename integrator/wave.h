@@ -7,6 +7,7 @@
 // (geometry/soa.h), so any width loads whole packets.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -26,6 +27,7 @@ struct Vec3Columns {
   void assign(std::size_t padded);  // zeros
   void set(std::size_t i, const Vec3<float>& v);
   Vec3<float> get(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  std::array<AlignedFloats*, 3> columns() { return {&x, &y, &z}; }
 };
 
 // Per ray, its differentials (integrator/ray_differentials.h): the change
@@ -37,6 +39,9 @@ struct DifferentialColumns {
 
   void clear();
   void pad(std::size_t count);
+  void resize(std::size_t size);  // unpadded
+  std::array<Vec3Columns*, 4> vectors() { return {&origin_dx, &origin_dy, &direction_dx, &direction_dy}; }
+  std::array<AlignedFloats*, 2> centres() { return {&centre_x, &centre_y}; }
 };
 
 struct PathColumns {
@@ -50,6 +55,7 @@ struct PathColumns {
   // n camera paths: path i of sample i, weight 1, keys to be written.
   void start_at_camera(std::size_t n);
   void pad();  // after the last push or key
+  std::array<AlignedFloats*, 3> weights() { return {&weight_r, &weight_g, &weight_b}; }
 };
 
 // Per ray of a wave; misses hold material 0, no normal and black.

@@ -18,9 +18,7 @@ bool square_safe(float x) {
 
 ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
   ConeSoA soa;
-  AlignedFloats* columns[] = {&soa.bx,     &soa.by,      &soa.bz,    &soa.ax,    &soa.ay,
-                              &soa.az,     &soa.height,  &soa.radius0, &soa.slope, &soa.facing};
-  for (AlignedFloats* c : columns) c->reserve(padded_size(cones.size()));
+  for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(cones.size()));
   for (const ConeDesc& c : cones) {
     if (!all_finite(c.base) || !all_finite(c.apex) || !std::isfinite(c.base_radius) || !std::isfinite(c.apex_radius)) {
       ++report.dropped_non_finite;
@@ -59,13 +57,13 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
   }
   soa.count = soa.bx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : columns) pad_column(*c, soa.count);
+  for (AlignedFloats* c : soa.columns()) pad_column(*c, soa.count);
   return soa;
 }
 
 std::size_t ConeSoA::memory_bytes() const {
   std::size_t bytes = bytes_of(source);
-  for (const AlignedFloats* c : {&bx, &by, &bz, &ax, &ay, &az, &height, &radius0, &slope, &facing}) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : const_cast<ConeSoA&>(*this).columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

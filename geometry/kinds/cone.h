@@ -37,6 +37,7 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -185,6 +186,7 @@ struct ConeSoA {
 
   std::size_t size() const { return count; }
   std::size_t memory_bytes() const;  // columns and source list
+  std::array<AlignedFloats*, 10> columns() { return {&bx, &by, &bz, &ax, &ay, &az, &height, &radius0, &slope, &facing}; }
   template <class F>
   ConeLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(bx, by, bz, i), broadcast_vec3<F>(ax, ay, az, i), F(height[i]),

@@ -18,6 +18,7 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -121,7 +122,7 @@ struct PlaneSoA {
   std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
-  std::vector<AlignedFloats*> columns() { return {&nx, &ny, &nz, &d, &px, &py, &pz}; }
+  std::array<AlignedFloats*, 7> columns() { return {&nx, &ny, &nz, &d, &px, &py, &pz}; }
   // Bytes held by the columns and the source list.
   std::size_t memory_bytes() const;
   template <class F>

@@ -278,11 +278,8 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
   }
   soa.count = soa.nx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
-                           &soa.vmin, &soa.vmax, &soa.reach, &soa.plane_slack, &soa.band_scale}) {
-    pad_column(*c, soa.count);
-  }
-  for (AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count, &soa.band_count}) pad_column(*c, soa.count);
+  for (AlignedFloats* c : soa.polygon_columns()) pad_column(*c, soa.count);
+  for (AlignedInts* c : soa.polygon_int_columns()) pad_column(*c, soa.count);
   soa.first_vertex.resize(padded_size(soa.count), soa.first_vertex.empty() ? 0 : soa.first_vertex.back());
   soa.band_start.resize(padded_size(soa.count), soa.band_first.size());
   return soa;
@@ -290,13 +287,10 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 
 std::size_t PolygonSoA::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const AlignedFloats* c : {&nx, &ny, &nz, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach,
-                                 &plane_slack, &pu, &pv, &px, &py, &pz, &band_scale}) {
-    bytes += c->capacity() * sizeof(float);
-  }
-  for (const AlignedInts* c : {&axis_u, &axis_v, &vertex_count, &band_count}) {
-    bytes += c->capacity() * sizeof(std::int32_t);
-  }
+  PolygonSoA& self = const_cast<PolygonSoA&>(*this);
+  for (const AlignedFloats* c : self.polygon_columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : self.vertex_columns()) bytes += bytes_of(*c);
+  for (const AlignedInts* c : self.polygon_int_columns()) bytes += bytes_of(*c);
   for (const std::vector<std::size_t>* c : {&first_vertex, &band_start, &band_first}) {
     bytes += c->capacity() * sizeof(std::size_t);
   }

@@ -429,6 +429,12 @@ struct PolygonSoA {
   }
   // Bytes of every column and list.
   std::size_t memory_bytes() const;
+  // The per-polygon columns (padded) and the per-vertex ones, the one list of each.
+  std::array<AlignedFloats*, 12> polygon_columns() {
+    return {&nx, &ny, &nz, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach, &plane_slack, &band_scale};
+  }
+  std::array<AlignedInts*, 4> polygon_int_columns() { return {&axis_u, &axis_v, &vertex_count, &band_count}; }
+  std::array<AlignedFloats*, 5> vertex_columns() { return {&pu, &pv, &px, &py, &pz}; }
 };
 
 // Drops (with counts): a non-finite coordinate (also one whose projection

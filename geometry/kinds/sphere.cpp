@@ -10,7 +10,7 @@ namespace quiver {
 
 SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report) {
   SphereSoA soa;
-  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) c->reserve(padded_size(spheres.size()));
+  for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(spheres.size()));
   for (const SphereDesc& s : spheres) {
     const Vec3<float>& c = s.center;
     if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(s.radius)) {
@@ -35,13 +35,13 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
   }
   soa.count = soa.cx.size();
   report.kept += soa.count;
-  for (AlignedFloats* c : {&soa.cx, &soa.cy, &soa.cz, &soa.r2, &soa.inv_r}) pad_column(*c, soa.count);
+  for (AlignedFloats* c : soa.columns()) pad_column(*c, soa.count);
   return soa;
 }
 
 std::size_t SphereSoA::memory_bytes() const {
   std::size_t bytes = bytes_of(source);
-  for (const AlignedFloats* c : {&cx, &cy, &cz, &r2, &inv_r}) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : const_cast<SphereSoA&>(*this).columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

@@ -45,6 +45,7 @@
 // The kind's entry in the list of kinds (geometry/kinds.h) closes the file.
 #pragma once
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -248,6 +249,7 @@ struct SphereSoA {
 
   std::size_t size() const { return count; }
   std::size_t memory_bytes() const;  // columns and source list
+  std::array<AlignedFloats*, 5> columns() { return {&cx, &cy, &cz, &r2, &inv_r}; }
   template <class F>
   SphereLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(cx, cy, cz, i), F(r2[i]), F(inv_r[i])};
