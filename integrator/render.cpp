@@ -15,90 +15,10 @@
 #include <tbb/parallel_for.h>
 
 #include "integrator/camera.h"
-#include "integrator/corner_sampling.h"
-#include "integrator/refine_sampling.h"
-#include "integrator/supersampling.h"
 #include "integrator/thread_arena.h"
-#include "integrator/tile_sampling.h"
+#include "integrator/tile_renderer.h"
 
 namespace quiver {
-
-namespace {
-
-// Per-thread state: a tracer and its buffers, reused tile after tile.
-struct Worker {
-  SampleBatch batch;
-  AdaptiveLattice adaptive;
-  RefineBuffers refine;
-  std::vector<Ray<float>> centre_rays;  // the AOVs' rays through pixel centres
-  std::vector<FirstSurface> first;
-  Worker(const Scene& scene, const SceneIntersector& intersector, const TraceSettings& settings)
-      : batch(scene, intersector, settings) {}
-};
-
-// A tile's pixels by the settings' anti-aliasing strategy, then its AOVs.
-class TileRenderer {
- public:
-  TileRenderer(const TileTarget& target, std::vector<Vec3<float>>* corners)
-      : target_(target), corners_(corners), supersampler_(supersampled_aa(target.settings.aa)) {}
-
-  void render(const PixelTile& tile, Worker& w) const {
-    switch (target_.settings.aa.mode) {
-      case AntiAliasing::Mode::none:
-      case AntiAliasing::Mode::grid:
-      case AntiAliasing::Mode::jitter: supersampler_.render(target_, tile, w.batch); break;
-      case AntiAliasing::Mode::corners: render_corners(target_, tile, w.batch, *corners_); break;
-      case AntiAliasing::Mode::adaptive: render_adaptive(target_, tile, w.batch, w.adaptive); break;
-      case AntiAliasing::Mode::refine: render_refined(target_, tile, w.batch, w.refine); break;
-    }
-    const RenderSettings& settings = target_.settings;
-    if (settings.aov_depth || settings.aov_normal || settings.aov_id) render_aovs(tile, w);
-  }
-
- private:
-  // The supersampler's mode: the settings' when it is none, grid or jitter.
-  static AntiAliasing supersampled_aa(const AntiAliasing& aa) {
-    const bool supersampled = aa.mode == AntiAliasing::Mode::none || aa.mode == AntiAliasing::Mode::grid ||
-                              aa.mode == AntiAliasing::Mode::jitter;
-    return supersampled ? aa : AntiAliasing{};
-  }
-
-  void render_aovs(const PixelTile& tile, Worker& w) const {
-    const RenderSettings& settings = target_.settings;
-    Framebuffer& image = target_.image;
-    w.centre_rays.clear();
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x) {
-        w.centre_rays.push_back(target_.camera.ray(x + 0.5, y + 0.5));
-      }
-    }
-    w.first.resize(w.centre_rays.size());
-    w.batch.tracer.first_hits(w.centre_rays, w.first);
-    std::size_t k = 0;
-    for (int y = tile.y0; y < tile.y0 + tile.height; ++y) {
-      for (int x = tile.x0; x < tile.x0 + tile.width; ++x, ++k) {
-        const std::size_t p = std::size_t(y) * std::size_t(image.width) + std::size_t(x);
-        const FirstSurface& f = w.first[k];
-        if (settings.aov_depth) image.depth[p] = f.depth;
-        if (settings.aov_normal) {
-          image.normal[3 * p] = f.normal.x;
-          image.normal[3 * p + 1] = f.normal.y;
-          image.normal[3 * p + 2] = f.normal.z;
-        }
-        if (settings.aov_id) {
-          image.kind[p] = f.kind;
-          image.id[p] = f.id;
-        }
-      }
-    }
-  }
-
-  const TileTarget& target_;
-  std::vector<Vec3<float>>* corners_;  // corners mode: (W + 1) x (H + 1) colours
-  Supersampler supersampler_;
-};
-
-}  // namespace
 
 std::vector<PixelTile> pixel_tiles(int width, int height, int side) {
   if (side < 1) throw std::invalid_argument("tile side must be at least 1");
@@ -117,7 +37,7 @@ struct FrameRenderer::State {
   Camera camera;
   std::vector<PixelTile> tiles;
   SceneIntersector intersector;
-  tbb::enumerable_thread_specific<Worker> workers;
+  tbb::enumerable_thread_specific<TileWorker> workers;
   ThreadArena arena;
 
   State(const Scene& s, const RenderSettings& rs)
@@ -126,7 +46,7 @@ struct FrameRenderer::State {
         camera(s.camera, rs.width, rs.height),
         tiles(pixel_tiles(rs.width, rs.height, rs.tile_size)),
         intersector(kernel_unit_for(rs.isa), choose_sphere_method(s, rs.methods)),
-        workers([this] { return Worker(scene, intersector, settings.trace); }),
+        workers([this] { return TileWorker(scene, intersector, settings.trace); }),
         arena(rs.threads) {}
 
   bool corners_mode() const { return settings.aa.mode == AntiAliasing::Mode::corners; }
@@ -204,7 +124,7 @@ std::size_t FrameRenderer::render_tiles(Film& film, const TileSource& next, cons
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, s.tiles.size(), 1),
         [&](const tbb::blocked_range<std::size_t>& range) {
-          Worker& w = s.workers.local();
+          TileWorker& w = s.workers.local();
           for (std::size_t k = range.begin(); k != range.end(); ++k) {
             if (stop != nullptr && stop->load(std::memory_order_relaxed)) return;
             const std::optional<std::size_t> t = next();
@@ -287,7 +207,7 @@ void FrameRenderer::finish(Film& film) const {
 
 TraceStats FrameRenderer::stats() const {
   TraceStats total;
-  for (const Worker& w : state_->workers) total.add(w.batch.stats);
+  for (const TileWorker& w : state_->workers) total.add(w.batch.stats);
   return total;
 }
 
