@@ -38,23 +38,6 @@ void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image
 
 namespace {
 
-float max_difference(const Vec3<float>& a, const Vec3<float>& b) {
-  return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
-}
-
-}  // namespace
-
-bool corners_differ(const std::array<Vec3<float>, 4>& c, float threshold) {
-  for (int a = 0; a < 4; ++a) {
-    for (int b = a + 1; b < 4; ++b) {
-      if (max_difference(c[a], c[b]) > threshold) return true;
-    }
-  }
-  return false;
-}
-
-namespace {
-
 // A square of the lattice: its top-left point and side, in lattice steps.
 struct Square {
   int X, Y, size;

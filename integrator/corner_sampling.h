@@ -9,7 +9,9 @@
 //            pixel is the area-weighted mean of its squares.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -27,8 +29,19 @@ void render_corners(const TileTarget& target, const PixelTile& tile, SampleBatch
 void average_corners(const std::vector<Vec3<float>>& corners, Framebuffer& image);
 
 // Whether an adaptive square splits: two of its corners' colours (any
-// order) differ by more than threshold in some channel.
-bool corners_differ(const std::array<Vec3<float>, 4>& corners, float threshold);
+// order) differ by more than threshold in some channel. Inline: the lattice
+// asks it of every square, twice.
+inline bool corners_differ(const std::array<Vec3<float>, 4>& c, float threshold) {
+  const auto max_difference = [](const Vec3<float>& a, const Vec3<float>& b) {
+    return std::max(std::fabs(a.x - b.x), std::max(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
+  };
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) {
+      if (max_difference(c[a], c[b]) > threshold) return true;
+    }
+  }
+  return false;
+}
 
 // adaptive's per-worker buffer: the sample index per lattice point (-1 unset).
 struct AdaptiveLattice {
