@@ -30,11 +30,11 @@ Vec3<float> instance_error(const Scene& scene, std::size_t row, const Ray<float>
 // The material's colour at the point: times its texture where textured,
 // filtered over the footprint when there is one.
 Vec3<float> surface_colour(const Scene& scene, const SurfaceDetail& s, const MappingQuery& q,
-                           const PointDifferentials* footprint, const SurfaceMapping& mapped) {
+                           const PointDifferentials* footprint) {
   const Vec3<float>& position = q.position;
   const Vec3<float>* const dp = q.dp;
-  const float* const du = mapped.du;
-  const float* const dv = mapped.dv;
+  const float* const du = s.du;
+  const float* const dv = s.dv;
   if (!q.textured) return s.material->color;
   if (footprint == nullptr) {
     return mul(evaluate(scene.textures[*s.material->texture], s.u, s.v, position), s.material->color);
@@ -77,15 +77,10 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
     q.world_to_object = &to_object;
     s.instance_error = instance_error(scene, row, ray, hit.t);
   }
-  SurfaceMapping mapped{hit.u, hit.v};
-  visit_kind(s.ref.kind, [&]<class K>(K) { map_surface(scene.store_of<K>(s.ref), q, mapped); });
-  s.u = mapped.u;
-  s.v = mapped.v;
-  s.smooth = mapped.smooth;
-  s.interpolated = mapped.interpolated;
-  s.normal_dx = mapped.normal_change[0];
-  s.normal_dy = mapped.normal_change[1];
-  s.color = surface_colour(scene, s, q, footprint, mapped);
+  s.u = hit.u;
+  s.v = hit.v;
+  visit_kind(s.ref.kind, [&]<class K>(K) { map_surface(scene.store_of<K>(s.ref), q, s); });
+  s.color = surface_colour(scene, s, q, footprint);
   return s;
 }
 SurfacePoint surface_at(const Scene& scene, const Ray<float>& ray, const Hit<float>& hit) {

@@ -10,27 +10,22 @@
 #include <cstdint>
 
 #include "geometry/hit.h"
+#include "geometry/surface_mapping.h"
 #include "integrator/surface_frame.h"
 #include "scene/scene.h"
 
 namespace quiver {
 
 // What a hit needs beyond its frame (integrator/surface_frame.h), which the
-// wave's lanes compute: the primitive, its material, the interpolated
-// shading normal where the primitive has one, and the texture coordinates
-// and colour.
-struct SurfaceDetail {
+// wave's lanes compute: its kind's surface mapping (texture coordinates,
+// the interpolated shading normal where the primitive has one, their change
+// over a footprint; geometry/surface_mapping.h), the primitive, its
+// material and the colour.
+struct SurfaceDetail : SurfaceMapping {
   PrimitiveRef ref;
   std::uint32_t material_index;
   const MaterialDesc* material;
-  bool smooth;               // the shading normal is interpolated, not the geometric one
-  Vec3<float> interpolated;  // unit, the primitive's orientation; set where smooth
-  float u, v;                // texture coordinates (the kernel's u, v when untextured)
-  Vec3<float> color;         // the material's colour at the point (texture times colour)
-  // With a footprint: the shading normal's change (the primitive's
-  // orientation) over it: spheres and interpolated normals; 0 on flat
-  // surfaces and, as an approximation, on cones.
-  Vec3<float> normal_dx{0.f, 0.f, 0.f}, normal_dy{0.f, 0.f, 0.f};
+  Vec3<float> color;  // the material's colour at the point (texture times colour)
   // A bound on the hit point's error beyond what the world ray's o + t d
   // carries (SurfaceFrame::error): for an instance, the rounding of
   // carrying the ray into it and of its hit there, mapped back to world

@@ -215,8 +215,8 @@ void Tracer::resolve_surface_with_footprint(std::size_t i) {
   store_surface(i, d);
   surfaces_.point_dx.set(i, footprint.dx);
   surfaces_.point_dy.set(i, footprint.dy);
-  surfaces_.normal_dx.set(i, d.normal_dx);
-  surfaces_.normal_dy.set(i, d.normal_dy);
+  surfaces_.normal_dx.set(i, d.normal_change[0]);
+  surfaces_.normal_dy.set(i, d.normal_change[1]);
 }
 
 void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncompacted, bool one_ray_per_sample,
