@@ -8,7 +8,10 @@ ratio, per scene. For "speed unchanged" claims across a refactor.
 
 Scenes: balls-s4 and gears-s4 under --preset spd at 512x512 (from
 --shared, default ../shared beside the repository) and the built-in
-default scene.
+default scene. bench/phases.py also compares builds, phase by phase, at
+one ray per pixel on scene files (it times `quiver trace` too, so it
+cannot take the built-in scene) and writes bench/results; this script
+times whole renders with each scene's own anti-aliasing and writes nothing.
 """
 
 import argparse

@@ -108,11 +108,11 @@ void Tracer::start_at_camera(const Camera& camera, const FilmSamples& film, Trac
   primary.issued_uncompacted += padded_to(n, width_);
 }
 
-FirstSurface first_surface(const Scene& scene, const Ray<float>& ray, float t, const PrimitiveRef& ref,
-                           std::uint32_t material) {
-  const PrimitiveOrigin& o = scene.origin(ref);
-  return {distance_along(ray, t), {0.f, 0.f, 0.f}, static_cast<std::int32_t>(o.kind), static_cast<std::int32_t>(o.index),
-          static_cast<std::int32_t>(material)};
+FirstSurface first_surface(const Ray<float>& ray, float t, std::uint32_t material) {
+  FirstSurface s;
+  s.depth = distance_along(ray, t);
+  s.material = static_cast<std::int32_t>(material);
+  return s;
 }
 
 void Tracer::record_first_surfaces(std::span<FirstSurface> surfaces) const {
@@ -120,8 +120,7 @@ void Tracer::record_first_surfaces(std::span<FirstSurface> surfaces) const {
     const std::int32_t id = hits_.id[i];
     surfaces[std::size_t(paths_.sample[i])] =
         id == kNoHit ? FirstSurface{}
-                     : first_surface(scene_, rays_.get(i), hits_.t[i], scene_.locate(id),
-                                     static_cast<std::uint32_t>(surfaces_.material[i]));
+                     : first_surface(rays_.get(i), hits_.t[i], static_cast<std::uint32_t>(surfaces_.material[i]));
   }
 }
 
@@ -357,8 +356,11 @@ void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstSurface
       continue;
     }
     const SurfacePoint s = surface_at(scene_, rays[i], h);
-    out[i] = first_surface(scene_, rays[i], h.t, s.ref, s.material_index);
+    const PrimitiveOrigin& o = scene_.origin(s.ref);
+    out[i] = first_surface(rays[i], h.t, s.material_index);
     out[i].normal = s.shading;
+    out[i].kind = static_cast<std::int32_t>(o.kind);
+    out[i].id = static_cast<std::int32_t>(o.index);
   }
 }
 

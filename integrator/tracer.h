@@ -56,9 +56,9 @@ bool rays_carry_differentials(const Scene& scene, const TraceSettings& settings)
 
 // What a camera ray met first, for the AOVs and refine's edge test: nothing
 // (the defaults), or the distance along the ray (in units of its
-// direction's length times that length: the distance for any direction),
-// the primitive's kind and index in the SceneDesc, its material and, where
-// the AOVs ask for it, the shading normal facing the ray.
+// direction's length times that length: the distance for any direction) and
+// the material; for the AOVs also the primitive's kind and index in the
+// SceneDesc and the shading normal facing the ray.
 struct FirstSurface {
   float depth = std::numeric_limits<float>::infinity();
   Vec3<float> normal{0.f, 0.f, 0.f};
@@ -67,10 +67,10 @@ struct FirstSurface {
   std::int32_t material = -1;
 };
 
-// The first surface of ray at distance t, on primitive ref of that material
-// (the normal left for the caller).
-FirstSurface first_surface(const Scene& scene, const Ray<float>& ray, float t, const PrimitiveRef& ref,
-                           std::uint32_t material);
+// The first surface of ray at distance t, of that material: what refine's
+// edge test reads. The AOVs add the primitive's kind and index and the
+// normal, which they alone ask for.
+FirstSurface first_surface(const Ray<float>& ray, float t, std::uint32_t material);
 
 class Tracer {
  public:

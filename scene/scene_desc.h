@@ -168,11 +168,6 @@ struct SceneDesc {
 
 // Each kind's entries in a SceneDesc and the description in an entry, for
 // code that iterates the list of kinds (geometry/kinds.h).
-struct SphereKind;
-struct PlaneKind;
-struct TriangleKind;
-struct PolygonKind;
-struct ConeKind;
 template <class K>
 struct SceneEntries;
 template <>
