@@ -116,14 +116,21 @@ void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& sce
              std::to_string(totals[3]), std::to_string(totals[4]), std::to_string(totals[5])},
             widths);
 
-  std::size_t patches = 0, patch_triangles = 0;
+  // Polygons built as triangles (patches and three-vertex polygons) keep kind polygon.
+  std::size_t patches = 0, cut_triangles = 0;
   for (const ScenePolygon& p : desc.polygons) patches += p.normals.empty() ? 0 : 1;
+  std::vector<bool> cut(desc.polygons.size(), false);
   for (const GeometryLayer* g : {&scene.opaque, &scene.transmissive}) {
-    for (const PrimitiveOrigin& o : g->origins<TriangleKind>()) patch_triangles += o.kind == kind_tag<PolygonKind> ? 1 : 0;
+    for (const PrimitiveOrigin& o : g->origins<TriangleKind>()) {
+      if (o.kind != kind_tag<PolygonKind>) continue;
+      ++cut_triangles;
+      cut[o.index] = true;
+    }
   }
-  if (patches > 0) {
-    out << "  polygons read with vertex normals: " << patches << ", built as " << patch_triangles
-        << " of the triangles kept\n";
+  const auto cut_polygons = std::size_t(std::count(cut.begin(), cut.end(), true));
+  if (cut_polygons > 0) {
+    out << "  polygons built as triangles: " << cut_polygons << " (" << patches << " read with vertex normals), as "
+        << cut_triangles << " of the triangles kept\n";
   }
   if (!desc.instances.empty()) {
     std::size_t placed = 0;

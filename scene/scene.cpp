@@ -34,23 +34,31 @@ std::vector<PrimitiveOrigin> kept_origins(const std::vector<std::uint32_t>& sour
   return kept;
 }
 
-// An NFF `pp` patch as triangles with per-vertex normals: a triangle as it
-// is, a larger polygon by ear clipping, each vertex taking the normal of
-// the first input vertex at the same position.
-std::vector<TriangleDesc> patch_triangles(const ScenePolygon& patch) {
-  const std::vector<Vec3<float>>& vs = patch.polygon.vertices;
+// The triangles the triangle kernel renders a polygon as: every NFF `pp`
+// patch (a triangle as it is, a larger polygon by ear clipping, each vertex
+// taking the normal of the first input vertex at the same position), and a
+// plain polygon of three vertices (with the polygon kernel's texture
+// coordinates where textured). Empty: it stays a polygon.
+std::vector<TriangleDesc> polygon_triangles(const ScenePolygon& polygon, bool textured) {
+  std::vector<TriangleDesc> out;
+  if (polygon.normals.empty()) {
+    if (const std::optional<PolygonTriangle> t = polygon_as_triangle(polygon.polygon)) {
+      out.push_back({t->p, {}, textured ? std::optional(t->uv) : std::nullopt});
+    }
+    return out;
+  }
+  const std::vector<Vec3<float>>& vs = polygon.polygon.vertices;
   auto normal_at = [&](const Vec3<float>& p) {
     for (std::size_t i = 0; i < vs.size(); ++i) {
-      if (vs[i].x == p.x && vs[i].y == p.y && vs[i].z == p.z) return patch.normals[i];
+      if (vs[i].x == p.x && vs[i].y == p.y && vs[i].z == p.z) return polygon.normals[i];
     }
     return Vec3<float>(0.f, 0.f, 0.f);  // the builder replaces a zero normal by the geometric one
   };
-  std::vector<TriangleDesc> out;
   if (vs.size() == 3) {
-    out.push_back({{vs[0], vs[1], vs[2]}, std::array{patch.normals[0], patch.normals[1], patch.normals[2]}, {}});
+    out.push_back({{vs[0], vs[1], vs[2]}, std::array{polygon.normals[0], polygon.normals[1], polygon.normals[2]}, {}});
     return out;
   }
-  for (const auto& tri : triangulate_polygon(patch.polygon)) {
+  for (const auto& tri : triangulate_polygon(polygon.polygon)) {
     out.push_back({tri, std::array{normal_at(tri[0]), normal_at(tri[1]), normal_at(tri[2])}, {}});
   }
   return out;
@@ -239,9 +247,11 @@ void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is
     const auto& entry = entries[i];
     const PrimitiveOrigin o = origin_of(entry.material, kind_tag<K>, i);
     if constexpr (std::is_same_v<K, PolygonKind>) {
-      if (!entry.normals.empty()) {  // an NFF patch: triangles with normals, kind polygon
+      // An NFF patch or a three-vertex polygon: triangles that keep kind polygon.
+      std::vector<TriangleDesc> triangles = polygon_triangles(entry, desc.materials[entry.material].texture.has_value());
+      if (!triangles.empty()) {
         auto& in = inputs.of<TriangleKind>().layer(is_transmissive(entry.material));
-        for (TriangleDesc& t : patch_triangles(entry)) {
+        for (TriangleDesc& t : triangles) {
           in.descs.push_back(std::move(t));
           in.origins.push_back(o);
         }

@@ -93,5 +93,24 @@ TEST(SceneInfo, CountRows) {
   EXPECT_NE(report.find(std::to_string(scene.memory_bytes())), std::string::npos);
 }
 
+// A three-vertex polygon is built as a triangle: the report counts it read
+// as a polygon, kept as a triangle, and says so on a line of its own.
+TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
+  SceneDesc desc = mixed_scene();
+  ScenePolygon corner;
+  corner.polygon.vertices = {{0.f, 0.f, 1.f}, {1.f, 0.f, 1.f}, {0.f, 1.f, 1.f}};
+  corner.material = 0;
+  desc.polygons.push_back(corner);
+  const Scene scene = build_scene(desc, {});
+  std::ostringstream out;
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt});
+  const std::string report = out.str();
+  EXPECT_EQ(row(report, "triangles"), (std::vector<std::size_t>{1, 2, 0, 0, 1, 1}));
+  EXPECT_EQ(row(report, "polygons"), (std::vector<std::size_t>{2, 1, 0, 0, 1, 0}));
+  EXPECT_NE(report.find("polygons built as triangles: 1 (0 read with vertex normals), as 1 of the triangles kept"),
+            std::string::npos)
+      << report;
+}
+
 }  // namespace
 }  // namespace quiver

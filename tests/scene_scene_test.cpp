@@ -1,6 +1,11 @@
 // The built scene (scene/scene.h): its bounds hold every built primitive of
-// every kind in both layers, whichever comes first in its store.
+// every kind in both layers, whichever comes first in its store; polygons of
+// three vertices are built as triangles that keep their origin.
 #include "scene/scene.h"
+
+#include <algorithm>
+#include <array>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -66,6 +71,57 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
   const Scene alone = build_scene(cone_alone, {});
   expect_held(alone, alone.opaque.store<ConeKind>());
   EXPECT_GE(alone.bounds_min.x, 3.f);
+}
+
+// Polygons of three vertices (after consecutive duplicates go) become
+// triangles, as stored, with their origin (kind polygon, their index) and,
+// textured, the polygon kernel's u, v (each corner projected on the
+// dominant plane relative to the first vertex); quads and polygons the
+// polygon builder drops stay polygons.
+TEST(Scene, ThreeVertexPolygonsAreBuiltAsTrianglesThatKeepTheirOrigin) {
+  SceneDesc desc;
+  desc.camera = kCamera;
+  MaterialDesc textured;
+  textured.texture = 0;
+  desc.materials = {MaterialDesc{}, textured};
+  desc.textures.resize(1);
+  using V = Vec3<float>;
+  // Normal mostly along x (the dropped axis): u along y, v along z.
+  const std::vector<V> slanted{{0.f, 0.f, 0.f}, {0.25f, 2.f, 0.f}, {0.5f, 0.f, 3.f}};
+  desc.polygons.push_back({{slanted}, {}, 0});
+  desc.polygons.push_back({{{{0.f, 0.f, 5.f}, {1.f, 0.f, 5.f}, {1.f, 1.f, 5.f}, {0.f, 1.f, 5.f}}}, {}, 0});  // a quad
+  desc.polygons.push_back({{{{2.f, 0.f, 5.f}, {3.f, 0.f, 5.f}, {3.f, 0.f, 5.f}, {2.f, 1.f, 5.f}}}, {}, 0});  // a repeat
+  desc.polygons.push_back({{{{0.f, 0.f, 9.f}, {1.f, 0.f, 9.f}, {2.f, 0.f, 9.f}}}, {}, 0});  // collinear
+  desc.polygons.push_back({{slanted}, {}, 1});
+  const Scene scene = build_scene(desc, {});
+  const TriangleSoA& triangles = scene.opaque.store<TriangleKind>();
+  const std::vector<PrimitiveOrigin>& origins = scene.opaque.origins<TriangleKind>();
+  ASSERT_EQ(triangles.count, 3u);
+  ASSERT_EQ(origins.size(), 3u);
+  std::vector<std::uint32_t> indices;
+  for (const PrimitiveOrigin& o : origins) {
+    EXPECT_EQ(o.kind, kind_tag<PolygonKind>);
+    indices.push_back(o.index);
+  }
+  std::sort(indices.begin(), indices.end());
+  auto xyz = [](const V& v) { return std::array<float, 3>{v.x, v.y, v.z}; };
+  EXPECT_EQ(indices, (std::vector<std::uint32_t>{0, 2, 4}));
+  EXPECT_EQ(scene.opaque.store<PolygonKind>().count, 1u);
+  EXPECT_EQ(scene.counts.kinds[kind_index(kind_tag<PolygonKind>)].dropped_degenerate, 1u);
+  ASSERT_TRUE(triangles.has_uvs());
+  for (std::size_t i = 0; i < triangles.count; ++i) {
+    if (origins[i].index == 2) {
+      EXPECT_EQ(xyz(triangles.vertex(i, 1)), xyz(V{3.f, 0.f, 5.f}));
+      EXPECT_EQ(xyz(triangles.vertex(i, 2)), xyz(V{2.f, 1.f, 5.f}));
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(xyz(triangles.vertex(i, k)), xyz(slanted[std::size_t(k)]));
+    if (origins[i].index != 4) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::array<float, 2> expected{slanted[std::size_t(k)].y, slanted[std::size_t(k)].z};
+      EXPECT_EQ(triangles.uv(i, k), expected) << "corner " << k;
+    }
+  }
 }
 
 }  // namespace

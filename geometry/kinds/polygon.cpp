@@ -311,6 +311,16 @@ double orient(const Point2d& a, const Point2d& b, const Point2d& c) {
 
 }  // namespace
 
+std::optional<PolygonTriangle> polygon_as_triangle(const PolygonDesc& polygon) {
+  CleanPolygon poly;
+  if (clean(polygon, poly) != Verdict::ok || poly.vertices.size() != 3) return std::nullopt;
+  const std::vector<Vec3<float>>& vs = poly.vertices;
+  const int au = (poly.dropped_axis + 1) % 3, av = (poly.dropped_axis + 2) % 3;
+  // As the kernel's u, v: float differences from the first vertex.
+  auto uv = [&](std::size_t k) { return std::array<float, 2>{vs[k][au] - vs[0][au], vs[k][av] - vs[0][av]}; };
+  return PolygonTriangle{{vs[0], vs[1], vs[2]}, {uv(0), uv(1), uv(2)}};
+}
+
 std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& polygon) {
   std::vector<std::array<Vec3<float>, 3>> triangles;
   CleanPolygon poly;

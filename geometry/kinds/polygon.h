@@ -73,6 +73,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -458,6 +459,18 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 // input build_polygons would drop. A polygon that is not simple still gives
 // n - 2 triangles or fewer, but they need not cover it.
 std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& polygon);
+
+// A polygon of three vertices (after removing consecutive duplicates) as a
+// triangle, with the polygon kernel's texture coordinates at its corners
+// (each projected on the dominant plane, relative to the first vertex: the
+// hit's u, v above). Nothing for a polygon of more vertices (quads included:
+// two triangles walk slower than one quad, bench/README.md) or one
+// build_polygons would drop (it reports those).
+struct PolygonTriangle {
+  std::array<Vec3<float>, 3> p;
+  std::array<std::array<float, 2>, 3> uv;
+};
+std::optional<PolygonTriangle> polygon_as_triangle(const PolygonDesc& polygon);
 
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const PolygonSoA& store, std::size_t i);
