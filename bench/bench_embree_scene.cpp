@@ -33,8 +33,13 @@ EmbreeDevice::EmbreeDevice(const std::string& max_isa)
 
 EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 
-bool EmbreeDevice::avx512() const {
-  return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+bool EmbreeDevice::native_packets(int width) const {
+  switch (width) {
+    case 4: return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) != 0;
+    case 8: return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) != 0;
+    case 16: return rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
+    default: throw std::invalid_argument("embree: no ray packets of width " + std::to_string(width));
+  }
 }
 
 bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {

@@ -35,8 +35,10 @@ class EmbreeDevice {
   RTCDevice get() const { return device_; }
   // Bytes Embree holds now, as its memory monitor counted them.
   std::int64_t monitored_bytes() const { return bytes_.load(); }
-  // Whether Embree runs its 16-wide (AVX-512) kernels on this CPU.
-  bool avx512() const;
+  // Whether rtcIntersect<width> and rtcOccluded<width> (width 4, 8 or 16) run
+  // Embree's packet kernels of that width on this CPU and Embree build
+  // (RTC_DEVICE_PROPERTY_NATIVE_RAY<width>_SUPPORTED), not a fallback.
+  bool native_packets(int width) const;
 
  private:
   static bool monitor(void* user, ssize_t bytes, bool post);

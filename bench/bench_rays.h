@@ -1,7 +1,8 @@
 // Ray sets traced through a scene by the BVH and Embree benchmarks, made
 // once per scene with quiver's camera and hit points:
-//   primary:    pixel centres in 16 x 16 tiles, 4 x 2 pixel groups per
-//               packet, as the renderer issues them (coherent);
+//   primary:    pixel centres in 16 x 16 tiles, each 4 x 4 pixel group
+//               16 consecutive rays row by row (an 8-wide packet covers
+//               4 x 2 pixels), as the renderer issues them (coherent);
 //   reflection: mirror rays from every primary hit (integrator/optics.h
 //               offsets), in the same order (diverging after curved hits);
 //   diffuse:    a uniformly random direction in the hemisphere of each
