@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -555,6 +556,38 @@ RaySoA rays_reaching_behind(RaySampler& s, int count) {
     rays.push_back({s.in_box({-9, -9, -9}, {9, 9, 9}), s.unit_direction(), tmins[k % 2], tmaxs[k % 3]});
   }
   return padded_soa(rays);
+}
+
+// Near ties across nodes: along each ray a small sphere's pole lies at t
+// and a big sphere, off to the side (its box entered long before its hit),
+// is hit within a few ulps of t. The walk finds the big sphere first; the
+// small one's node is entered about where the kernel puts its hit, which
+// may round before the big one's or after its own box entry. The walk's
+// slack on the current hit keeps visiting such nodes, so the closest hit
+// (and the tie rule) is the scan's.
+TYPED_TEST(BvhTraversalTest, NearTiesAcrossNodesMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<SphereDesc> spheres;
+  std::vector<Ray<float>> rays;
+  const double big = 5.0, aside = 4.9, depth = std::sqrt(big * big - aside * aside);
+  for (int k = 0; k < 256; ++k) {
+    const Vec3<double> o{30.0 * (k % 16), 30.0 * (k / 16), 0.0};
+    const double t_small = 10.0 + unit(rng), r_small = 0.5 + unit(rng);
+    const double t_big = t_small * (1.0 + (8.0 * unit(rng) - 4.0) * 0x1p-24);
+    const SphereDesc small{{float(o.x), float(o.y), float(-(t_small + r_small))}, float(r_small)};
+    const SphereDesc wide{{float(o.x), float(o.y + aside), float(-(t_big + depth))}, float(big)};
+    spheres.push_back(k % 2 == 0 ? small : wide);
+    spheres.push_back(k % 2 == 0 ? wide : small);
+    rays.push_back({{float(o.x), float(o.y), 0.f}, {0.f, 0.f, -1.f}, 0.f, std::numeric_limits<float>::infinity()});
+  }
+  const RaySoA soa = padded_soa(rays);
+  for (SphereMethod method : {SphereMethod::robust, SphereMethod::algebraic}) {
+    SCOPED_TRACE(::testing::Message() << "method " << static_cast<int>(method));
+    check_kind<kUnit>(spheres, build_spheres, study_sphere_streams<KernelUnit::scalar>(method),
+                      study_sphere_bvh_streams<kUnit>(method), soa);
+  }
 }
 
 TYPED_TEST(BvhTraversalTest, RaysReachingBehindTheirOriginMatchTheScanBitForBit) {

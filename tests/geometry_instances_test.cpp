@@ -156,19 +156,27 @@ TEST(AffineTransform, InverseNormalsAndSingularMaps) {
   EXPECT_FALSE(inverse(tiny).has_value());
 }
 
+// Flat boxes too (a planar mesh's, of zero extent on one axis): they hold a
+// surface, so they are not empty.
 TEST(Instances, TransformedBoxesHoldEveryPlacedPoint) {
-  const Box box{{-1.f, -2.f, -0.5f}, {1.f, 0.5f, 3.f}};
+  const Box boxes[] = {{{-1.f, -2.f, -0.5f}, {1.f, 0.5f, 3.f}},
+                       {{0.25f, -2.f, -0.5f}, {0.25f, 0.5f, 3.f}},
+                       {{-1.f, 0.5f, -0.5f}, {1.f, 0.5f, 3.f}},
+                       {{-1.f, -2.f, 3.f}, {1.f, 0.5f, 3.f}}};
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> unit(0.f, 1.f);
-  for (const AffineTransform& t : hard_placements()) {
-    const Box world = transformed_box(box, t);
-    for (int k = 0; k < 2000; ++k) {
-      Vec3<float> p;
-      for (int a = 0; a < 3; ++a) p[a] = k < 8 ? ((k >> a) & 1 ? box.hi[a] : box.lo[a]) : box.lo[a] + unit(rng) * (box.hi[a] - box.lo[a]);
-      const Vec3<float> q = apply_point(t, p);
-      for (int a = 0; a < 3; ++a) {
-        ASSERT_LE(world.lo[a], q[a]);
-        ASSERT_GE(world.hi[a], q[a]);
+  for (const Box& box : boxes) {
+    ASSERT_FALSE(is_empty(box));
+    for (const AffineTransform& t : hard_placements()) {
+      const Box world = transformed_box(box, t);
+      for (int k = 0; k < 2000; ++k) {
+        Vec3<float> p;
+        for (int a = 0; a < 3; ++a) p[a] = k < 8 ? ((k >> a) & 1 ? box.hi[a] : box.lo[a]) : box.lo[a] + unit(rng) * (box.hi[a] - box.lo[a]);
+        const Vec3<float> q = apply_point(t, p);
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_LE(world.lo[a], q[a]);
+          ASSERT_GE(world.hi[a], q[a]);
+        }
       }
     }
   }

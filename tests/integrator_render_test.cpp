@@ -201,6 +201,37 @@ float largest_step_across_the_middle_row(const Framebuffer& image) {
 // Before smooth normals an OBJ without `vn` rendered faceted: brightness
 // jumps where the row crosses a face edge. Smoothed (the default crease
 // angle; the sphere's faces meet at 30 degrees), it changes gradually.
+// The depth and normal AOVs describe the first surface each pixel's centre
+// ray hits: on a unit sphere at the origin, the point at that depth along
+// the ray, and the normal there, which is that point.
+TEST(Render, DepthAndNormalAovsDescribeTheFirstSurface) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.3f, 0.4f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 24, 24};
+  desc.materials = {MaterialDesc{}};
+  desc.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  const Scene scene = build_scene(desc, {});
+  const Camera camera(*desc.camera, 24, 24);
+  for (Isa isa : {Isa::scalar, best_supported_isa()}) {
+    SCOPED_TRACE(isa_name(isa));
+    RenderSettings settings = small_settings(24, 24);
+    settings.isa = isa;
+    const Framebuffer image = render(scene, settings).image;
+    int covered = 0;
+    for (int y = 0; y < 24; ++y) {
+      for (int x = 0; x < 24; ++x) {
+        const std::size_t p = std::size_t(y) * 24 + std::size_t(x);
+        if (!std::isfinite(image.depth[p])) continue;
+        ++covered;
+        const Ray<float> ray = camera.ray(x + 0.5, y + 0.5);
+        const Vec3<float> point = ray.origin + ray.direction * image.depth[p];
+        EXPECT_NEAR(length(point), 1.f, 1e-5f) << x << ", " << y;
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(image.normal[3 * p + std::size_t(a)], point[a], 1e-5f) << x << ", " << y;
+      }
+    }
+    EXPECT_GT(covered, 100);
+  }
+}
+
 TEST(Render, AnObjMeshWithoutNormalsShadesSmoothlyAcrossFaceEdges) {
   const std::string obj = coarse_sphere_obj();
   const auto no_library = [](std::string_view) -> std::optional<MtlLibrary> { return std::nullopt; };

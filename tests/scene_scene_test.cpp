@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -71,6 +72,35 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
   const Scene alone = build_scene(cone_alone, {});
   expect_held(alone, alone.opaque.store<ConeKind>());
   EXPECT_GE(alone.bounds_min.x, 3.f);
+  // A scene of one triangle in the plane x = 7: a flat box, not an empty one.
+  SceneDesc flat;
+  flat.camera = kCamera;
+  flat.materials = {MaterialDesc{}};
+  SceneTriangle upright{};
+  upright.triangle.p = {Vec3<float>{7.f, 0.f, 0.f}, Vec3<float>{7.f, 1.f, 0.f}, Vec3<float>{7.f, 0.f, 1.f}};
+  flat.triangles.push_back(upright);
+  const Scene flat_scene = build_scene(flat, {});
+  expect_held(flat_scene, flat_scene.opaque.store<TriangleKind>());
+  EXPECT_EQ(flat_scene.bounds_min.x, 7.f);
+  EXPECT_EQ(flat_scene.bounds_max.x, 7.f);
+}
+
+// A material naming a texture past the last, or a primitive a material past
+// the last, is refused (the last one itself is fine).
+TEST(Scene, RefusesIndicesOnePastTheEnd) {
+  SceneDesc desc;
+  desc.camera = kCamera;
+  desc.textures.resize(2);
+  MaterialDesc textured;
+  textured.texture = 1;
+  desc.materials = {MaterialDesc{}, textured};
+  desc.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 1});
+  EXPECT_NO_THROW(build_scene(desc, {}));
+  desc.materials[1].texture = 2;
+  EXPECT_THROW(build_scene(desc, {}), std::invalid_argument);
+  desc.materials[1].texture = 1;
+  desc.spheres.push_back({{{3.f, 0.f, 0.f}, 1.f}, 2});
+  EXPECT_THROW(build_scene(desc, {}), std::invalid_argument);
 }
 
 // Polygons of three vertices (after consecutive duplicates go) become

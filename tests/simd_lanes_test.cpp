@@ -49,6 +49,22 @@ TEST(Lanes, CrossAccurateIsPerpendicular) {
   EXPECT_NEAR(c.z, cd.z, std::abs(cd.z) * 2e-7);
 }
 
+// The lanes' a < b (the closest-hit tie rule's id order) is the scalar
+// reference's, equal ids included, over the whole id range.
+TEST(Lanes, IntLessOfLanesIsTheScalarLessThan) {
+  using Ints = xsimd::batch<std::int32_t>;
+  constexpr std::size_t kWidth = Ints::size;
+  const std::int32_t ids[] = {-1, 0, 1, 2, (1 << 24) + 1, (1 << 24) + 2, std::numeric_limits<std::int32_t>::max() - 1};
+  for (std::int32_t a : ids) {
+    for (std::int32_t b : ids) {
+      const auto mask = int_less(Ints(a), Ints(b));
+      for (std::size_t lane = 0; lane < kWidth; ++lane) {
+        EXPECT_EQ(bool(mask.get(lane)), int_less(a, b)) << a << " < " << b << " in lane " << lane;
+      }
+    }
+  }
+}
+
 TEST(Lanes, MasksDifferIsXorAtWidth1) {
   EXPECT_FALSE(masks_differ(true, true));
   EXPECT_TRUE(masks_differ(true, false));
