@@ -246,6 +246,9 @@ TEST_F(GltfCheck, BufferViewsAndAccessorsLieWithinWhatHoldsThem) {
                "expected bufferViews[0].byteStride to be a multiple of 4 from 4 to 252, "
                "found "
                "4611686018427387904");
+  // The stride bound itself: 256 is a multiple of 4 beyond it.
+  expect_error(edited_triangle({{"\"byteLength\": 36", "\"byteLength\": 36, \"byteStride\": 256"}}),
+               "expected bufferViews[0].byteStride to be a multiple of 4 from 4 to 252, found 256");
   expect_error(edited_triangle({{"\"count\": 3,\n   \"type\": \"SCALAR\"",
                                  "\"count\": 6148914691236517206, \"type\": \"SCALAR\""}}),
                "expected accessors[1].count to be from 1 to 50331648, found "
@@ -265,6 +268,16 @@ TEST_F(GltfCheck, BufferViewsAndAccessorsLieWithinWhatHoldsThem) {
   expect_error(edited_triangle({{"\"asset\": {", "\"images\": [{\"bufferView\": 5}], \"asset\": {"}}),
                "expected images[0].bufferView to be an index below 2 (the bufferViews), "
                "found 5");
+}
+
+// Three corners as a triangle strip (mode 5) or fan (mode 6) make one
+// triangle, as a list (mode 4) does: each reads within a budget of one.
+TEST_F(GltfCheck, StripsAndFansOfThreeCornersCountOneTriangle) {
+  for (const char* mode : {"4", "5", "6"}) {
+    SCOPED_TRACE(mode);
+    const std::string json = edited_triangle({{"\"material\": 0", std::string("\"material\": 0, \"mode\": ") + mode}});
+    EXPECT_EQ(outcome_of(json, "modes.gltf", 1), "ok 1");
+  }
 }
 
 // Finite coordinates beyond the OBJ reader's +-3.4e38 are refused where they

@@ -279,6 +279,49 @@ TEST(MeshImport, GltfNodesPlaceTheirMeshesAndAMirrorKeepsTheFront) {
   }
 }
 
+// A node that rotates and scales unevenly turns the file's normals by the
+// inverse transpose of its linear part (a normal stays perpendicular to the
+// surface), renormalised; the positions by the map itself.
+TEST(MeshImport, GltfNormalsFollowTheNodeByItsInverseTranspose) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const std::array<Vec3<float>, 3> positions{{{0.f, 0.f, 0.f}, {1.f, 0.f, 0.f}, {0.f, 1.f, 0.f}}};
+  const std::array<Vec3<float>, 3> normals{{{0.6f, 0.f, 0.8f}, {0.f, 0.6f, 0.8f}, {0.f, 0.f, 1.f}}};
+  const std::uint16_t indices[4] = {0, 1, 2, 0};
+  std::string buffer(80, '\0');
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::memcpy(buffer.data() + 12 * k, &positions[k].x, 12);
+    std::memcpy(buffer.data() + 36 + 12 * k, &normals[k].x, 12);
+  }
+  std::memcpy(buffer.data() + 72, indices, 8);
+  write_file(temporary.path() / "turned.bin", buffer);
+  // Rotated a quarter turn about z, after a scale of 4 along y.
+  write_file(temporary.path() / "turned.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0, "rotation": [0, 0, 0.70710678, 0.70710678], "scale": [1, 4, 1]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+    "buffers": [{"byteLength": 80, "uri": "turned.bin"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 72, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+                  {"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}]})");
+  const SceneDesc scene = read_imported_mesh(temporary.path() / "turned.gltf");
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  const TriangleDesc& t = scene.triangles[0].triangle;
+  ASSERT_TRUE(t.normals.has_value());
+  // The map: (x, y, z) -> (-4y, x, z); its inverse transpose: (x, y, z) -> (-y / 4, x, z).
+  const auto placed = [](const Vec3<float>& p) { return Vec3<float>{-4.f * p.y, p.x, p.z}; };
+  const auto turned = [](const Vec3<float>& n) { return normalize(Vec3<float>{-n.y / 4.f, n.x, n.z}); };
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::size_t file_vertex = 3;
+    for (std::size_t f = 0; f < 3; ++f) {
+      if (length(t.p[k] - placed(positions[f])) < 1e-5f) file_vertex = f;
+    }
+    ASSERT_LT(file_vertex, 3u) << "corner " << k << " is no placed file vertex";
+    const Vec3<float> expected = turned(normals[file_vertex]);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR((*t.normals)[k][a], expected[a], 1e-5f) << "corner " << k << " axis " << a;
+  }
+}
+
 // glTF's glass (KHR_materials_transmission, KHR_materials_ior) refracts.
 TEST(MeshImport, GltfTransmissionAndIorBecomeRefraction) {
   const testing::TemporaryDirectory temporary("quiver_mesh_test");

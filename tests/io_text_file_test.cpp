@@ -1,0 +1,55 @@
+// Tests of io/text_file.h: a file of exactly the bound reads whole, one byte
+// more is refused naming the file, the bound and its reason; files that are
+// missing or not regular files are refused naming the file.
+#include "io/text_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "io/parse_error.h"
+#include "tests/support/temporary_directory.h"
+
+namespace quiver {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The message of the ParseError read_text_file throws, or "" if it reads.
+std::string refusal(const fs::path& path, std::size_t max_bytes, std::string_view reason = {}) {
+  try {
+    read_text_file(path, max_bytes, "a test file", reason);
+  } catch (const ParseError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(TextFile, ReadsUpToTheBoundAndRefusesOneByteMore) {
+  const testing::TemporaryDirectory temporary("quiver_text_file_test");
+  const fs::path path = temporary.path() / "bounded.txt";
+  const std::string text(100'000, 'x');  // more than one read chunk
+  std::ofstream(path, std::ios::binary) << text;
+  EXPECT_EQ(read_text_file(path, text.size(), "a test file"), text);
+  EXPECT_EQ(refusal(path, text.size()), "");
+  const std::string message = refusal(path, text.size() - 1, "the test's bound");
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("larger than the limit of 99999 bytes (the test's bound)"), std::string::npos) << message;
+  // An empty file reads as empty, even with a bound of 0.
+  const fs::path empty = temporary.path() / "empty.txt";
+  std::ofstream(empty, std::ios::binary).flush();
+  EXPECT_EQ(read_text_file(empty, 0, "a test file"), "");
+}
+
+TEST(TextFile, RefusesMissingFilesAndDirectories) {
+  const testing::TemporaryDirectory temporary("quiver_text_file_test");
+  for (const fs::path& path : {temporary.path() / "missing.txt", temporary.path()}) {
+    const std::string message = refusal(path, 1000);
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace quiver
