@@ -47,7 +47,8 @@ bool EmbreeDevice::monitor(void* user, ssize_t bytes, bool) {
   return true;
 }
 
-EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc, const Scene& scene, bool robust) {
+EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc, const Scene& scene, bool robust,
+                               RTCBuildQuality quality) {
   EmbreeScene out;
   const RTCDevice d = device.get();
   const std::int64_t before = device.monitored_bytes();
@@ -77,6 +78,7 @@ EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc
   out.scene.reset(rtcNewScene(d));
   const RTCScene built = out.scene.get();
   if (robust) rtcSetSceneFlags(built, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(built, quality);
   if (!spheres.empty()) {
     const RTCGeometry g = rtcNewGeometry(d, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* buffer = static_cast<float*>(

@@ -62,8 +62,10 @@ struct EmbreeScene {
 };
 
 // desc must be the SceneDesc `scene` was built from. robust adds
-// RTC_SCENE_FLAG_ROBUST (Embree's watertight mode); build quality is
-// Embree's default (medium). Throws std::runtime_error on an Embree error.
-EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc, const Scene& scene, bool robust);
+// RTC_SCENE_FLAG_ROBUST (Embree's watertight mode); quality is the scene's
+// build quality (Embree's default: medium). Throws std::runtime_error on an
+// Embree error.
+EmbreeScene build_embree_scene(const EmbreeDevice& device, const SceneDesc& desc, const Scene& scene, bool robust,
+                               RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM);
 
 }  // namespace quiver::bench
