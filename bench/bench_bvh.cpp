@@ -1,5 +1,5 @@
-// BVH traversal benchmarks on the shared scenes (bunny, SPD balls-s4,
-// gears-s4, teapot-s12; each only when QUIVER_SHARED_DIR or ../shared has
+// BVH traversal benchmarks on the shared scenes (bunny, fandisk, SPD
+// balls-s4, gears-s4, teapot-s12; each only when QUIVER_SHARED_DIR or ../shared has
 // it), one thread, rays from bench/bench_rays.h at 256 x 256:
 //   bvh/<scene>/n<N>/leaf<L>/<rays>/w<W>:   node width N and leaf size L,
 //                                           automatic traversal (the choice
@@ -141,6 +141,7 @@ void register_scene(const std::string& name, const std::filesystem::path& path) 
   const std::filesystem::path dir = shared_dir();
   const std::pair<const char*, std::filesystem::path> scenes[] = {
       {"bunny", dir / "meshes/stanford-bunny.obj"},
+      {"fandisk", dir / "meshes/fandisk.obj"},
       {"balls-s4", dir / "scenes/spd/balls-s4.nff"},
       {"gears-s4", dir / "scenes/spd/gears-s4.nff"},
       {"teapot-s12", dir / "scenes/spd/teapot-s12.nff"}};
