@@ -463,8 +463,8 @@ std::vector<std::array<Vec3<float>, 3>> triangulate_polygon(const PolygonDesc& p
 // A polygon of three vertices (after removing consecutive duplicates) as a
 // triangle, with the polygon kernel's texture coordinates at its corners
 // (each projected on the dominant plane, relative to the first vertex: the
-// hit's u, v above). Nothing for a polygon of more vertices (quads included:
-// two triangles walk slower than one quad, bench/README.md) or one
+// hit's u, v above). Nothing for a polygon of more vertices (quads
+// included: a quad walks faster than its two triangles) or one
 // build_polygons would drop (it reports those).
 struct PolygonTriangle {
   std::array<Vec3<float>, 3> p;
