@@ -37,9 +37,11 @@ std::string vec(const Vec3<float>& v) {
   return text;
 }
 
+// A right-aligned cell wider than its column still gets one space before it,
+// so numbers of large scenes do not run together.
 std::string padded(std::string_view text, std::size_t width, bool right = true) {
   std::string out;
-  if (right && text.size() < width) out.append(width - text.size(), ' ');
+  if (right) out.append(text.size() < width ? width - text.size() : 1, ' ');
   out += text;
   if (!right && text.size() < width) out.append(width - text.size(), ' ');
   return out;
