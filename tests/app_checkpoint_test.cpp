@@ -6,7 +6,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -163,6 +165,53 @@ TEST(Checkpoint, TheFingerprintFollowsSettingsCameraAndInputBytes) {
   EXPECT_NE(render_fingerprint(settings, build, std::nullopt, camera, inputs, "1"), base);
   fs::remove(scene);
   EXPECT_THROW(render_fingerprint(settings, build, std::nullopt, camera, inputs, "1"), std::runtime_error);
+}
+
+// Every setting that changes a pixel, and the camera's every coordinate,
+// changes the fingerprint: a checkpoint of another render is never resumed.
+TEST(Checkpoint, EverySettingThatChangesPixelsChangesTheFingerprint) {
+  testing::TemporaryDirectory dir;
+  const fs::path scene = dir.path() / "scene.nff";
+  std::ofstream(scene) << "s 0 0 0 1\n";
+  const std::vector<RoleFile> inputs{{"the scene file", scene}};
+  const RenderSettings settings;
+  const SceneBuildOptions build;
+  const CameraDesc camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 45.f, 1.f, 64, 64};
+  const std::uint64_t base = render_fingerprint(settings, build, std::nullopt, camera, inputs, "1");
+  using Change = std::function<void(RenderSettings&, SceneBuildOptions&, CameraDesc&)>;
+  const std::vector<std::pair<const char*, Change>> changes{
+      {"width", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.width += 1; }},
+      {"height", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.height += 1; }},
+      {"max_depth", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.trace.max_depth += 1; }},
+      {"min_weight", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.trace.min_weight *= 2.f; }},
+      {"spawn_every_ray", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.trace.spawn_every_ray ^= true; }},
+      {"aov_depth", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.aov_depth ^= true; }},
+      {"aov_normal", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.aov_normal ^= true; }},
+      {"aov_id", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.aov_id ^= true; }},
+      {"tile_size", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.tile_size *= 2; }},
+      {"methods", [](RenderSettings& s, SceneBuildOptions&, CameraDesc&) { s.methods = MethodChoice::most_robust; }},
+      {"all_two_sided", [](RenderSettings&, SceneBuildOptions& b, CameraDesc&) { b.all_two_sided ^= true; }},
+      {"angle", [](RenderSettings&, SceneBuildOptions&, CameraDesc& c) { c.angle_degrees += 1.f; }},
+  };
+  for (const auto& [what, change] : changes) {
+    RenderSettings s = settings;
+    SceneBuildOptions b = build;
+    CameraDesc c = camera;
+    change(s, b, c);
+    EXPECT_NE(render_fingerprint(s, b, std::nullopt, c, inputs, "1"), base) << what;
+  }
+  for (int point = 0; point < 3; ++point) {
+    for (int axis = 0; axis < 3; ++axis) {
+      CameraDesc c = camera;
+      Vec3<float>& v = point == 0 ? c.from : point == 1 ? c.at : c.up;
+      v[axis] += 0.25f;
+      EXPECT_NE(render_fingerprint(settings, build, std::nullopt, c, inputs, "1"), base) << point << ", " << axis;
+    }
+  }
+  // A crease angle given, and its value.
+  const std::uint64_t creased = render_fingerprint(settings, build, 0.0, camera, inputs, "1");
+  EXPECT_NE(creased, base);
+  EXPECT_NE(render_fingerprint(settings, build, 45.0, camera, inputs, "1"), creased);
 }
 
 }  // namespace
