@@ -201,14 +201,17 @@ float largest_step_across_the_middle_row(const Framebuffer& image) {
 // Before smooth normals an OBJ without `vn` rendered faceted: brightness
 // jumps where the row crosses a face edge. Smoothed (the default crease
 // angle; the sphere's faces meet at 30 degrees), it changes gradually.
-// The depth and normal AOVs describe the first surface each pixel's centre
-// ray hits: on a unit sphere at the origin, the point at that depth along
-// the ray, and the normal there, which is that point.
-TEST(Render, DepthAndNormalAovsDescribeTheFirstSurface) {
+// The AOVs describe the first surface each pixel's centre ray hits: of two
+// unit spheres, the id names the one whose surface holds the point at the
+// depth along the ray, the kind is the sphere's, and the normal is that
+// point's direction from the sphere's centre; a miss is infinitely deep,
+// of no kind and id -1, with a zero normal.
+TEST(Render, AovsDescribeTheFirstSurface) {
   SceneDesc desc;
-  desc.camera = CameraDesc{{0.3f, 0.4f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 24, 24};
+  desc.camera = CameraDesc{{0.3f, 0.4f, 6.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 50.f, 0.f, 24, 24};
   desc.materials = {MaterialDesc{}};
-  desc.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  const Vec3<float> centres[2] = {{-1.2f, 0.f, 0.f}, {1.2f, 0.2f, -0.5f}};
+  for (const Vec3<float>& c : centres) desc.spheres.push_back({{c, 1.f}, 0});
   const Scene scene = build_scene(desc, {});
   const Camera camera(*desc.camera, 24, 24);
   for (Isa isa : {Isa::scalar, best_supported_isa()}) {
@@ -216,19 +219,29 @@ TEST(Render, DepthAndNormalAovsDescribeTheFirstSurface) {
     RenderSettings settings = small_settings(24, 24);
     settings.isa = isa;
     const Framebuffer image = render(scene, settings).image;
-    int covered = 0;
+    int covered[2] = {0, 0};
     for (int y = 0; y < 24; ++y) {
       for (int x = 0; x < 24; ++x) {
         const std::size_t p = std::size_t(y) * 24 + std::size_t(x);
-        if (!std::isfinite(image.depth[p])) continue;
-        ++covered;
+        if (!std::isfinite(image.depth[p])) {
+          EXPECT_EQ(image.kind[p], kNoKind) << x << ", " << y;
+          EXPECT_EQ(image.id[p], -1) << x << ", " << y;
+          for (int a = 0; a < 3; ++a) EXPECT_EQ(image.normal[3 * p + std::size_t(a)], 0.f) << x << ", " << y;
+          continue;
+        }
+        EXPECT_EQ(image.kind[p], static_cast<std::int32_t>(kind_tag<SphereKind>)) << x << ", " << y;
+        ASSERT_TRUE(image.id[p] == 0 || image.id[p] == 1) << image.id[p];
+        ++covered[image.id[p]];
         const Ray<float> ray = camera.ray(x + 0.5, y + 0.5);
-        const Vec3<float> point = ray.origin + ray.direction * image.depth[p];
-        EXPECT_NEAR(length(point), 1.f, 1e-5f) << x << ", " << y;
-        for (int a = 0; a < 3; ++a) EXPECT_NEAR(image.normal[3 * p + std::size_t(a)], point[a], 1e-5f) << x << ", " << y;
+        const Vec3<float> outward = ray.origin + ray.direction * image.depth[p] - centres[image.id[p]];
+        EXPECT_NEAR(length(outward), 1.f, 1e-5f) << x << ", " << y;
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_NEAR(image.normal[3 * p + std::size_t(a)], outward[a], 1e-5f) << x << ", " << y;
+        }
       }
     }
-    EXPECT_GT(covered, 100);
+    EXPECT_GT(covered[0], 30);
+    EXPECT_GT(covered[1], 30);
   }
 }
 
