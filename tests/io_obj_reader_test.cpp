@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -487,6 +488,15 @@ TEST(ObjReader, FaceShapeErrors) {
   for (int i = 0; i < 256; ++i) big += i % 3 == 0 ? " 1" : i % 3 == 1 ? " 2" : " 3";
   // Corner 256 starts at column 2 + 255 * 2 + 1.
   EXPECT_TRUE(obj_error_at(big + "\n", 4, 513, "at most 255 vertices per face"));
+  // The bound itself: a convex face of 255 corners reads, as 253 triangles.
+  std::string most;
+  for (int i = 0; i < 255; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 255.0;
+    most += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+  }
+  most += "f";
+  for (int i = 1; i <= 255; ++i) most += " " + std::to_string(i);
+  EXPECT_EQ(parse(most + "\n").triangles.size(), 253u);
   EXPECT_TRUE(obj_error_at(v + "l 1\n", 4, 4, "a corner (l needs at least 2)"));
 }
 

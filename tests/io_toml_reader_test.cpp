@@ -362,6 +362,10 @@ TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
   for (std::size_t i = 0; i <= kMaxTomlLights; ++i) lights += "[[lights]]\nposition = [0, 0, 0]\n";
   // The entry past the bound starts on line 2 * 1024 + 1.
   EXPECT_TRUE(error_at(lights, 2 * kMaxTomlLights + 1, 1, "at most 1024 [[lights]] entries"));
+  // The bound itself: 1024 lights read.
+  std::string most = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
+  for (std::size_t i = 0; i < kMaxTomlLights; ++i) most += "[[lights]]\nposition = [0, 0, 0]\n";
+  EXPECT_EQ(parse(most).lights.size(), kMaxTomlLights);
 }
 
 // A scene without objects renders a blank image (issue 28): an error at the
