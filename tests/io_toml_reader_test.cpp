@@ -195,6 +195,22 @@ TEST(TomlReader, ReadsEveryKeyWithExactValues) {
   EXPECT_EQ(scene.triangles[2].material, 0u);
 }
 
+// rotate = [x, y, z] turns about the world x axis first, then y, then z:
+// [90, 0, 90] takes triangle.obj's (1, 1, 0) to (1, 0, 1), then to (0, 1, 1)
+// (the other order would give (-1, 0, 1)); the axis-angle form turns about
+// its axis by the right-hand rule.
+TEST(TomlReader, MeshRotationsTurnAboutXThenYThenZ) {
+  const SceneDesc turned = parse("[[meshes]]\nfile = \"triangle.obj\"\nrotate = [90, 0, 90]\n");
+  ASSERT_EQ(turned.triangles.size(), 1u);
+  expect_near(turned.triangles[0].triangle.p[0], 0.f, 1.f, 0.f);
+  expect_near(turned.triangles[0].triangle.p[1], 0.f, 2.f, 0.f);
+  expect_near(turned.triangles[0].triangle.p[2], 0.f, 1.f, 1.f);
+  const SceneDesc about_axis =
+      parse("[[meshes]]\nfile = \"triangle.obj\"\nrotate = { axis = [0, 1, 0], angle = 90 }\n");
+  ASSERT_EQ(about_axis.triangles.size(), 1u);
+  expect_near(about_axis.triangles[0].triangle.p[1], 0.f, 0.f, -2.f);  // +x turns to -z about +y
+}
+
 TEST(TomlReader, DefaultsForEveryOptionalKey) {
   const SceneDesc scene = read_toml_scene(kTestData / "minimal.toml");
   const SceneDesc empty;
