@@ -42,9 +42,11 @@ TEST(Checkpoint, BatchesReadBackAndATornLastBatchIsDropped) {
   const CheckpointContents whole = read_checkpoint(path, kKey);
   ASSERT_EQ(whole.tiles.size(), 3u);
   EXPECT_EQ(whole.batches, 2u);
-  EXPECT_EQ(whole.tiles[0].tile, 3u);
-  EXPECT_EQ(whole.tiles[0].bytes, tile(3, 100).bytes);
-  EXPECT_EQ(whole.tiles[2].bytes, tile(0, 8).bytes);
+  const CheckpointTile written[] = {tile(3, 100), tile(7, 40), tile(0, 8)};
+  for (std::size_t k = 0; k < 3; ++k) {  // every tile, in order, index and bytes
+    EXPECT_EQ(whole.tiles[k].tile, written[k].tile) << k;
+    EXPECT_EQ(whole.tiles[k].bytes, written[k].bytes) << k;
+  }
   EXPECT_EQ(whole.valid_bytes, fs::file_size(path));
 
   // Cut inside the second batch: only the first is kept.
