@@ -63,7 +63,7 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
 
 std::size_t ConeSoA::memory_bytes() const {
   std::size_t bytes = bytes_of(source);
-  for (const AlignedFloats* c : const_cast<ConeSoA&>(*this).columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

@@ -186,7 +186,13 @@ struct ConeSoA {
 
   std::size_t size() const { return count; }
   std::size_t memory_bytes() const;  // columns and source list
-  std::array<AlignedFloats*, 10> columns() { return {&bx, &by, &bz, &ax, &ay, &az, &height, &radius0, &slope, &facing}; }
+  // Every column, the one list of them (const for memory reports).
+  template <class Self>
+  static auto columns_of(Self& s) {
+    return std::array{&s.bx, &s.by, &s.bz, &s.ax, &s.ay, &s.az, &s.height, &s.radius0, &s.slope, &s.facing};
+  }
+  auto columns() { return columns_of(*this); }
+  auto columns() const { return columns_of(*this); }
   template <class F>
   ConeLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(bx, by, bz, i), broadcast_vec3<F>(ax, ay, az, i), F(height[i]),

@@ -40,7 +40,7 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
 
 std::size_t PlaneSoA::memory_bytes() const {
   std::size_t bytes = source.capacity() * sizeof(std::uint32_t);
-  for (const AlignedFloats* c : const_cast<PlaneSoA&>(*this).columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

@@ -122,7 +122,11 @@ struct PlaneSoA {
   std::int32_t id_base = 0;
 
   std::size_t size() const { return count; }
-  std::array<AlignedFloats*, 7> columns() { return {&nx, &ny, &nz, &d, &px, &py, &pz}; }
+  // Every column, the one list of them (const for memory reports).
+  template <class Self>
+  static auto columns_of(Self& s) { return std::array{&s.nx, &s.ny, &s.nz, &s.d, &s.px, &s.py, &s.pz}; }
+  auto columns() { return columns_of(*this); }
+  auto columns() const { return columns_of(*this); }
   // Bytes held by the columns and the source list.
   std::size_t memory_bytes() const;
   template <class F>

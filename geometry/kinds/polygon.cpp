@@ -287,10 +287,9 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
 
 std::size_t PolygonSoA::memory_bytes() const {
   std::size_t bytes = 0;
-  PolygonSoA& self = const_cast<PolygonSoA&>(*this);
-  for (const AlignedFloats* c : self.polygon_columns()) bytes += bytes_of(*c);
-  for (const AlignedFloats* c : self.vertex_columns()) bytes += bytes_of(*c);
-  for (const AlignedInts* c : self.polygon_int_columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : polygon_columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : vertex_columns()) bytes += bytes_of(*c);
+  for (const AlignedInts* c : polygon_int_columns()) bytes += bytes_of(*c);
   for (const std::vector<std::size_t>* c : {&first_vertex, &band_start, &band_first}) {
     bytes += c->capacity() * sizeof(std::size_t);
   }

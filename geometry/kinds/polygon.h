@@ -430,12 +430,20 @@ struct PolygonSoA {
   }
   // Bytes of every column and list.
   std::size_t memory_bytes() const;
-  // The per-polygon columns (padded) and the per-vertex ones, the one list of each.
-  std::array<AlignedFloats*, 12> polygon_columns() {
-    return {&nx, &ny, &nz, &origin_u, &origin_v, &umin, &umax, &vmin, &vmax, &reach, &plane_slack, &band_scale};
+  // The per-polygon columns (padded) and the per-vertex ones, the one list
+  // of each (const for memory reports).
+  template <class Self>
+  static auto polygon_columns_of(Self& s) {
+    return std::array{&s.nx,   &s.ny,   &s.nz,   &s.origin_u, &s.origin_v,    &s.umin,
+                      &s.umax, &s.vmin, &s.vmax, &s.reach,    &s.plane_slack, &s.band_scale};
   }
-  std::array<AlignedInts*, 4> polygon_int_columns() { return {&axis_u, &axis_v, &vertex_count, &band_count}; }
-  std::array<AlignedFloats*, 5> vertex_columns() { return {&pu, &pv, &px, &py, &pz}; }
+  auto polygon_columns() { return polygon_columns_of(*this); }
+  auto polygon_columns() const { return polygon_columns_of(*this); }
+  template <class Self>
+  static auto polygon_int_columns_of(Self& s) { return std::array{&s.axis_u, &s.axis_v, &s.vertex_count, &s.band_count}; }
+  auto polygon_int_columns() { return polygon_int_columns_of(*this); }
+  auto polygon_int_columns() const { return polygon_int_columns_of(*this); }
+  auto vertex_columns() const { return std::array{&pu, &pv, &px, &py, &pz}; }
 };
 
 // Drops (with counts): a non-finite coordinate (also one whose projection

@@ -41,7 +41,7 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
 
 std::size_t SphereSoA::memory_bytes() const {
   std::size_t bytes = bytes_of(source);
-  for (const AlignedFloats* c : const_cast<SphereSoA&>(*this).columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

@@ -249,7 +249,11 @@ struct SphereSoA {
 
   std::size_t size() const { return count; }
   std::size_t memory_bytes() const;  // columns and source list
-  std::array<AlignedFloats*, 5> columns() { return {&cx, &cy, &cz, &r2, &inv_r}; }
+  // Every column, the one list of them (const for memory reports).
+  template <class Self>
+  static auto columns_of(Self& s) { return std::array{&s.cx, &s.cy, &s.cz, &s.r2, &s.inv_r}; }
+  auto columns() { return columns_of(*this); }
+  auto columns() const { return columns_of(*this); }
   template <class F>
   SphereLanes<F> broadcast(std::size_t i) const {
     return {broadcast_vec3<F>(cx, cy, cz, i), F(r2[i]), F(inv_r[i])};

@@ -80,11 +80,6 @@ std::array<float, 2> TriangleSoA::uv(std::size_t i, int k) const {
   }
 }
 
-std::vector<AlignedFloats*> TriangleSoA::columns() {
-  return {&v0x, &v0y, &v0z, &v1x, &v1y, &v1z, &v2x, &v2y, &v2z, &n0x, &n0y, &n0z, &n1x, &n1y,
-          &n1z, &n2x, &n2y, &n2z, &uv0u, &uv0v, &uv1u, &uv1v, &uv2u, &uv2v};
-}
-
 TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport& report) {
   std::vector<const TriangleDesc*> kept;
   kept.reserve(triangles.size());
@@ -166,7 +161,7 @@ std::vector<TriangleDesc> triangles_from_indexed(std::span<const Vec3<float>> po
 
 std::size_t TriangleSoA::memory_bytes() const {
   std::size_t bytes = bytes_of(source);
-  for (const AlignedFloats* c : const_cast<TriangleSoA&>(*this).columns()) bytes += bytes_of(*c);
+  for (const AlignedFloats* c : columns()) bytes += bytes_of(*c);
   return bytes;
 }
 

@@ -456,7 +456,14 @@ struct TriangleSoA {
   // Texture coordinates at vertex k; requires has_uvs().
   std::array<float, 2> uv(std::size_t i, int k) const;
   // Every column, for padding and checks (the optional ones may be empty).
-  std::vector<AlignedFloats*> columns();
+  template <class Self>
+  static auto columns_of(Self& s) {
+    return std::array{&s.v0x,  &s.v0y,  &s.v0z,  &s.v1x,  &s.v1y,  &s.v1z,  &s.v2x,  &s.v2y,
+                      &s.v2z,  &s.n0x,  &s.n0y,  &s.n0z,  &s.n1x,  &s.n1y,  &s.n1z,  &s.n2x,
+                      &s.n2y,  &s.n2z,  &s.uv0u, &s.uv0v, &s.uv1u, &s.uv1v, &s.uv2u, &s.uv2v};
+  }
+  auto columns() { return columns_of(*this); }
+  auto columns() const { return columns_of(*this); }
   std::size_t memory_bytes() const;  // columns and source list
 };
 
