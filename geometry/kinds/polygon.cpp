@@ -311,6 +311,12 @@ double orient(const Point2d& a, const Point2d& b, const Point2d& c) {
 }  // namespace
 
 std::optional<PolygonTriangle> polygon_as_triangle(const PolygonDesc& polygon) {
+  // Vertices that differ from their predecessor (cyclically): what cleaning
+  // keeps, counted without building it, so larger polygons skip the checks.
+  const std::vector<Vec3<float>>& given = polygon.vertices;
+  std::size_t distinct = 0;
+  for (std::size_t k = 0; k < given.size(); ++k) distinct += !same(given[k], given[k == 0 ? given.size() - 1 : k - 1]);
+  if (distinct != 3) return std::nullopt;
   CleanPolygon poly;
   if (clean(polygon, poly) != Verdict::ok || poly.vertices.size() != 3) return std::nullopt;
   const std::vector<Vec3<float>>& vs = poly.vertices;
