@@ -492,10 +492,10 @@ TEST(ObjReader, FaceShapeErrors) {
   std::string most;
   for (int i = 0; i < 255; ++i) {
     const double a = 2.0 * std::numbers::pi * i / 255.0;
-    most += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    most.append("v ").append(std::to_string(std::cos(a))).append(" ").append(std::to_string(std::sin(a))).append(" 0\n");
   }
   most += "f";
-  for (int i = 1; i <= 255; ++i) most += " " + std::to_string(i);
+  for (int i = 1; i <= 255; ++i) most.append(" ").append(std::to_string(i));
   EXPECT_EQ(parse(most + "\n").triangles.size(), 253u);
   EXPECT_TRUE(obj_error_at(v + "l 1\n", 4, 4, "a corner (l needs at least 2)"));
 }
