@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -28,17 +29,24 @@ namespace {
 
 const CameraDesc kCamera{{0.f, 0.f, 200.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 45.f, 0.f, 16, 16};
 
+// A scene seen from kCamera with these materials and `textures` default textures.
+SceneDesc scene_with(std::vector<MaterialDesc> materials, std::size_t textures = 0) {
+  SceneDesc desc;
+  desc.camera = kCamera;
+  desc.materials = std::move(materials);
+  desc.textures.resize(textures);
+  return desc;
+}
+
 template <class Store>
 void expect_held(const Scene& scene, const Store& store) {
   for (std::size_t i = 0; i < store.count; ++i) EXPECT_TRUE(holds(scene.bounds_min, scene.bounds_max, primitive_box(store, i)));
 }
 
 TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
-  SceneDesc desc;
-  desc.camera = kCamera;
   MaterialDesc glass;
   glass.kt = 0.8f;
-  desc.materials = {MaterialDesc{}, glass};
+  SceneDesc desc = scene_with({MaterialDesc{}, glass});
   // Each kind's first primitive lies farthest out, on an axis of its own.
   for (std::size_t m = 0; m < 2; ++m) {
     const float side = m == 0 ? 1.f : -1.f;
@@ -65,17 +73,13 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
     expect_held(scene, layer->store<ConeKind>());
   }
   // A scene of one cone alone is bounded by it.
-  SceneDesc cone_alone;
-  cone_alone.camera = kCamera;
-  cone_alone.materials = {MaterialDesc{}};
+  SceneDesc cone_alone = scene_with({MaterialDesc{}});
   cone_alone.cones.push_back({{{5.f, 5.f, 5.f}, 1.f, {5.f, 8.f, 5.f}, 1.f}, 0});
   const Scene alone = build_scene(cone_alone, {});
   expect_held(alone, alone.opaque.store<ConeKind>());
   EXPECT_GE(alone.bounds_min.x, 3.f);
   // A scene of one triangle in the plane x = 7: a flat box, not an empty one.
-  SceneDesc flat;
-  flat.camera = kCamera;
-  flat.materials = {MaterialDesc{}};
+  SceneDesc flat = scene_with({MaterialDesc{}});
   SceneTriangle upright{};
   upright.triangle.p = {Vec3<float>{7.f, 0.f, 0.f}, Vec3<float>{7.f, 1.f, 0.f}, Vec3<float>{7.f, 0.f, 1.f}};
   flat.triangles.push_back(upright);
@@ -88,12 +92,9 @@ TEST(Scene, BoundsHoldEveryBuiltPrimitiveOfEveryKindAndLayer) {
 // A material naming a texture past the last, or a primitive a material past
 // the last, is refused (the last one itself is fine).
 TEST(Scene, RefusesIndicesOnePastTheEnd) {
-  SceneDesc desc;
-  desc.camera = kCamera;
-  desc.textures.resize(2);
   MaterialDesc textured;
   textured.texture = 1;
-  desc.materials = {MaterialDesc{}, textured};
+  SceneDesc desc = scene_with({MaterialDesc{}, textured}, 2);
   desc.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 1});
   EXPECT_NO_THROW(build_scene(desc, {}));
   desc.materials[1].texture = 2;
@@ -109,12 +110,9 @@ TEST(Scene, RefusesIndicesOnePastTheEnd) {
 // dominant plane relative to the first vertex); quads and polygons the
 // polygon builder drops stay polygons.
 TEST(Scene, ThreeVertexPolygonsAreBuiltAsTrianglesThatKeepTheirOrigin) {
-  SceneDesc desc;
-  desc.camera = kCamera;
   MaterialDesc textured;
   textured.texture = 0;
-  desc.materials = {MaterialDesc{}, textured};
-  desc.textures.resize(1);
+  SceneDesc desc = scene_with({MaterialDesc{}, textured}, 1);
   using V = Vec3<float>;
   // Normal mostly along x (the dropped axis): u along y, v along z.
   const std::vector<V> slanted{{0.f, 0.f, 0.f}, {0.25f, 2.f, 0.f}, {0.5f, 0.f, 3.f}};
