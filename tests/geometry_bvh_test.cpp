@@ -543,6 +543,38 @@ TYPED_TEST(BvhTraversalTest, TrianglesFarFromTheOriginMatchTheScanBitForBit) {
                     study_triangle_bvh_streams<kUnit>(TriangleMethod::watertight), rays_leaving(s, sheet, 3000));
 }
 
+// A flat square of triangles in the plane y = 0 and packets of rays from
+// just above it in random directions (every octant in one packet): the up
+// ones leave into open space, entering no child of the root (the streams
+// answer them before any walk of their own), the down ones hit the square
+// or pass its edge. Lanes of both kinds share packets.
+TYPED_TEST(BvhTraversalTest, RaysLeavingAFlatFaceIntoOpenSpaceMatchTheScanBitForBit) {
+  constexpr KernelUnit kUnit = TestFixture::kUnit;
+  RaySampler s(27);
+  std::vector<TriangleDesc> square;
+  const float cell = 0.25f;
+  for (int j = 0; j < 16; ++j) {
+    for (int i = 0; i < 16; ++i) {
+      const Vec3<float> c{static_cast<float>(i) * cell, 0.f, static_cast<float>(j) * cell};
+      TriangleDesc lower, upper;
+      lower.p = {c, c + Vec3<float>(cell, 0.f, 0.f), c + Vec3<float>(cell, 0.f, cell)};
+      upper.p = {c, c + Vec3<float>(cell, 0.f, cell), c + Vec3<float>(0.f, 0.f, cell)};
+      square.push_back(lower);
+      square.push_back(upper);
+    }
+  }
+  std::vector<Ray<float>> rays;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3<float> from{s.uniform(0.f, 4.f), 0.001f, s.uniform(0.f, 4.f)};
+    Vec3<float> d = s.unit_direction();
+    if (k % 3 != 0) d.y = std::fabs(d.y);  // two in three leave, one in three may hit
+    rays.push_back({from, d, 0.f, std::numeric_limits<float>::infinity()});
+  }
+  const RaySoA soa = padded_soa(rays);
+  check_kind<kUnit>(square, build_triangles, study_triangle_streams<KernelUnit::scalar>(TriangleMethod::watertight),
+                    study_triangle_bvh_streams<kUnit>(TriangleMethod::watertight), soa);
+}
+
 // Rays from inside the scene whose interval reaches behind their origin
 // (tmin -inf or -40, tmax +inf, 0 or -1): their closest hits lie at
 // negative t, where the relative slab widening narrows the intervals and

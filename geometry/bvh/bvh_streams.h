@@ -112,6 +112,27 @@ inline bool travels_together(BvhTraversal traversal, const Ray<F>& ray, const Ma
   }
 }
 
+// The active lanes that enter some child of the root within [tmin, tmax],
+// in one packet test: a ray walked alone pays for its own setup (node
+// terms, frame) before its first node test, and one leaving a surface into
+// open space is done at the root. All active lanes when one reaches behind
+// its origin (the packet slab test needs tmin >= 0), and for one-lane
+// units (the test would be the walk's own first step). The lanes left out
+// could not enter a child in their own walks either (the same slab test,
+// lane by lane), so no hit changes.
+template <int N, class F>
+inline unsigned lanes_entering_root(const Bvh& bvh, const Ray<F>& ray, const F& tmax, const Mask<F>& active) {
+  if (lane_count<F> == 1 || reaches_behind(ray, active)) return lane_bits(active);
+  const PacketSlab<F, N> slab(ray, active);
+  const float* root = BvhNodes<N>(bvh).block(0);
+  Mask<F> entered(false);
+  for (int c = 0; c < N; ++c) {
+    F near;
+    entered = entered || slab.enters(root, c, ray.tmin, tmax, near);
+  }
+  return lane_bits(entered && active);
+}
+
 template <KernelUnit U, class Method, class S, int N, int K>
 [[gnu::flatten]] void closest_bvh(const RaySoA& rays, BvhStores<S, K> stores, const Bvh& bvh, HitSoA& hits,
                                   BvhTraversal traversal) {
@@ -132,12 +153,13 @@ template <KernelUnit U, class Method, class S, int N, int K>
       hits.store(first, hit);
       continue;
     }
+    const unsigned lanes = lanes_entering_root<N>(bvh, ray, load_lanes<F>(hits.t.data() + first), active);
     if constexpr (WalksLanesByFrame<Method, S, F>) {
-      closest_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(active), hits);
+      closest_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lanes, hits);
       continue;
     }
-    const std::size_t end = first + W < rays.count ? first + W : rays.count;
-    for (std::size_t r = first; r < end; ++r) {
+    for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+      const std::size_t r = first + static_cast<std::size_t>(__builtin_ctz(rest));
       Hit<float> hit = hits.get(r);
       closest_bvh_single<U, Method, N>(stores, bvh, rays.get(r), hit);
       hits.set(r, hit);
@@ -169,13 +191,14 @@ template <KernelUnit U, class Method, class S, int N, int K>
       store_int_lanes<F>(select(blocked, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
       continue;
     }
+    const unsigned lanes = lanes_entering_root<N>(bvh, ray, ray.tmax, open);
     if constexpr (WalksLanesByFrame<Method, S, F>) {
-      occluded_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lane_bits(open), result);
+      occluded_bvh_lanes<U, Method, N>(stores, bvh, rays, first, lanes, result);
       continue;
     }
-    const std::size_t end = first + W < rays.count ? first + W : rays.count;
-    for (std::size_t r = first; r < end; ++r) {
-      if (result.occluded[r] == 0 && occluded_bvh_single<U, Method, N>(stores, bvh, rays.get(r))) {
+    for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+      const std::size_t r = first + static_cast<std::size_t>(__builtin_ctz(rest));
+      if (occluded_bvh_single<U, Method, N>(stores, bvh, rays.get(r))) {
         result.occluded[r] = 1;
       }
     }
