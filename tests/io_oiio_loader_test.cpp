@@ -5,9 +5,11 @@
 // program (app_cli_test.cpp), since a process loads it only once.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,42 @@ TEST(OiioModule, FailuresAreReturnedWithAMessage) {
   char tiny[4] = {'x', 'x', 'x', 'x'};
   EXPECT_EQ(oiio.open_input(missing.c_str(), "png", &header, tiny, sizeof tiny), nullptr);
   EXPECT_EQ(tiny[3], '\0');
+}
+
+// A failing read's message: OpenImageIO's error, then each line its
+// libraries printed to stderr that says something new, each thing once.
+TEST(OiioModule, AFailingReadSaysEachThingOnce) {
+  const OiioModuleApi& oiio = oiio_module();
+  testing::TemporaryDirectory directory;
+  const fs::path whole = fs::path(QUIVER_TEST_DATA_DIR) / "obj" / "tex" / "checker.png";
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  const fs::path cut = directory.path() / "cut.png";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+
+  char error[1024] = "";
+  OiioImageHeader header{};
+  void* input = oiio.open_input(cut.c_str(), "png", &header, error, sizeof error);
+  if (input != nullptr) {
+    std::vector<std::uint8_t> pixels(std::size_t(header.width) * std::size_t(header.height) * 3 * 2);
+    EXPECT_EQ(oiio.read_pixels(input, 3, 0, pixels.data(), 3 * 2, error, sizeof error), 0);
+    oiio.close_input(input);
+  }
+  const std::string message = error;
+  ASSERT_NE(message, "");
+  // The parts after OpenImageIO's own error, each a printed line "library: text".
+  std::vector<std::string> parts;
+  for (std::size_t at = 0; at <= message.size();) {
+    const std::size_t end = std::min(message.find("; ", at), message.size());
+    parts.push_back(message.substr(at, end - at));
+    at = end + 2;
+  }
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    const std::size_t colon = parts[k].find(": ");
+    const std::string text = colon == std::string::npos ? parts[k] : parts[k].substr(colon + 2);
+    EXPECT_EQ(message.find(text), message.rfind(text)) << "said twice: '" << text << "' in: " << message;
+  }
 }
 
 TEST(OiioModule, ReadsWhatItWrote) {
