@@ -65,11 +65,11 @@ struct BinBox {
     lo = min(lo, box_lo);
     hi = max(hi, box_hi);
   }
-  Box box() const {
-    alignas(16) float l[4], h[4];
-    lo.store_aligned(l);
-    hi.store_aligned(h);
-    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+  // half_area(box()) of a non-empty box, its extents subtracted in lanes.
+  float half_area() const {
+    alignas(16) float e[4];
+    (hi - lo).store_aligned(e);
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
   }
 };
 
@@ -228,26 +228,37 @@ class BinaryBuilder {
     }
     for (int axis = 0; axis < 3; ++axis) {
       if (!binned[axis]) continue;
-      // Sweep from the right: area and count of bins [b, bins).
-      std::array<float, kMaxBins> right_area;  // [1, bins) written below
+      // Candidate splits b (bins [0, b) left, [b, bins) right) cost the same
+      // from just after one non-empty bin up to the next, and the first of
+      // them wins a tie: only b = (a non-empty bin) + 1 is tried, with the
+      // sweeps over the non-empty bins only (empty bins hold empty boxes).
+      std::uint64_t filled = 0;
+      for (int b = 0; b < bins; ++b) filled |= (bin_count[axis][b] != 0 ? 1ull : 0ull) << b;
+      // From the right: area and count of bins [j, bins) at each non-empty j.
+      std::array<float, kMaxBins> right_area;
       std::array<std::uint32_t, kMaxBins> right_count;
-      Box acc = empty_box();
+      BinBox acc = BinBox::empty();
       std::uint32_t count = 0;
-      for (int b = bins - 1; b > 0; --b) {
-        grow(acc, bin_box[axis][b].box());
-        count += bin_count[axis][b];
-        right_area[b] = half_area(acc);
-        right_count[b] = count;
+      for (std::uint64_t rest = filled; rest != 0;) {
+        const int j = 63 - std::countl_zero(rest);
+        rest &= ~(1ull << j);
+        acc.grow(bin_box[axis][j].lo, bin_box[axis][j].hi);
+        count += bin_count[axis][j];
+        right_area[j] = acc.half_area();
+        right_count[j] = count;
       }
-      acc = empty_box();
+      acc = BinBox::empty();
       count = 0;
-      for (int b = 1; b < bins; ++b) {
-        grow(acc, bin_box[axis][b - 1].box());
-        count += bin_count[axis][b - 1];
-        if (count == 0 || right_count[b] == 0) continue;
+      for (std::uint64_t rest = filled; rest != 0;) {
+        const int i = std::countr_zero(rest);
+        rest &= rest - 1;
+        acc.grow(bin_box[axis][i].lo, bin_box[axis][i].hi);
+        count += bin_count[axis][i];
+        if (rest == 0) break;  // nothing right of the last non-empty bin
+        const int j = std::countr_zero(rest), b = i + 1;
         const float cost = options_.traversal_cost +
-                           (half_area(acc) * static_cast<float>(count) +
-                            right_area[b] * static_cast<float>(right_count[b])) / area;
+                           (acc.half_area() * static_cast<float>(count) +
+                            right_area[j] * static_cast<float>(right_count[j])) / area;
         if (cost < best.cost) best = {axis, lo[axis] + static_cast<float>(b) / scale[axis], cost};
       }
     }

@@ -1,8 +1,11 @@
 // A primitive store in BVH leaf order, with its BVH: the store is built, its
-// BVH built over the primitive boxes, and the store built a second time from
-// the input in leaf order (builders are deterministic, so they keep the same
-// primitives). source[k] names the input index of stored primitive k. Two
-// stores of one kind can share one BVH, each in the order of its own leaves.
+// BVH built over the primitive boxes, and the store put in leaf order: its
+// columns gathered when they hold every per-primitive field, else built a
+// second time from the input in leaf order (builders are deterministic and
+// treat each primitive alike whatever the order, so either way the values
+// are those a build in leaf order gives). source[k] names the input index of
+// stored primitive k. Two stores of one kind can share one BVH, each in the
+// order of its own leaves.
 #pragma once
 
 #include <array>
@@ -14,8 +17,33 @@
 #include "geometry/build_report.h"
 #include "geometry/bvh.h"
 #include "geometry/primitive_bounds.h"
+#include "geometry/soa.h"
 
 namespace quiver {
+
+// Stores reordered by gathering their columns.
+template <class Store>
+concept ColumnsHoldEveryField = Store::kColumnsHoldEveryField;
+
+// The store's primitives at `positions` (indices into it), in that order,
+// columns padded as a builder pads them; source gathered alike.
+template <ColumnsHoldEveryField Store>
+Store gathered(const Store& store, std::span<const std::uint32_t> positions) {
+  Store out;
+  const auto from = store.columns();
+  const auto to = out.columns();
+  for (std::size_t c = 0; c < from.size(); ++c) {
+    if (from[c]->empty()) continue;  // an optional column left out
+    to[c]->resize(positions.size());
+    for (std::size_t k = 0; k < positions.size(); ++k) (*to[c])[k] = (*from[c])[positions[k]];
+    pad_column(*to[c], positions.size());
+  }
+  out.count = positions.size();
+  out.source.resize(positions.size());
+  for (std::size_t k = 0; k < positions.size(); ++k) out.source[k] = store.source[positions[k]];
+  out.id_base = store.id_base;
+  return out;
+}
 
 // Rebuilds `store` (built by builder from descs) in the leaf order of a new
 // BVH, which it returns.
@@ -47,11 +75,18 @@ Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<c
     Store& store = *stores[s];
     if (store.count == 0) continue;
     const std::uint32_t base = s == 0 ? 0 : static_cast<std::uint32_t>(first.count);
-    std::vector<std::uint32_t> source;  // store indices in leaf order
-    source.reserve(store.count);
+    std::vector<std::uint32_t> positions;  // the store's primitives in leaf order
+    positions.reserve(store.count);
     for (std::uint32_t k : order) {
-      if (k >= base && k - base < store.count) source.push_back(store.source[k - base]);
+      if (k >= base && k - base < store.count) positions.push_back(k - base);
     }
+    if constexpr (ColumnsHoldEveryField<Store>) {
+      store = gathered(store, positions);
+      continue;
+    }
+    std::vector<std::uint32_t> source;  // input indices in leaf order
+    source.reserve(positions.size());
+    for (std::uint32_t p : positions) source.push_back(store.source[p]);
     std::vector<Desc> in_leaf_order;
     in_leaf_order.reserve(source.size());
     for (std::uint32_t i : source) in_leaf_order.push_back(descs[s][i]);

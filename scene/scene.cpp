@@ -243,6 +243,17 @@ using SceneInputs = PerKind<KindInput>;
 template <class K, class OriginOf, class IsTransmissive>
 void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is_transmissive, SceneInputs& inputs) {
   const auto& entries = desc.*SceneEntries<K>::of;
+  if constexpr (!std::is_same_v<K, PolygonKind>) {
+    // Room for every entry up front: no copies of the descriptions as the lists grow.
+    std::size_t transmissive = 0;
+    for (const auto& entry : entries) transmissive += is_transmissive(entry.material) ? 1 : 0;
+    for (bool t : {false, true}) {
+      auto& in = inputs.of<K>().layer(t);
+      const std::size_t count = in.descs.size() + (t ? transmissive : entries.size() - transmissive);
+      in.descs.reserve(count);
+      in.origins.reserve(count);
+    }
+  }
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& entry = entries[i];
     const PrimitiveOrigin o = origin_of(entry.material, kind_tag<K>, i);

@@ -184,6 +184,10 @@ struct ConeSoA {
   std::vector<std::uint32_t> source;
   std::int32_t id_base = 0;
 
+  // columns() hold every per-primitive field: a BVH reorders the store by
+  // gathering them (geometry/bvh_store.h).
+  static constexpr bool kColumnsHoldEveryField = true;
+
   std::size_t size() const { return count; }
   std::size_t memory_bytes() const;  // columns and source list
   // Every column, the one list of them (const for memory reports).

@@ -434,6 +434,9 @@ struct TriangleSoA {
 
   // BVH traversal: incoherent packets go ray by ray (geometry/bvh/bvh_streams.h).
   static constexpr bool kIncoherentRaysTraverseAlone = true;
+  // columns() hold every per-primitive field: a BVH reorders the store by
+  // gathering them (geometry/bvh_store.h).
+  static constexpr bool kColumnsHoldEveryField = true;
 
   std::size_t size() const { return count; }
   bool has_normals() const { return !n0x.empty(); }
