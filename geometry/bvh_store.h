@@ -34,6 +34,7 @@ Store gathered(const Store& store, std::span<const std::uint32_t> positions) {
   const auto to = out.columns();
   for (std::size_t c = 0; c < from.size(); ++c) {
     if (from[c]->empty()) continue;  // an optional column left out
+    to[c]->reserve(padded_size(positions.size()));  // exactly: padding grows no further
     to[c]->resize(positions.size());
     for (std::size_t k = 0; k < positions.size(); ++k) (*to[c])[k] = (*from[c])[positions[k]];
     pad_column(*to[c], positions.size());
