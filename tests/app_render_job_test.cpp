@@ -1,10 +1,15 @@
 // The render job's pieces a user sees (app/render_job.h): the one-line
-// summary a render prints, and the output name chosen for a scene.
+// summary a render prints, the output name chosen for a scene, and the
+// exit code and message of a failure.
 #include "app/render_job.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
+#include <new>
+#include <stdexcept>
+#include <utility>
 #include <memory>
 #include <string>
 
@@ -45,6 +50,26 @@ TEST(RenderSummary, NoTimeGivesNoRate) {
   result.stats.rays.primary = 10;
   RenderSettings settings;
   EXPECT_NE(summary_of(result, settings, 0.0, 0.0).find("in 0.000 s: 10 rays, 0.00 Mrays/s"), std::string::npos);
+}
+
+// The exit code and message of the exception being handled.
+std::pair<int, std::string> described(const std::function<void()>& fail) {
+  try {
+    fail();
+  } catch (...) {
+    return describe_current_exception();
+  }
+  return {0, "nothing thrown"};
+}
+
+TEST(DescribeCurrentException, UsageErrorsExitTwoOthersOne) {
+  EXPECT_EQ(described([] { throw UsageError("--width: expected a positive integer"); }),
+            std::make_pair(kExitUsage, std::string("--width: expected a positive integer")));
+  EXPECT_EQ(described([] { throw std::bad_alloc(); }), std::make_pair(kExitFailure, std::string("out of memory")));
+  EXPECT_EQ(described([] { throw std::runtime_error("scene.nff:3:1: expected a number, found 'x'"); }),
+            std::make_pair(kExitFailure, std::string("scene.nff:3:1: expected a number, found 'x'")));
+  EXPECT_EQ(kExitUsage, 2);
+  EXPECT_EQ(kExitFailure, 1);
 }
 
 TEST(DefaultOutput, TheScenesStemAsPngInTheWorkingDirectory) {

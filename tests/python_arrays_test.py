@@ -113,6 +113,10 @@ def test_bad_scene_arrays_raise_value_errors():
     cases = [
         ({"spheres": np.array([[0.0, 0.0, np.nan, 1.0]])}, "spheres[0, 2] = nan is not finite in float32"),
         ({"spheres": np.array([[0.0, 0.0, 0.0, -1.0]])}, "spheres[0, 3] = -1.000000: expected a radius > 0"),
+        # The bound itself: a radius of zero (of either sign) is no sphere.
+        ({"spheres": np.array([[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 0.0]])},
+         "spheres[1, 3] = 0.000000: expected a radius > 0"),
+        ({"spheres": np.array([[0.0, 0.0, 0.0, -0.0]])}, "spheres[0, 3] = -0.000000: expected a radius > 0"),
         ({"spheres": np.zeros((2, 3))}, "spheres: expected shape (N, 4), found (2, 3)"),
         ({"spheres": np.zeros((0, 4))}, "the arrays hold no primitive"),
         ({}, "the arrays hold no primitive"),
