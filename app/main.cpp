@@ -12,6 +12,7 @@
 // through app/render_flags_cli.h, which quiver-mpi's main shares).
 #include "app/render_flags_cli.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -20,6 +21,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +37,7 @@
 #include "app/render_options.h"
 #include "app/scene_build.h"
 #include "app/scene_info.h"
+#include "app/suggestions.h"
 #include "app/stats_json.h"
 #include "app/trace_command.h"
 
@@ -218,6 +222,54 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
 
 }  // namespace
 
+// The command names of app, in the order they were added.
+std::vector<std::string> command_names(CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    names.push_back(command->get_name());
+  }
+  return names;
+}
+
+// `quiver SCENE [options]` is `quiver render SCENE [options]`: when the
+// first argument is neither a flag nor a command but names a file, the
+// arguments with "render" put before it.
+std::vector<std::string> with_default_command(int argc, char** argv, const std::vector<std::string>& commands) {
+  std::vector<std::string> args(argv, argv + argc);
+  if (args.size() < 2 || args[1].empty() || args[1][0] == '-') return args;
+  if (std::find(commands.begin(), commands.end(), args[1]) != commands.end()) return args;
+  std::error_code error;
+  if (fs::is_regular_file(args[1], error)) args.insert(args.begin() + 1, "render");
+  return args;
+}
+
+// What to add to CLI11's message for a command line it refused: a first
+// word that is no command (nor a file), or flags the command does not
+// have, each with the nearest known spelling.
+std::string usage_hint(CLI::App& app, const std::vector<std::string>& args, const std::vector<std::string>& commands) {
+  if (args.size() >= 2 && !args[1].empty() && args[1][0] != '-' &&
+      std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
+    return "\n'" + args[1] + "' is neither a command (render, info, trace) nor an existing file" +
+           quiver::did_you_mean(args[1], commands);
+  }
+  if (args.size() < 2) return "";
+  CLI::App* command = app.get_subcommand_ptr(args[1]).get();
+  if (command == nullptr) return "";
+  std::vector<std::string> flags{"--help"};
+  for (const CLI::Option* option : command->get_options()) {
+    for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+  }
+  std::string hint;
+  for (std::size_t k = 2; k < args.size(); ++k) {
+    if (args[k].rfind("--", 0) != 0 || args[k].size() == 2) continue;
+    const std::string flag = args[k].substr(0, args[k].find('='));
+    if (std::find(flags.begin(), flags.end(), flag) != flags.end()) continue;
+    const std::string suggestion = quiver::did_you_mean(flag, flags);
+    hint += "\n'" + flag + "' is not a flag of 'quiver " + args[1] + "'" + suggestion;
+  }
+  return hint;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"quiver: a data-oriented SIMD packet ray tracer (Whitted: Phong shading, shadows, reflection, "
                "refraction, textures, anti-aliasing).\nExit codes: 0 success, 1 failure (bad scene, render or "
@@ -225,8 +277,8 @@ int main(int argc, char** argv) {
                "130/143 interrupted by SIGINT/SIGTERM (the render stops at its next tile; no output is written "
                "or changed).",
                "quiver"};
-  app.footer("Run 'quiver render --help', 'quiver info --help' or 'quiver trace --help' for the options of each "
-             "command.");
+  app.footer("'quiver SCENE [options]' is short for 'quiver render SCENE [options]'. Run 'quiver render --help', "
+             "'quiver info --help' or 'quiver trace --help' for the options of each command.");
   app.set_version_flag("--version", std::string("quiver ") + QUIVER_VERSION, "Print the version and exit");
   app.require_subcommand(1, 1);
 
@@ -261,11 +313,15 @@ int main(int argc, char** argv) {
       "the same for every --threads and --simd");
   add_trace_flags(*trace, trace_args, raw_trace);
 
+  const std::vector<std::string> commands = command_names(app);
+  std::vector<std::string> args = with_default_command(argc, argv, commands);
   try {
-    app.parse(argc, argv);
+    std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes them last first, no program name
+    app.parse(reversed);
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
-    std::cerr << "quiver: " << error.what() << "\nRun 'quiver --help' (or 'quiver render --help') for usage.\n";
+    std::cerr << "quiver: " << error.what() << usage_hint(app, args, commands)
+              << "\nRun 'quiver --help' (or 'quiver render --help') for usage.\n";
     return kExitUsage;
   }
 

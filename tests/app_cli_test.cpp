@@ -266,6 +266,37 @@ TEST_F(Cli, PresetSpdTracesEveryPixelCorner) {
   EXPECT_EQ(stats.at("min_weight"), 0.0);
 }
 
+TEST_F(Cli, ASceneFileAloneRendersAndMistypesGetTheNearestSpelling) {
+  const std::string scene = kTiny.string();
+  const Outcome rendered = run({scene, "-o", "short.png", "--quiet"});
+  EXPECT_EQ(rendered.exit_code, 0) << rendered.err;
+  EXPECT_TRUE(fs::is_regular_file(work() / "short.png"));
+  fs::remove(work() / "short.png");
+
+  const Outcome command = run({"rendr", scene});
+  EXPECT_EQ(command.exit_code, 2);
+  EXPECT_NE(command.err.find("'rendr' is neither a command (render, info, trace) nor an existing file (did you "
+                             "mean 'render'?)"),
+            std::string::npos)
+      << command.err;
+  const Outcome missing = run({"missing.nff"});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("'missing.nff' is neither a command"), std::string::npos) << missing.err;
+  EXPECT_EQ(missing.err.find("did you mean"), std::string::npos) << missing.err;
+
+  const Outcome flag = run({"render", scene, "-o", "out.png", "--widht", "10", "--heigth=10"});
+  EXPECT_EQ(flag.exit_code, 2);
+  EXPECT_NE(flag.err.find("'--widht' is not a flag of 'quiver render' (did you mean '--width'?)"), std::string::npos)
+      << flag.err;
+  EXPECT_NE(flag.err.find("'--heigth' is not a flag of 'quiver render' (did you mean '--height'?)"),
+            std::string::npos)
+      << flag.err;
+  const Outcome info_flag = run({"info", scene, "--crease-angel", "30"});
+  EXPECT_EQ(info_flag.exit_code, 2);
+  EXPECT_NE(info_flag.err.find("(did you mean '--crease-angle'?)"), std::string::npos) << info_flag.err;
+  EXPECT_TRUE(work_files().empty());
+}
+
 TEST_F(Cli, UsageErrorsExit2AndWriteNothing) {
   const std::string scene = kTiny.string();
   // One case per way a usage error is found: CLI11's parser, the option
