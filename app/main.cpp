@@ -102,9 +102,10 @@ int run_render(const RenderArgs& args) {
     const quiver::RenderSettings& settings = prepared.plan.settings;
 
     quiver::set_interrupt_phase(quiver::InterruptPhase::rendering);
-    quiver::ProgressBar progress(stderr, !args.quiet && quiver::is_terminal(stderr));
+    quiver::ProgressBar progress(stderr, quiver::progress_style_for(stderr, args.quiet));
     const quiver::RenderResult result = quiver::render(
-        prepared.scene, settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); },
+        prepared.scene, settings,
+        [&](const quiver::RenderProgressState& p) { progress.update(p.tiles_done, p.tiles_total, p.work_done); },
         &quiver::stop_requested());
     progress.finish();
     if (result.stopped()) {

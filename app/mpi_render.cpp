@@ -306,7 +306,7 @@ class Coordinator {
       receive(reported);
       place_own_tiles(own, own_film);
       const std::size_t done_count = hand_out_work(told_to_end, all_done);
-      progress_.update(done_count, schedule_.tile_count());
+      progress_.update(done_count, schedule_.tile_count(), schedule_.work_done());
       if (stop_requested()) interrupted(done_count);
       if (Clock::now() - last_checkpoint_ >= interval_) save();
       if (told_to_end && reported == ranks_ - 1 && own.ended()) break;
@@ -694,7 +694,7 @@ int run_mpi_render(const MpiRenderArgs& args) {
   Gathered gathered;
   try {
     TileSchedule schedule(setup.renderer->tiles().size(), setup.done, costs, ranks);
-    ProgressBar progress(stderr, !render_args.quiet && is_terminal(stderr));
+    ProgressBar progress(stderr, progress_style_for(stderr, render_args.quiet));
     Coordinator coordinator(*setup.renderer, *setup.film, schedule, *setup.checkpoint, args.checkpoint_interval_s,
                             progress, ranks);
     gathered = coordinator.run(setup.resumed);

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <string>
 
 namespace quiver {
@@ -10,36 +11,71 @@ namespace {
 constexpr int kBarWidth = 30;
 }
 
-ProgressBar::ProgressBar(std::FILE* out, bool enabled, Clock::duration delay, Clock::duration interval)
-    : out_(out), enabled_(enabled && out != nullptr), delay_(delay), interval_(interval), start_(Clock::now()) {}
+ProgressStyle progress_style_for(std::FILE* out, bool quiet) {
+  if (quiet || out == nullptr) return ProgressStyle::off;
+  return is_terminal(out) ? ProgressStyle::terminal : ProgressStyle::log;
+}
 
-void ProgressBar::update(std::size_t done, std::size_t total) {
+std::optional<double> seconds_left(double work_done, double elapsed_seconds) {
+  if (!(work_done > 0.0)) return std::nullopt;
+  return elapsed_seconds * std::max(1.0 - work_done, 0.0) / work_done;
+}
+
+ProgressBar::ProgressBar(std::FILE* out, ProgressStyle style, Clock::duration delay, Clock::duration interval)
+    : out_(out),
+      style_(out == nullptr ? ProgressStyle::off : style),
+      delay_(delay),
+      interval_(interval),
+      start_(Clock::now()) {}
+
+ProgressBar::ProgressBar(std::FILE* out, ProgressStyle style)
+    : ProgressBar(out, style, style == ProgressStyle::log ? Clock::duration(std::chrono::seconds(5))
+                                                          : Clock::duration(std::chrono::milliseconds(500)),
+                  style == ProgressStyle::log ? Clock::duration(std::chrono::seconds(5))
+                                              : Clock::duration(std::chrono::milliseconds(100))) {}
+
+void ProgressBar::update(std::size_t done, std::size_t total, double work_done) {
   done_ = done;
   total_ = total;
-  if (!enabled_ || finished_) return;
+  work_done_ = work_done;
+  if (style_ == ProgressStyle::off || finished_) return;
   const Clock::time_point now = Clock::now();
   if (now - start_ < delay_) return;
   if (drawn_ && now - last_draw_ < interval_) return;
-  draw(done, total, now);
+  draw(now);
 }
 
 void ProgressBar::finish() {
-  if (!enabled_ || finished_) return;
+  if (style_ == ProgressStyle::off || finished_) return;
   finished_ = true;
-  if (!drawn_) return;
-  draw(done_, total_, Clock::now());
+  if (!drawn_ || style_ == ProgressStyle::log) return;
+  draw(Clock::now());
   std::fputc('\n', out_);
   std::fflush(out_);
 }
 
-void ProgressBar::draw(std::size_t done, std::size_t total, Clock::time_point now) {
+void ProgressBar::draw(Clock::time_point now) {
+  const std::size_t done = done_, total = total_;
   const double fraction = total == 0 ? 1.0 : double(done) / double(total);
-  const int filled = static_cast<int>(fraction * kBarWidth);
-  std::string bar(std::size_t(kBarWidth), ' ');
-  for (int i = 0; i < filled && i < kBarWidth; ++i) bar[std::size_t(i)] = '#';
   const double seconds = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(out_, "\r[%s] %3d%%  %zu/%zu tiles  %.1f s", bar.c_str(), static_cast<int>(fraction * 100.0), done,
-               total, seconds);
+  const std::optional<double> left = seconds_left(work_done_, seconds);
+  std::string eta;
+  if (left && done < total) {
+    char text[32];
+    std::snprintf(text, sizeof text, ", ETA %.1f s", *left);
+    eta = text;
+  }
+  const int percent = static_cast<int>(fraction * 100.0);
+  if (style_ == ProgressStyle::log) {
+    std::fprintf(out_, "quiver: %d%%, %zu/%zu tiles, %.1f s%s\n", percent, done, total, seconds, eta.c_str());
+  } else {
+    const int filled = static_cast<int>(fraction * kBarWidth);
+    std::string bar(std::size_t(kBarWidth), ' ');
+    for (int i = 0; i < filled && i < kBarWidth; ++i) bar[std::size_t(i)] = '#';
+    // Trailing blanks clear what a longer previous line left.
+    std::fprintf(out_, "\r[%s] %3d%%  %zu/%zu tiles  %.1f s%s    ", bar.c_str(), percent, done, total, seconds,
+                 eta.c_str());
+  }
   std::fflush(out_);
   drawn_ = true;
   last_draw_ = now;

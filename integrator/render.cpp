@@ -8,6 +8,7 @@
 #include <string>
 #include <type_traits>
 #include <mutex>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -224,6 +225,14 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
   std::mutex progress_mutex;
   RenderResult result;
   const auto start = std::chrono::steady_clock::now();
+  std::vector<double> weights;
+  double total_weight = 0.0, done_weight = 0.0;
+  if (progress) {
+    std::vector<std::size_t> all(total);
+    std::iota(all.begin(), all.end(), std::size_t(0));
+    weights = renderer.estimate_costs(all, kProgressEstimateStride);
+    for (double& w : weights) total_weight += (w = progress_weight(w));
+  }
   renderer.render_tiles(
       film,
       [&]() -> std::optional<std::size_t> {
@@ -231,11 +240,12 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         if (t < total) return t;
         return std::nullopt;
       },
-      [&](std::size_t, double) {
+      [&](std::size_t tile, double) {
         const std::size_t finished = ++done;
         if (progress) {
           std::lock_guard lock(progress_mutex);
-          progress(finished, total);
+          done_weight += weights[tile];
+          progress({finished, total, std::min(done_weight / total_weight, 1.0)});
         }
       },
       stop);

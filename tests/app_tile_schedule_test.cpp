@@ -40,6 +40,24 @@ TEST(TileSchedule, GivesTheCostliestTilesFirstAndSkipsDoneOnes) {
   EXPECT_TRUE(schedule.take(1, 100).empty());
 }
 
+TEST(TileSchedule, WorkDoneWeighsTilesByTheirEstimatedCost) {
+  // Weights cost + 1: 10, 2, 1, 1 (a negative estimate counts as 0).
+  TileSchedule schedule(4, {false, false, false, true}, {9.0, 1.0, -5.0, 0.0}, 1);
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 1.0 / 14.0);  // the tile resumed as done
+  ASSERT_EQ(schedule.take(0, 1), std::vector<std::uint32_t>{0});
+  EXPECT_TRUE(schedule.complete(0, 0));
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 11.0 / 14.0);
+  EXPECT_FALSE(schedule.complete(0, 0));  // a repeat adds nothing
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 11.0 / 14.0);
+  for (std::uint32_t t : {1u, 2u}) EXPECT_TRUE(schedule.complete(t, 0));
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 1.0);
+
+  TileSchedule by_count(4, {}, {}, 2);  // no costs: every tile weighs the same
+  EXPECT_DOUBLE_EQ(by_count.work_done(), 0.0);
+  EXPECT_TRUE(by_count.complete(3, 1));
+  EXPECT_DOUBLE_EQ(by_count.work_done(), 0.25);
+}
+
 TEST(TileSchedule, BatchesShrinkToOneTileAsTheQueueEmpties) {
   TileSchedule schedule(4000, {}, {}, 2);
   EXPECT_EQ(schedule.batch_size(), 16u);

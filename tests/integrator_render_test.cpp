@@ -997,5 +997,33 @@ TEST(Render, NoAcneWhenTheSceneIsScaled) {
   }
 }
 
+// A progress callback changes nothing in the result (its cost estimate is
+// not counted), is called once per tile, and its share of the work done
+// never falls and ends at 1.
+TEST(RenderProgress, OncePerTileWorkDoneRisesToOneAndTheImageIsTheSame) {
+  SceneDesc desc = default_scene();
+  const Scene scene = build_scene(desc, {});
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 64;
+  settings.tile_size = 16;
+  settings.threads = 2;
+  const RenderResult plain = render(scene, settings);
+  std::vector<RenderProgressState> calls;
+  const RenderResult watched = render(scene, settings, [&](const RenderProgressState& p) { calls.push_back(p); });
+  EXPECT_EQ(plain.image.rgb, watched.image.rgb);
+  EXPECT_EQ(plain.stats.rays.total(), watched.stats.rays.total());
+  ASSERT_EQ(calls.size(), watched.tiles_total);
+  ASSERT_EQ(watched.tiles_total, 24u);
+  double before = 0.0;
+  for (std::size_t k = 0; k < calls.size(); ++k) {
+    EXPECT_EQ(calls[k].tiles_done, k + 1);
+    EXPECT_EQ(calls[k].tiles_total, 24u);
+    EXPECT_GT(calls[k].work_done, before);
+    before = calls[k].work_done;
+  }
+  EXPECT_DOUBLE_EQ(calls.back().work_done, 1.0);
+}
+
 }  // namespace
 }  // namespace quiver
