@@ -172,7 +172,9 @@ inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& ra
                                      "index in the scene file, -1 on a miss); each at most once; needs an .exr "
                                      "output")
                        ->type_name("LIST");
-  render.add_flag("-q,--quiet", args.quiet, "No progress bar and no summary line (errors are still reported)");
+  render.add_flag("-q,--quiet", args.quiet,
+                  "No progress (a bar with the time left on a terminal, else a line every 5 s) and no summary "
+                  "line (errors are still reported)");
 }
 
 // Procedures, surfaces, textures, meshes, paths and the view.
