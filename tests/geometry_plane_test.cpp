@@ -80,12 +80,15 @@ TEST(PlaneBuild, DropsDegenerateAndNonFinite) {
                                   {{nan, 0, 0}, {0, 1, 0}},
                                   {{0, 0, 0}, {0, kInf, 0}},
                                   {{0, 0, 0}, {1e-30f, 0, 0}},
+                                  {{0, 0, 0}, {3e38f, 3e38f, 0}},
                                   {{0, 1, 0}, {0, 3, 0}}},
                                  &report);
   EXPECT_EQ(soa.size(), 1u);
   EXPECT_EQ(report.kept, 1u);
   EXPECT_EQ(report.dropped_non_finite, 2u);
-  EXPECT_EQ(report.dropped_degenerate, 2u);  // zero normal; 1e-30 whose squared length underflows
+  // Zero normal; 1e-30 whose squared length underflows; finite components
+  // whose length overflows (dividing by it would give a zero normal).
+  EXPECT_EQ(report.dropped_degenerate, 3u);
   EXPECT_FLOAT_EQ(soa.ny[0], 1.f);           // normalised
   EXPECT_FLOAT_EQ(soa.d[0], -1.f);
   EXPECT_EQ(soa.py[0], 1.f);  // the point as given
