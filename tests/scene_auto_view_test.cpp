@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <cmath>
@@ -95,6 +96,60 @@ TEST(AutoView, FramesTheBoundingSphereOfThePrimitives) {
     EXPECT_GT(c.from.z, center[2]);
     EXPECT_GT(c.from.y, center[1]);
     EXPECT_GT(c.from.x, center[0]);
+  }
+}
+
+// An instance counts with the eight corners of its mesh's box, placed: a
+// box-shaped mesh turned an eighth of a turn about x frames as the same
+// triangles placed by hand do (its box's corners are its vertices).
+TEST(AutoView, AnInstanceFramesAsItsPlacedTriangles) {
+  const float lo[3] = {0.f, 0.f, 0.f}, hi[3] = {2.f, 1.f, 4.f};
+  const auto corner = [&](int k) {
+    return Vec3<float>{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
+  };
+  // Two triangles per face of the box, from its corner indices.
+  const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+  SceneMesh box;
+  for (const auto& f : faces) {
+    for (const auto& tri : {std::array{f[0], f[1], f[2]}, std::array{f[0], f[2], f[3]}}) {
+      SceneTriangle t{};
+      t.triangle.p = {corner(tri[0]), corner(tri[1]), corner(tri[2])};
+      box.triangles.push_back(t);
+    }
+  }
+  const float c = std::sqrt(0.5f);
+  AffineTransform turn{};  // an eighth of a turn about x, then a shift
+  turn.m = {1.f, 0.f, 0.f, 3.f, 0.f, c, -c, -1.f, 0.f, c, c, 2.f};
+  SceneDesc instanced;
+  instanced.materials.emplace_back();
+  instanced.meshes.push_back(box);
+  instanced.instances.push_back({0, turn});
+  SceneDesc placed;
+  placed.materials.emplace_back();
+  for (SceneTriangle t : box.triangles) {
+    for (Vec3<float>& p : t.triangle.p) p = apply_point(turn, p);
+    placed.triangles.push_back(t);
+  }
+  add_default_view(instanced, 320, 240);
+  add_default_view(placed, 320, 240);
+  ASSERT_TRUE(instanced.camera && placed.camera);
+  const Vec3<float> a = instanced.camera->at, b = placed.camera->at;
+  EXPECT_FLOAT_EQ(a.x, b.x);
+  EXPECT_FLOAT_EQ(a.y, b.y);
+  EXPECT_FLOAT_EQ(a.z, b.z);
+  EXPECT_FLOAT_EQ(length(instanced.camera->from - a), length(placed.camera->from - b));
+}
+
+TEST(AutoView, ImageSidesUpToTheBound) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  SceneDesc widest = scene;
+  EXPECT_NO_THROW(add_default_view(widest, kMaxImageSide, kMaxImageSide));
+  for (const auto& [width, height] : {std::pair{kMaxImageSide + 1, 1}, std::pair{1, kMaxImageSide + 1},
+                                      std::pair{0, 1}, std::pair{1, 0}}) {
+    SceneDesc refused = scene;
+    EXPECT_THROW(add_default_view(refused, width, height), std::invalid_argument) << width << "x" << height;
   }
 }
 
