@@ -997,6 +997,34 @@ TEST(Render, NoAcneWhenTheSceneIsScaled) {
   }
 }
 
+// An area light (a rectangle or a sphere) casts samples x samples shadow
+// rays from each shaded point; a point light one. A floor under the light,
+// seen straight down, every pixel a lit floor point.
+TEST(Render, AreaLightsCastSamplesSquaredShadowRays) {
+  for (const LightDesc::Kind kind : {LightDesc::Kind::sphere, LightDesc::Kind::rectangle, LightDesc::Kind::point}) {
+    for (const int samples : {1, 3}) {
+      SceneDesc desc;
+      desc.materials.emplace_back();
+      desc.planes.push_back({{{0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}}, 0});
+      LightDesc light;
+      light.kind = kind;
+      light.position = {-0.5f, 10.f, -0.5f};
+      light.radius = 0.5f;
+      light.edge_u = {1.f, 0.f, 0.f};
+      light.edge_v = {0.f, 0.f, 1.f};
+      light.samples = samples;
+      desc.lights.push_back(light);
+      desc.camera = CameraDesc{{0.f, 5.f, 0.f}, {0.f, 0.f, 0.f}, {0.f, 0.f, 1.f}, 40.f, 0.f, 12, 8};
+      RenderSettings settings = small_settings(12, 8);
+      settings.trace.max_depth = 0;
+      const RenderResult r = render(build_scene(desc, {}), settings);
+      const std::uint64_t per_point = kind == LightDesc::Kind::point ? 1 : std::uint64_t(samples * samples);
+      EXPECT_EQ(r.stats.rays.primary, 96u);
+      EXPECT_EQ(r.stats.rays.shadow, 96u * per_point) << "light kind " << int(kind) << ", samples " << samples;
+    }
+  }
+}
+
 // A progress callback changes nothing in the result (its cost estimate is
 // not counted), is called once per tile, and its share of the work done
 // never falls and ends at 1.
