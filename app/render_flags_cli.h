@@ -161,9 +161,10 @@ inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& ra
                     "Seed (unsigned 64-bit) for jittered anti-aliasing and area-light samples. Default: 0")
       ->type_name("UINT64");
   render.add_option("--stats", args.stats,
-                    "Also write render statistics as JSON: timings (ms), settings, ray counts by kind, Mrays/s, "
-                    "lane utilisation per wave, memory (bytes). Written only when everything succeeds, as --output "
-                    "(a regular file)")
+                    "Also write render statistics as JSON: timings (ms: render_ms wall time, phases_ms and "
+                    "traversal_ms thread time summed over the threads, listed in thread_time_keys), settings, ray "
+                    "counts by kind, Mrays/s, lane utilisation per wave, memory (bytes). Written only when "
+                    "everything succeeds, as --output (a regular file)")
       ->type_name("FILE.json")
       ->check(kNonEmptyFileName);
   raw.aov_option = render.add_option("--aov", raw.aov,

@@ -116,6 +116,8 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
         {"shading", phase_ms(stats.phases.shading)},
         {"shadows", phase_ms(stats.phases.shadows)}}},
       {"traversal_ms", phase_ms(stats.phases.walks())},
+      // Wall time is render_ms; these add up every thread's time (about threads x render_ms).
+      {"thread_time_keys", {"phases_ms", "traversal_ms"}},
       {"mrays_per_s", render_seconds > 0.0 ? json(double(rays.total()) / render_seconds / 1e6) : json(nullptr)},
       {"lane_utilization",
        {{"waves", std::move(waves)},

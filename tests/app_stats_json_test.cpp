@@ -124,6 +124,7 @@ TEST(StatsJson, PhaseTimesInMilliseconds) {
   EXPECT_EQ(phases.size(), 4u);
   // The walks: all of intersection and the shadow walks' part of shadows.
   EXPECT_DOUBLE_EQ(stats.at("traversal_ms").get<double>(), 0.250005);
+  EXPECT_EQ(stats.at("thread_time_keys"), json({"phases_ms", "traversal_ms"}));
 }
 
 TEST(StatsJson, LaneUtilizationIsActiveOverIssued) {
