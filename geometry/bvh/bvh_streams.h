@@ -4,8 +4,9 @@
 // packets travel together (geometry/bvh/packet_walk.h), except that
 // triangle packets whose active lanes' directions span several octants
 // (incoherent) go ray by ray (geometry/bvh/lane_walk.h,
-// geometry/bvh/single_walk.h); rays reaching behind their origin always
-// walk alone. The closest hit is the lexicographic minimum of (t, id) over
+// geometry/bvh/single_walk.h), after one packet test of the root's children
+// answers the lanes that enter none; rays reaching behind their origin
+// always walk alone. The closest hit is the lexicographic minimum of (t, id) over
 // the stores, as a brute-force scan in id order gives it, so the result
 // does not depend on traversal order, packet or single, or width.
 #pragma once
