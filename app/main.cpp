@@ -232,15 +232,21 @@ std::vector<std::string> command_names(CLI::App& app) {
   return names;
 }
 
+// The first argument is a word that is neither a flag nor a command.
+bool first_word_is_no_command(const std::vector<std::string>& args, const std::vector<std::string>& commands) {
+  return args.size() >= 2 && !args[1].empty() && args[1][0] != '-' &&
+         std::find(commands.begin(), commands.end(), args[1]) == commands.end();
+}
+
 // `quiver SCENE [options]` is `quiver render SCENE [options]`: when the
-// first argument is neither a flag nor a command but names a file, the
-// arguments with "render" put before it.
+// first argument is no command but names a file, the arguments with
+// "render" put before it.
 std::vector<std::string> with_default_command(int argc, char** argv, const std::vector<std::string>& commands) {
   std::vector<std::string> args(argv, argv + argc);
-  if (args.size() < 2 || args[1].empty() || args[1][0] == '-') return args;
-  if (std::find(commands.begin(), commands.end(), args[1]) != commands.end()) return args;
   std::error_code error;
-  if (fs::is_regular_file(args[1], error)) args.insert(args.begin() + 1, "render");
+  if (first_word_is_no_command(args, commands) && fs::is_regular_file(args[1], error)) {
+    args.insert(args.begin() + 1, "render");
+  }
   return args;
 }
 
@@ -248,9 +254,10 @@ std::vector<std::string> with_default_command(int argc, char** argv, const std::
 // word that is no command (nor a file), or flags the command does not
 // have, each with the nearest known spelling.
 std::string usage_hint(CLI::App& app, const std::vector<std::string>& args, const std::vector<std::string>& commands) {
-  if (args.size() >= 2 && !args[1].empty() && args[1][0] != '-' &&
-      std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
-    return "\n'" + args[1] + "' is neither a command (render, info, trace) nor an existing file" +
+  if (first_word_is_no_command(args, commands)) {
+    std::string listed;
+    for (const std::string& name : commands) listed += (listed.empty() ? "" : ", ") + name;
+    return "\n'" + args[1] + "' is neither a command (" + listed + ") nor an existing file" +
            quiver::did_you_mean(args[1], commands);
   }
   if (args.size() < 2) return "";

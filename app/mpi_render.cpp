@@ -52,8 +52,6 @@ constexpr int kTagWork = 1, kTagTile = 2, kTagReport = 3, kTagError = 4;
 // How long the communicating thread sleeps between polls when nothing wakes
 // it: MPI's blocking calls spin, which would take a core from the renderers.
 constexpr auto kPollInterval = std::chrono::milliseconds(1);
-// One ray per this many pixels on a side estimates each tile's cost.
-constexpr int kEstimateStride = 8;
 
 int world_rank() {
   int rank = 0;
@@ -601,7 +599,7 @@ std::vector<double> estimate_tile_costs(const FrameRenderer& renderer, int rank,
   std::vector<double> costs(tile_count, 0.0);
   std::vector<std::size_t> mine;
   for (std::size_t t = std::size_t(rank); t < tile_count; t += std::size_t(ranks)) mine.push_back(t);
-  const std::vector<double> estimated = renderer.estimate_costs(mine, kEstimateStride);
+  const std::vector<double> estimated = renderer.estimate_costs(mine, kTileCostStride);
   for (std::size_t k = 0; k < mine.size(); ++k) costs[mine[k]] = estimated[k];
   MPI_Reduce(rank == 0 ? MPI_IN_PLACE : costs.data(), costs.data(), int(tile_count), MPI_DOUBLE, MPI_SUM, 0,
              MPI_COMM_WORLD);

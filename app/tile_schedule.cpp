@@ -1,7 +1,5 @@
 #include "app/tile_schedule.h"
 
-#include "integrator/render.h"
-
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -16,11 +14,11 @@ TileSchedule::TileSchedule(std::size_t tiles, const std::vector<bool>& done, con
   if (!costs.empty() && costs.size() != tiles) throw std::invalid_argument("TileSchedule: one cost per tile");
   std::vector<std::uint32_t> order;
   for (std::size_t t = 0; t < tiles; ++t) {
-    total_weight_ += weight(std::uint32_t(t));
+    work_.add_to_total(weight(std::uint32_t(t)));
     if (!done.empty() && done[t]) {
       state_[t].done = true;
       ++done_count_;
-      done_weight_ += weight(std::uint32_t(t));
+      work_.add_done(weight(std::uint32_t(t)));
     } else {
       order.push_back(std::uint32_t(t));
     }
@@ -35,11 +33,7 @@ TileSchedule::TileSchedule(std::size_t tiles, const std::vector<bool>& done, con
 }
 
 double TileSchedule::weight(std::uint32_t tile) const {
-  return costs_.empty() ? 1.0 : progress_weight(costs_[tile]);
-}
-
-double TileSchedule::work_done() const {
-  return total_weight_ > 0.0 ? std::min(done_weight_ / total_weight_, 1.0) : 1.0;
+  return costs_.empty() ? 1.0 : WorkDone::weight(costs_[tile]);
 }
 
 std::size_t TileSchedule::batch_size() const {
@@ -93,7 +87,7 @@ bool TileSchedule::complete(std::uint32_t tile, int rank) {
   if (s.done) return false;
   s.done = true;
   ++done_count_;
-  done_weight_ += weight(tile);
+  work_.add_done(weight(tile));
   // The other ranks it is out on will answer too; their answers are dropped.
   for (const int other : s.ranks) --outstanding_[std::size_t(other)];
   s.ranks.clear();

@@ -14,6 +14,8 @@
 #include <optional>
 #include <vector>
 
+#include "integrator/render.h"
+
 namespace quiver {
 
 class TileSchedule {
@@ -42,9 +44,9 @@ class TileSchedule {
   std::size_t outstanding(int rank) const { return outstanding_[std::size_t(rank)]; }
   std::size_t waiting() const { return waiting_.size(); }
   std::size_t done_count() const { return done_count_; }
-  // The share of the work done: done tiles weighted by progress_weight of
+  // The share of the work done: done tiles weighted as WorkDone weighs
   // their estimated cost (by count without costs), 0 to 1.
-  double work_done() const;
+  double work_done() const { return work_.share(); }
   std::size_t tile_count() const { return state_.size(); }
   bool all_done() const { return done_count_ == state_.size(); }
   bool is_done(std::uint32_t tile) const { return state_[tile].done; }
@@ -58,7 +60,7 @@ class TileSchedule {
   std::vector<TileState> state_;
   std::vector<double> costs_;          // empty: unknown
   double waiting_cost_ = 0.0;
-  double total_weight_ = 0.0, done_weight_ = 0.0;
+  WorkDone work_;
   std::deque<std::uint32_t> waiting_;  // most expensive first
   std::deque<std::uint32_t> given_;    // in the order they went out
   std::vector<std::size_t> outstanding_;

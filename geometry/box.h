@@ -38,12 +38,11 @@ inline void grow(Box& b, const Box& other) {
 
 inline bool is_empty(const Box& b) { return !(b.lo.x <= b.hi.x); }
 
-// Half the surface area (the SAH compares only ratios); 0 for an empty box.
-inline float half_area(const Box& b) {
-  if (is_empty(b)) return 0.f;
-  const Vec3<float> e = b.hi - b.lo;
-  return e.x * e.y + e.y * e.z + e.z * e.x;
-}
+// Half the surface area of a box of extent e (the SAH compares only ratios).
+inline float half_area_of_extent(const Vec3<float>& e) { return e.x * e.y + e.y * e.z + e.z * e.x; }
+
+// Half the surface area; 0 for an empty box.
+inline float half_area(const Box& b) { return is_empty(b) ? 0.f : half_area_of_extent(b.hi - b.lo); }
 
 // (lo + hi) / 2 per coordinate, for a Vec3 or for lanes of coordinates.
 template <class T>

@@ -69,7 +69,7 @@ struct BinBox {
   float half_area() const {
     alignas(16) float e[4];
     (hi - lo).store_aligned(e);
-    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+    return half_area_of_extent({e[0], e[1], e[2]});
   }
 };
 

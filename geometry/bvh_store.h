@@ -46,6 +46,26 @@ Store gathered(const Store& store, std::span<const std::uint32_t> positions) {
   return out;
 }
 
+// The store's primitives at `positions`, in that order, built again by
+// builder from their descriptions (for stores whose columns are not all
+// per primitive, as polygons' vertex lists).
+template <class Store, class Desc, class Builder>
+Store rebuilt(const Store& store, std::span<const Desc> descs, std::span<const std::uint32_t> positions,
+              Builder builder) {
+  std::vector<std::uint32_t> source;  // input indices in leaf order
+  source.reserve(positions.size());
+  for (std::uint32_t p : positions) source.push_back(store.source[p]);
+  std::vector<Desc> in_leaf_order;
+  in_leaf_order.reserve(source.size());
+  for (std::uint32_t i : source) in_leaf_order.push_back(descs[i]);
+  BuildReport again;
+  Store reordered = builder(std::span<const Desc>(in_leaf_order), again);
+  if (reordered.count != store.count) throw std::logic_error("a store kept different primitives when reordered");
+  reordered.source = std::move(source);
+  reordered.id_base = store.id_base;
+  return reordered;
+}
+
 // Rebuilds `store` (built by builder from descs) in the leaf order of a new
 // BVH, which it returns.
 template <class Store, class Desc, class Builder>
@@ -83,20 +103,9 @@ Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<c
     }
     if constexpr (ColumnsHoldEveryField<Store>) {
       store = gathered(store, positions);
-      continue;
+    } else {
+      store = rebuilt(store, descs[s], positions, builder);
     }
-    std::vector<std::uint32_t> source;  // input indices in leaf order
-    source.reserve(positions.size());
-    for (std::uint32_t p : positions) source.push_back(store.source[p]);
-    std::vector<Desc> in_leaf_order;
-    in_leaf_order.reserve(source.size());
-    for (std::uint32_t i : source) in_leaf_order.push_back(descs[s][i]);
-    BuildReport again;
-    Store reordered = builder(std::span<const Desc>(in_leaf_order), again);
-    if (reordered.count != store.count) throw std::logic_error("a store kept different primitives when reordered");
-    reordered.source = std::move(source);
-    reordered.id_base = store.id_base;
-    store = std::move(reordered);
   }
   return bvh;
 }

@@ -226,12 +226,12 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
   RenderResult result;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> weights;
-  double total_weight = 0.0, done_weight = 0.0;
+  WorkDone work;
   if (progress) {
     std::vector<std::size_t> all(total);
     std::iota(all.begin(), all.end(), std::size_t(0));
-    weights = renderer.estimate_costs(all, kProgressEstimateStride);
-    for (double& w : weights) total_weight += (w = progress_weight(w));
+    weights = renderer.estimate_costs(all, kTileCostStride);
+    for (double& w : weights) work.add_to_total(w = WorkDone::weight(w));
   }
   renderer.render_tiles(
       film,
@@ -244,8 +244,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         const std::size_t finished = ++done;
         if (progress) {
           std::lock_guard lock(progress_mutex);
-          done_weight += weights[tile];
-          progress({finished, total, std::min(done_weight / total_weight, 1.0)});
+          work.add_done(weights[tile]);
+          progress({finished, total, work.share()});
         }
       },
       stop);

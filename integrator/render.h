@@ -70,25 +70,35 @@ void for_each_pixel_in_groups(int x0, int y0, int x1, int y1, Visit&& visit) {
   }
 }
 
-// The pixel stride of the cost estimate behind a render's progress.
-inline constexpr int kProgressEstimateStride = 8;
-
 // Tiles of at most side x side pixels covering width x height, row by row.
 // Throws std::invalid_argument for side < 1.
 std::vector<PixelTile> pixel_tiles(int width, int height, int side);
 
 // A render's progress: tiles done of total, and the share of the frame's
-// work done, each tile weighted by progress_weight of its estimated cost
-// (FrameRenderer::estimate_costs), so a time-left estimate holds when
-// tiles cost unevenly.
+// work done (WorkDone over FrameRenderer::estimate_costs), so a time-left
+// estimate holds when tiles cost unevenly.
 struct RenderProgressState {
   std::size_t tiles_done = 0, tiles_total = 0;
   double work_done = 0.0;  // 0 to 1
 };
 
-// A tile's weight in the work done: its estimated cost (rays traced by a
-// sample of its pixels), plus one so that no tile weighs nothing.
-inline double progress_weight(double estimated_cost) { return std::max(estimated_cost, 0.0) + 1.0; }
+// One ray per this many pixels on a side estimates a tile's cost
+// (FrameRenderer::estimate_costs: for quiver-mpi's schedule and progress).
+inline constexpr int kTileCostStride = 8;
+
+// The share of a frame's work done, tiles weighted by their estimated cost
+// (plus one, so that no tile weighs nothing).
+class WorkDone {
+ public:
+  static double weight(double estimated_cost) { return std::max(estimated_cost, 0.0) + 1.0; }
+  void add_to_total(double weight) { total_ += weight; }
+  void add_done(double weight) { done_ += weight; }
+  // 0 to 1; 1 for a frame of no work.
+  double share() const { return total_ > 0.0 ? std::min(done_ / total_, 1.0) : 1.0; }
+
+ private:
+  double total_ = 0.0, done_ = 0.0;
+};
 
 // Called after each tile, from worker threads one at a time.
 using RenderProgress = std::function<void(const RenderProgressState&)>;
@@ -96,8 +106,8 @@ using RenderProgress = std::function<void(const RenderProgressState&)>;
 // stop, when given, is read before each tile: once it is true no further
 // tile starts and the result says stopped (a signal handler may set it).
 // With a progress callback, the tiles' costs are estimated first (pixels
-// at a stride of kProgressEstimateStride, not counted in the result's
-// stats; the image is the same).
+// at a stride of kTileCostStride, not counted in the result's stats; the
+// image is the same).
 RenderResult render(const Scene& scene, const RenderSettings& settings, const RenderProgress& progress = {},
                     const std::atomic<bool>* stop = nullptr);
 
