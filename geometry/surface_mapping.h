@@ -22,6 +22,7 @@ struct MappingQuery {
   Vec3<float> position;  // the hit point in the store's coordinates (an instance's own)
   Vec3<float> dp[2];     // its change per film axis (x, y); zero without a footprint
   const AffineTransform* world_to_object;  // an instance's, for its normals; nullptr when not instanced
+  const AffineTransform* object_to_world;  // the same instance's inverse; nullptr when not instanced
 };
 
 struct SurfaceMapping {
@@ -33,6 +34,11 @@ struct SurfaceMapping {
   // spheres and interpolated normals; 0 on flat surfaces and, as an
   // approximation, on cones.
   Vec3<float> normal_change[2] = {{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}};
+  // Where smooth on a triangle: the step in world space from the hit point
+  // up to the curved surface its vertex normals describe, from which shadow
+  // rays leave so that a coarse mesh's shadow edge follows the shading
+  // (0 where the face is not below that surface).
+  Vec3<float> shadow_lift{0.f, 0.f, 0.f};
 };
 
 inline constexpr float kInvTwoPi = float(0.5 / std::numbers::pi);

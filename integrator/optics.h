@@ -9,6 +9,9 @@
 //     rounding error, along the side's normal, then one more ulp outward per
 //     component (after pbrt-v4's OffsetRayOrigin). The bound scales with the
 //     magnitudes that produced the point, so no scene-dependent epsilon.
+//   lifted_origin: the same from p + lift (a shadow ray's start above a
+//     smooth triangle, geometry/surface_mapping.h), the sum's rounding (an
+//     ulp per component) added to the bound.
 // I and N are unit vectors, N on the side I comes from (I.N <= 0).
 #pragma once
 
@@ -63,6 +66,13 @@ inline Vec3<F> offset_origin(const Vec3<F>& p, const Vec3<F>& error, const Vec3<
   const Vec3<F> moved = p + side_normal * distance;
   return {next_float_away(moved.x, side_normal.x), next_float_away(moved.y, side_normal.y),
           next_float_away(moved.z, side_normal.z)};
+}
+
+template <class F>
+inline Vec3<F> lifted_origin(const Vec3<F>& p, const Vec3<F>& error, const Vec3<F>& lift, const Vec3<F>& side_normal) {
+  const Vec3<F> q = p + lift;
+  const F ulp(std::numeric_limits<float>::epsilon());
+  return offset_origin(q, {error.x + ulp * abs(q.x), error.y + ulp * abs(q.y), error.z + ulp * abs(q.z)}, side_normal);
 }
 
 }  // namespace QUIVER_UNIT_NAMESPACE

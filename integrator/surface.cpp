@@ -69,12 +69,14 @@ SurfaceDetail surface_detail(const Scene& scene, const Ray<float>& ray, const Hi
                  textured || footprint != nullptr ? hit_position(ray, hit.t) : Vec3<float>(0.f, 0.f, 0.f),
                  {footprint != nullptr ? footprint->dx : Vec3<float>(0.f, 0.f, 0.f),
                   footprint != nullptr ? footprint->dy : Vec3<float>(0.f, 0.f, 0.f)},
+                 nullptr,
                  nullptr};
   if (instanced) {
     const AffineTransform& to_object = scene.instances.world_to_object[row];
     q.position = apply_point(to_object, q.position);
     for (Vec3<float>& d : q.dp) d = apply_vector(to_object, d);
     q.world_to_object = &to_object;
+    q.object_to_world = &scene.instances.object_to_world[row];
     s.instance_error = instance_error(scene, row, ray, hit.t);
   }
   s.u = hit.u;

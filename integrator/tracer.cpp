@@ -195,6 +195,7 @@ void Tracer::store_surface(std::size_t i, const SurfaceDetail& d) {
     surfaces_.nx[i] = d.interpolated.x;
     surfaces_.ny[i] = d.interpolated.y;
     surfaces_.nz[i] = d.interpolated.z;
+    surfaces_.shadow_lift.set(i, d.shadow_lift);
   }
   surfaces_.color_r[i] = d.color.x;
   surfaces_.color_g[i] = d.color.y;

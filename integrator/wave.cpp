@@ -77,6 +77,7 @@ void SurfaceColumns::resize(std::size_t padded, bool differentials) {
   for (AlignedInts* c : {&material, &smooth}) c->assign(padded, 0);
   for (AlignedFloats* c : {&nx, &ny, &nz, &color_r, &color_g, &color_b}) c->assign(padded, 0.f);
   error.assign(padded);
+  shadow_lift.assign(padded);
   for (Vec3Columns* c : {&point_dx, &point_dy, &normal_dx, &normal_dy}) {
     if (differentials) {
       c->assign(padded);

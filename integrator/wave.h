@@ -65,6 +65,7 @@ struct SurfaceColumns {
   AlignedFloats nx, ny, nz;            // unit, the primitive's orientation
   AlignedFloats color_r, color_g, color_b;
   Vec3Columns error;                   // SurfaceDetail::instance_error (0 off instances)
+  Vec3Columns shadow_lift;             // SurfaceMapping::shadow_lift (0 where not smooth)
   // With ray differentials only: the point's change and the shading
   // normal's (in the primitive's orientation) over one sample spacing.
   Vec3Columns point_dx, point_dy, normal_dx, normal_dy;

@@ -195,6 +195,8 @@ struct PacketHits {
   Vec3<F> direction;  // the ray's, as stored
   Vec3<F> incident;   // the ray's unit direction; set once some lane hits
   Vec3<F> origin;     // the point offset to the geometric normal's side; set once some lane hits
+  Vec3<F> lift;       // SurfaceMapping::shadow_lift
+  Mask<F> liftable;   // smooth, with a lift toward the side the ray came from
 };
 
 template <class F>
@@ -208,12 +210,26 @@ PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
   h.weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
   h.smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
   h.interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
+  h.lift = load_vec3<F>(columns.shadow_lift.x, columns.shadow_lift.y, columns.shadow_lift.z, first);
   h.s = surface_frame(ray, h.hit, h.smooth, h.interpolated);
   h.s.error = h.s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
   h.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
   h.material = load_int_lanes<F>(columns.material.data() + first);
   h.direction = ray.direction;
   return h;
+}
+
+// How much of SurfaceMapping::shadow_lift a shadow ray takes: all of it
+// where the face turns from the light (Ng.L <= 0), none where both N.L and
+// Ng.L are at least kTerminatorBand, linearly between; a lift far from the
+// terminator would only let thin parts of a coarse mesh shade themselves
+// (Cycles restricts Hanika's lift the same way).
+constexpr float kTerminatorBand = 0.1f;
+template <class F>
+F terminator_lift_share(const F& n_dot_l, const F& ng_dot_l) {
+  const F band(kTerminatorBand);
+  const F below = F(2.f) - (ng_dot_l + n_dot_l) / band, above = F(1.f) - ng_dot_l / band;
+  return min(max(select(n_dot_l < band, below, above), F(0.f)), F(1.f));
 }
 
 // Each light sample's contribution I_i (kd (N.L) colour + ks (N.H)^n) times
@@ -234,11 +250,20 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
     const Vec3<F> intensity(scene.lights[l].color / float(n * n));
     for (int j = 0; j < n * n; ++j, ++slot) {
       float tmax;
-      const Vec3<F> direction = light_sample_direction(in, l, j, n, h.origin, first, tmax);
+      Vec3<F> direction = light_sample_direction(in, l, j, n, h.origin, first, tmax);
       const Vec3<F> to_light = normalize(direction);
       const F n_dot_l = dot(s.shading, to_light);
+      // Near the terminator the shadow ray leaves from the lifted point (wholly where the face turns
+      // from the light, which the ray from there then decides).
+      const F share = terminator_lift_share(n_dot_l, dot(s.geometric, to_light));
+      const Mask<F> lifted = h.liftable & (n_dot_l > F(0.f)) & (share > F(0.f));
+      Vec3<F> from = h.origin;
+      if (any(lifted)) {
+        from = select(lifted, lifted_origin(s.position, s.error, h.lift * share, s.geometric), h.origin);
+        direction = select(lifted, light_sample_direction(in, l, j, n, from, first, tmax), direction);
+      }
       // No shadow ray where the surface faces away from the light.
-      Mask<F> cast = lit & (n_dot_l > F(0.f)) & (dot(s.geometric, to_light) > F(0.f));
+      Mask<F> cast = lit & (n_dot_l > F(0.f)) & (lifted | (dot(s.geometric, to_light) > F(0.f)));
       const Vec3<F> half = normalize(to_light + to_eye);
       const F n_dot_h = max(dot(s.shading, half), F(0.f));
       const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
@@ -252,7 +277,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
       out.counts.light_active += std::popcount(bits);
       if (bits == 0) continue;
       out.counts.shadow_uncompacted += W;
-      append_shadow_rays((*to.slots)[slot], bits, first, h.origin, direction, tmax, contribution);
+      append_shadow_rays((*to.slots)[slot], bits, first, from, direction, tmax, contribution);
     }
   }
 }
@@ -392,6 +417,9 @@ void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   if (none(h.hit_mask)) return;
   h.incident = normalize(h.direction);
   h.origin = offset_origin(h.s.position, h.s.error, h.s.geometric);
+  // A lift toward the side the ray came from moves the shadow rays' start; one the other way (a smooth
+  // surface seen from behind) does not.
+  h.liftable = h.hit_mask & h.smooth & (dot(h.lift, h.s.geometric) > F(0.f));
 
   const F kd = gather_lanes<F>(table.kd.data(), h.material);
   const F ks = gather_lanes<F>(table.ks.data(), h.material);

@@ -185,10 +185,32 @@ void barycentric_change(const Vec3<float>& e1, const Vec3<float>& e2, const Vec3
   db2 = (aa * db - ab * da) / det;
 }
 
+// The shadow terminator fix of Hanika, "Hacking the Shadow Terminator" (Ray
+// Tracing Gems II, 2021): the hit point p (barycentrics b) projected onto
+// the tangent plane of each vertex it lies below, p_k = p - min(0, (p -
+// v_k).n_k) n_k, and those points blended with b. Returns the step from p
+// to the blend, in the triangle's own coordinates; in double, so that a
+// flat face (every n_k its normal) gives a step at rounding level.
+Vec3<float> terminator_lift(const TriangleSoA& tri, std::uint32_t i, const float b[3]) {
+  Vec3<double> v[3], n[3], p{0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3<float> vk = tri.vertex(i, k), nk = tri.normal(i, k);
+    v[k] = {vk.x, vk.y, vk.z};
+    n[k] = {nk.x, nk.y, nk.z};
+    const double length = std::sqrt(dot(n[k], n[k]));
+    n[k] = length > 0.0 ? n[k] * (1.0 / length) : Vec3<double>{0.0, 0.0, 0.0};
+    p = p + v[k] * double(b[k]);
+  }
+  Vec3<double> lift{0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k) lift = lift - n[k] * (double(b[k]) * std::min(0.0, dot(p - v[k], n[k])));
+  return {float(lift.x), float(lift.y), float(lift.z)};
+}
+
 }  // namespace
 
 // Per-vertex (u, v) (or the barycentrics) and normals, interpolated with
-// the kernel's barycentrics.
+// the kernel's barycentrics; where normals are interpolated, the shadow
+// rays' lift (terminator_lift).
 void map_surface(const TriangleSoA& tri, const MappingQuery& q, SurfaceMapping& out) {
   const Hit<float>& hit = q.hit;
   const std::uint32_t i = q.index;
@@ -221,6 +243,9 @@ void map_surface(const TriangleSoA& tri, const MappingQuery& q, SurfaceMapping& 
   if (!(dot(n, n) > 0.f)) return;
   out.smooth = true;
   out.interpolated = normalize(n);
+  const float barycentrics[3] = {w0, hit.u, hit.v};
+  const Vec3<float> lift = terminator_lift(tri, i, barycentrics);
+  out.shadow_lift = q.object_to_world != nullptr ? apply_vector(*q.object_to_world, lift) : lift;
   // The unit normal's change: the interpolation's, less its part along the normal, over |n|.
   const float length = std::sqrt(dot(n, n));
   for (int a = 0; a < 2 && q.footprint; ++a) {
