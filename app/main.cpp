@@ -66,6 +66,15 @@ struct RawTraceFlags {
   RawCameraFlags camera;
 };
 
+// What `quiver info` was given, as parsed, before we know which optional flags were.
+struct InfoArgs {
+  std::string scene;
+  quiver::SceneLoadOptions load_options;
+  double crease_angle = 0.0;
+  CLI::Option* crease_angle_option;
+  RawCameraFlags camera;
+};
+
 int report(std::string_view message, int exit_code) {
   std::cerr << "quiver: " << message << "\n";
   return exit_code;
@@ -130,9 +139,11 @@ int run_render(const RenderArgs& args) {
   }
 }
 
-int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load_options) {
+int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load_options,
+             const quiver::CameraFlags& camera_flags) {
   try {
     quiver::check_crease_angle(load_options.crease_angle_degrees);
+    quiver::check_camera_flags(camera_flags);
   } catch (const UsageError& error) {
     return report(error.what(), kExitUsage);
   }
@@ -142,7 +153,7 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     quiver::print_scene_warnings(as_read);
     quiver::SceneDesc desc = as_read;
     const std::optional<quiver::DefaultView> default_view =
-        quiver::add_default_view(desc, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
+        quiver::set_view(desc, camera_flags, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
     quiver::SceneInfoContext context;
@@ -154,6 +165,8 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);
     return 0;
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
   } catch (const std::bad_alloc&) {
     return report("out of memory", kExitFailure);
   } catch (const std::exception& error) {
@@ -188,6 +201,16 @@ int run_trace(const TraceArgs& args) {
   } catch (...) {
     return report_exception();
   }
+}
+
+void add_info_flags(CLI::App& info, InfoArgs& args) {
+  info.add_option("scene", args.scene, "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl")
+      ->required()
+      ->type_name("SCENE");
+  args.crease_angle_option = quiver::cli::add_crease_angle_flag(info, args.crease_angle);
+  quiver::cli::add_strict_flag(info, args.load_options.strict);
+  quiver::cli::add_allow_outside_paths_flag(info, args.load_options.allow_outside_paths);
+  quiver::cli::add_camera_flags(info, args.camera);
 }
 
 void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
@@ -295,18 +318,12 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a scene file (or the built-in scene) to an image");
   quiver::cli::add_render_flags(*render, render_args, raw);
 
-  std::string info_scene;
+  InfoArgs info_args;
   CLI::App* info = app.add_subcommand(
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
-              "camera, lights, materials, textures, memory (bytes) per structure, load and build times (ms)");
-  info->add_option("scene", info_scene, "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl")
-      ->required()
-      ->type_name("SCENE");
-  double info_crease_angle = 0.0;
-  CLI::Option* info_crease_angle_option = quiver::cli::add_crease_angle_flag(*info, info_crease_angle);
-  quiver::SceneLoadOptions info_load_options;
-  quiver::cli::add_strict_flag(*info, info_load_options.strict);
-  quiver::cli::add_allow_outside_paths_flag(*info, info_load_options.allow_outside_paths);
+              "camera (the view the camera flags give), lights, materials, textures, memory (bytes) per "
+              "structure, load and build times (ms)");
+  add_info_flags(*info, info_args);
 
   TraceArgs trace_args;
   RawTraceFlags raw_trace;
@@ -353,6 +370,12 @@ int main(int argc, char** argv) {
     }
     return run_trace(trace_args);
   }
-  if (info_crease_angle_option->count()) info_load_options.crease_angle_degrees = info_crease_angle;
-  return run_info(info_scene, info_load_options);
+  if (info_args.crease_angle_option->count()) info_args.load_options.crease_angle_degrees = info_args.crease_angle;
+  quiver::CameraFlags info_camera_flags;
+  try {
+    info_camera_flags = quiver::cli::given_camera_flags(info_args.camera);
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  }
+  return run_info(info_args.scene, info_args.load_options, info_camera_flags);
 }

@@ -64,7 +64,7 @@ inline CLI::Option* add_crease_angle_flag(CLI::App& command, double& degrees) {
       ->type_name("DEGREES");
 }
 
-// --look-from, --look-at, --up, --fov, the same for render and trace.
+// --look-from, --look-at, --up, --fov, the same for render, info and trace.
 inline void add_camera_flags(CLI::App& command, RawCameraFlags& raw) {
   raw.look_from_option = command.add_option("--look-from", raw.look_from,
                                             "Camera position x,y,z, over the scene's camera (or the default view "
@@ -75,8 +75,8 @@ inline void add_camera_flags(CLI::App& command, RawCameraFlags& raw) {
   raw.up_option = command.add_option("--up", raw.up,
                                      "The camera's up direction x,y,z (its part across the view is used); for a "
                                      "scene without a camera, also the model's up axis the default view is "
-                                     "placed around (else +y, or +z for a mesh standing on a flat base at its "
-                                     "lowest z; `quiver info` says which)")
+                                     "placed around (else +z for STL, CAD's convention; else +y, or +z for a "
+                                     "mesh standing on a flat base at its lowest z; `quiver info` says which)")
                       ->type_name("X,Y,Z");
   raw.fov_option = command.add_option("--fov", raw.fov, "Field of view in degrees, (0, 180), as the scene's camera "
                                                         "angle")
@@ -97,8 +97,9 @@ inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
 inline void add_file_flags(CLI::App& render, RenderArgs& args) {
   render.add_option("scene", args.scene,
                     "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). Absent: the built-in "
-                    "scene. A scene without a camera (a mesh) gets a default view framing it (and, if it has no "
-                    "lights, a white point light above and to the right of that view)")
+                    "scene. A scene without a camera (a mesh) gets a default view framing it; a scene without "
+                    "lights gets a rig that follows the final camera (after the camera flags): a key light above "
+                    "and to the right of the eye, a fill at the eye, and a grey background if it has none")
       ->type_name("SCENE");
   render.add_option("-o,--output", args.output,
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "

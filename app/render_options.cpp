@@ -176,16 +176,20 @@ void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera) {
   }
 }
 
-void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height) {
+std::optional<DefaultView> set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height) {
+  std::optional<DefaultView> view;
   if (!desc.camera) {
     std::optional<Vec3<double>> up;
     if (flags.up) {
       up = Vec3<double>{double(flags.up->x), double(flags.up->y), double(flags.up->z)};
       if (!(dot(*up, *up) > 0.0)) throw UsageError("--up: expected a direction, found 0,0,0");
     }
-    add_default_view(desc, width, height, up);
+    const float angle = flags.fov ? static_cast<float>(*flags.fov) : kDefaultViewAngleDegrees;
+    view = add_default_camera(desc, width, height, up, angle);
   }
   apply_camera_flags(flags, *desc.camera);
+  add_default_lights(desc);
+  return view;
 }
 
 std::pair<int, int> image_size(const RenderOptions& options, const std::optional<CameraDesc>& camera) {

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "integrator/render.h"
+#include "scene/auto_view.h"
 #include "scene/scene.h"
 #include "scene/scene_desc.h"
 #include "simd/isa.h"
@@ -106,11 +107,13 @@ void check_camera_flags(const CameraFlags& flags);
 // no view direction (from = at, or up along it).
 void apply_camera_flags(const CameraFlags& flags, CameraDesc& camera);
 
-// The view a command renders or traces desc with: the default view of width
-// x height (scene/auto_view.h) when desc has no camera, around --up as the
-// model's up axis when given, then the camera flags over its camera
-// (apply_camera_flags).
-void set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height);
+// The view a command renders or traces desc with: the default camera of
+// width x height (scene/auto_view.h) when desc has no camera, around --up as
+// the model's up axis and framed for --fov when given, then the camera flags
+// over its camera (apply_camera_flags), then the default lights around that
+// final camera when desc has none. Returns the default view when one was
+// chosen.
+std::optional<DefaultView> set_view(SceneDesc& desc, const CameraFlags& flags, int width, int height);
 
 // The image size: both flags as given; one flag and the other side from the
 // camera's aspect (rounded, at least 1); neither: the camera's resolution,

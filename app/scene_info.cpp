@@ -158,7 +158,9 @@ void write_camera(std::ostream& out, const Scene& scene, const std::optional<Def
     out << "                (none in the file: a default view of the whole scene,\n"
         << "                up " << default_view->up_reason << ";\n"
         << "                front " << default_view->front_reason << ";\n"
-        << "                seen 35 degrees round from the front and 25 above)\n";
+        << "                seen 35 degrees round from the front and 25 above, filling "
+        << int(kDefaultViewFill * 100.0 + 0.5) << "% of the image;\n"
+        << "                then the camera flags given)\n";
   }
   out << "background      " << vec(scene.background) << "\n"
       << "ambient         " << vec(scene.ambient) << "\n";
@@ -175,7 +177,7 @@ void write_render_settings(std::ostream& out, const RenderDesc& render) {
 
 void write_lights(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
   out << "lights          " << scene.lights.size();
-  if (desc.lights.empty() && !scene.lights.empty()) out << " (none in the file: the default view's light)";
+  if (desc.lights.empty() && !scene.lights.empty()) out << " (none in the file: the default rig, a key light above and right of the eye and a fill at the eye)";
   out << "\n";
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const LightDesc& l = scene.lights[i];

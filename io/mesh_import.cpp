@@ -311,6 +311,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, error);
   SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
+  if (*format == MeshFormat::stl) scene.model_up = SceneDesc::StatedUp{{0.f, 0.f, 1.f}, "STL's convention"};
   // Its buffer and image files are inputs too, which no output may overwrite.
   for (const fs::path& read : gltf.files) {
     const std::string name = read.string();

@@ -33,14 +33,14 @@ struct Bounds {
   bool empty() const { return lo[0] > hi[0]; }
 };
 
-Bounds scene_bounds(const SceneDesc& scene) {
-  Bounds b;
+// Calls visit(p, margin) for balls that together cover every bounded
+// primitive: each kind's extent, and the corners of each instance's placed
+// mesh box.
+template <class Visit>
+void visit_extent(const SceneDesc& scene, Visit&& visit) {
   for_each_kind([&]<class K>(K) {
-    for (const auto& entry : scene.*SceneEntries<K>::of) {
-      K::extent(entry.*SceneEntries<K>::desc, [&](const Vec3<float>& p, double margin) { b.add(p, margin); });
-    }
+    for (const auto& entry : scene.*SceneEntries<K>::of) K::extent(entry.*SceneEntries<K>::desc, visit);
   });
-  // Instances: the corners of their mesh's box, placed.
   std::vector<Bounds> mesh_bounds(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     for (const SceneTriangle& t : scene.meshes[m].triangles) {
@@ -54,16 +54,19 @@ Bounds scene_bounds(const SceneDesc& scene) {
       const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
                           static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
                           static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
-      b.add(apply_point(instance.object_to_world, p));
+      visit(apply_point(instance.object_to_world, p), 0.0);
     }
   }
+}
+
+Bounds scene_bounds(const SceneDesc& scene) {
+  Bounds b;
+  visit_extent(scene, [&](const Vec3<float>& p, double margin) { b.add(p, margin); });
   return b;
 }
 
-double length(const double v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-Vec3<float> to_float(const double v[3]) {
-  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+Vec3<float> to_float(const Vec3<double>& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
 }
 
 Vec3<double> to_double(const Vec3<float>& v) { return {double(v.x), double(v.y), double(v.z)}; }
@@ -166,6 +169,9 @@ DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3
   if (up) {
     view.up = unit(*up);
     view.up_reason = axis_name(view.up) + ", from --up";
+  } else if (scene.model_up && dot(to_double(scene.model_up->axis), to_double(scene.model_up->axis)) > 0.0) {
+    view.up = unit(to_double(scene.model_up->axis));
+    view.up_reason = axis_name(view.up) + ", " + scene.model_up->convention;
   } else if (mesh) {
     const Bounds bounds = scene_bounds(scene);
     const double least = 0.02 * mesh_area(scene);
@@ -196,95 +202,154 @@ namespace {
 // The default eye and the light beside it lie up to about 2.5 view
 // distances from the centre: both must stay finite in float, or the error
 // names the scene's file.
-void check_camera_fits_float(const SceneDesc& scene, const double center[3], double radius, double distance) {
-  if (distance * 2.5 + length(center) < double(std::numeric_limits<float>::max())) return;
+void check_camera_fits_float(const SceneDesc& scene, const Vec3<double>& center, double distance) {
+  if (distance * 2.5 + std::sqrt(dot(center, center)) < double(std::numeric_limits<float>::max())) return;
   const std::string name = scene.source_files.empty() ? std::string("the scene") : scene.source_files.front();
   std::ostringstream size;
-  size << std::setprecision(3) << 2.0 * radius;
-  throw std::invalid_argument(name + ": expected a model that a default view can frame, found one " + size.str() +
-                              " across, too large for a camera in float; give the scene a camera, or scale it");
+  size << std::setprecision(3) << distance;
+  throw std::invalid_argument(name + ": expected a model that a default view can frame, found one needing a camera " +
+                              size.str() + " away, too far for float; give the scene a camera, or scale it");
+}
+
+// A view direction and the image's half-extents, as tangents of the angles
+// from the view axis to the outermost pixel centres across and up.
+struct ViewAxes {
+  Vec3<double> toward_eye, right, up;
+  double tangent_across, tangent_up;
+};
+
+// The smallest distance from target along toward_eye at which each ball
+// (p, margin) lies inside the four planes through the eye at the view's
+// half-angles shrunk by fill: a ball at (x, y, h) in the view's axes around
+// target, seen from distance d, is inside the right-hand plane when its
+// centre is at least margin from it, d >= h + (x + margin sqrt(1 + t^2)) / t.
+template <class VisitBalls>
+double fitting_distance(const VisitBalls& visit_balls, const Vec3<double>& target, const ViewAxes& axes,
+                        double fill) {
+  const double tx = fill * axes.tangent_across, ty = fill * axes.tangent_up;
+  const double sx = std::sqrt(1.0 + tx * tx), sy = std::sqrt(1.0 + ty * ty);
+  double distance = 0.0;
+  visit_balls([&](const Vec3<float>& p, double margin) {
+    const Vec3<double> q = to_double(p) - target;
+    if (!std::isfinite(dot(q, q)) || !std::isfinite(margin)) return;
+    const double h = dot(q, axes.toward_eye);
+    distance = std::max({distance, h + (std::fabs(dot(q, axes.right)) + margin * sx) / tx,
+                         h + (std::fabs(dot(q, axes.up)) + margin * sy) / ty});
+  });
+  return distance;
+}
+
+// The target moved across the view to the middle of the balls' image seen
+// from distance along toward_eye. A ball at x across and depth z, of radius
+// m < z, spans the tangents (x z -+ m sqrt(x^2 + z^2 - m^2)) / (z^2 - m^2).
+template <class VisitBalls>
+Vec3<double> centred_target(const VisitBalls& visit_balls, const Vec3<double>& target, const ViewAxes& axes,
+                            double distance) {
+  double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  double hi[2] = {-lo[0], -lo[1]};
+  visit_balls([&](const Vec3<float>& p, double margin) {
+    const Vec3<double> q = to_double(p) - target;
+    const double z = distance - dot(q, axes.toward_eye);
+    if (!std::isfinite(dot(q, q)) || !std::isfinite(margin) || !(z > margin)) return;
+    const double across[2] = {dot(q, axes.right), dot(q, axes.up)};
+    for (int k = 0; k < 2; ++k) {
+      const double x = across[k], spread = margin * std::sqrt(x * x + z * z - margin * margin);
+      const double scale = 1.0 / (z * z - margin * margin);
+      lo[k] = std::min(lo[k], (x * z - spread) * scale);
+      hi[k] = std::max(hi[k], (x * z + spread) * scale);
+    }
+  });
+  if (!(lo[0] <= hi[0]) || !(lo[1] <= hi[1])) return target;
+  return target + axes.right * (0.5 * (lo[0] + hi[0]) * distance) + axes.up * (0.5 * (lo[1] + hi[1]) * distance);
 }
 
 }  // namespace
 
-std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
-                                            const std::optional<Vec3<double>>& up) {
+std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int height,
+                                              const std::optional<Vec3<double>>& up, float angle_degrees) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
     throw std::invalid_argument("add_default_view: width and height must lie in [1, 65536]");
   }
   if (up && !(dot(*up, *up) > 0.0 && std::isfinite(dot(*up, *up)))) {
     throw std::invalid_argument("add_default_view: the up axis must be finite and not zero");
   }
-  std::optional<DefaultView> chosen;
-  if (!scene.camera) chosen = choose_default_view(scene, up);
-  // Bounding sphere of the primitives' box (the unit sphere when there is none).
-  const Bounds bounds = scene_bounds(scene);
-  double center[3] = {0.0, 0.0, 0.0};
-  double radius = 1.0;
-  if (!bounds.empty()) {
-    double squared = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      center[a] = 0.5 * bounds.lo[a] + 0.5 * bounds.hi[a];
-      const double half = 0.5 * bounds.hi[a] - 0.5 * bounds.lo[a];
-      squared += half * half;
-    }
-    radius = std::sqrt(squared);
-    if (!(radius > 0.0)) radius = 1.0;  // a single point
+  if (!(angle_degrees > 0.f && angle_degrees < 180.f)) {
+    throw std::invalid_argument("add_default_view: the angle must lie in (0, 180) degrees");
   }
-
+  if (scene.camera) return std::nullopt;
+  const DefaultView view = choose_default_view(scene, up);
   // Three-quarter view: 35 degrees round from the front towards the model's
   // left (+x for the default front +z and up +y), 25 degrees up.
   const double azimuth = 35.0 * std::numbers::pi / 180.0, elevation = 25.0 * std::numbers::pi / 180.0;
-  const DefaultView view = chosen ? *chosen : DefaultView{{0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, {}, {}};
   const Vec3<double> side = cross(view.up, view.front);
-  double toward_eye[3];
-  for (int a = 0; a < 3; ++a) {
-    toward_eye[a] = std::cos(elevation) * (std::cos(azimuth) * view.front[a] + std::sin(azimuth) * side[a]) +
-                    std::sin(elevation) * view.up[a];
-  }
-  // Tangent of the half field of view across the shorter side (CameraDesc:
-  // the angle spans the outermost pixel centres of the longer side).
-  const int longer = std::max(width, height), shorter = std::min(width, height);
-  const double half_angle = double(kDefaultViewAngleDegrees) * std::numbers::pi / 360.0;
-  const double tangent = std::tan(half_angle) * double(std::max(shorter - 1, 1)) / double(std::max(longer - 1, 1));
-  // The sphere fits a cone of that half-angle at distance r / sin(angle); 10% margin.
-  const double distance = 1.1 * radius * std::sqrt(1.0 + tangent * tangent) / tangent;
+  ViewAxes axes;
+  axes.toward_eye = (view.front * std::cos(azimuth) + side * std::sin(azimuth)) * std::cos(elevation) +
+                    view.up * std::sin(elevation);
+  axes.right = unit(cross(-axes.toward_eye, view.up));
+  axes.up = cross(axes.right, -axes.toward_eye);
+  // CameraDesc's angle spans the outermost pixel centres of the longer side.
+  const double longest = std::tan(double(angle_degrees) * std::numbers::pi / 360.0);
+  const double longer = double(std::max(std::max(width, height) - 1, 1));
+  axes.tangent_across = longest * double(std::max(width - 1, 1)) / longer;
+  axes.tangent_up = longest * double(std::max(height - 1, 1)) / longer;
 
-  double eye[3];
-  for (int a = 0; a < 3; ++a) eye[a] = center[a] + distance * toward_eye[a];
-  if (!scene.camera) check_camera_fits_float(scene, center, radius, distance);
-  if (!scene.camera) {
-    CameraDesc camera{};
-    camera.from = to_float(eye);
-    camera.at = to_float(center);
-    camera.up = {static_cast<float>(view.up.x), static_cast<float>(view.up.y), static_cast<float>(view.up.z)};
-    camera.angle_degrees = kDefaultViewAngleDegrees;
-    camera.hither = 0.f;
-    camera.width = width;
-    camera.height = height;
-    scene.camera = camera;
-  }
-  if (scene.lights.empty()) {
-    // Above and to the right of the scene's camera, half the view distance away.
-    const CameraDesc& c = *scene.camera;
-    double to_target[3];
-    for (int a = 0; a < 3; ++a) to_target[a] = double(c.at[a]) - double(c.from[a]);
-    const double view_distance = length(to_target);
-    const CameraFrame frame = camera_frame(c);
-    double position[3];
-    for (int a = 0; a < 3; ++a) {
-      position[a] = double(c.from[a]) + 0.5 * view_distance * (frame.right[a] + frame.up[a]);
+  const Bounds bounds = scene_bounds(scene);
+  Vec3<double> target{0.0, 0.0, 0.0};
+  double distance = 0.0;
+  if (bounds.empty()) {
+    const auto unit_ball = [](auto&& visit) { visit(Vec3<float>{0.f, 0.f, 0.f}, 1.0); };
+    distance = fitting_distance(unit_ball, target, axes, kDefaultViewFill);
+  } else {
+    const auto primitives = [&](auto&& visit) { visit_extent(scene, visit); };
+    for (int a = 0; a < 3; ++a) target[a] = 0.5 * bounds.lo[a] + 0.5 * bounds.hi[a];
+    // Fit and centre twice (moving the target changes the depths, so the
+    // first centring is close, the second closer), then fit: exact for that target.
+    for (int pass = 0; pass < 2; ++pass) {
+      target = centred_target(primitives, target, axes, fitting_distance(primitives, target, axes, kDefaultViewFill));
     }
-    const float largest_ambient = std::max({scene.ambient.x, scene.ambient.y, scene.ambient.z});
-    if (largest_ambient == 0.f) scene.ambient = {0.1f, 0.1f, 0.1f};
-    const float intensity = std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));
-    LightDesc light;
-    light.kind = LightDesc::Kind::point;
-    light.position = to_float(position);
-    light.color = {intensity, intensity, intensity};
-    scene.lights.push_back(light);
+    distance = fitting_distance(primitives, target, axes, kDefaultViewFill);
   }
-  return chosen;
+  if (!(distance > 0.0)) distance = 1.0;  // a single point
+  check_camera_fits_float(scene, target, distance);
+  CameraDesc camera{};
+  camera.from = to_float(target + axes.toward_eye * distance);
+  camera.at = to_float(target);
+  camera.up = to_float(view.up);
+  camera.angle_degrees = angle_degrees;
+  camera.hither = 0.f;
+  camera.width = width;
+  camera.height = height;
+  scene.camera = camera;
+  return view;
+}
+
+bool add_default_lights(SceneDesc& scene) {
+  if (!scene.camera) throw std::invalid_argument("add_default_lights: the scene has no camera");
+  if (!scene.lights.empty()) return false;
+  const CameraDesc& c = *scene.camera;
+  const CameraFrame frame = camera_frame(c);
+  const Vec3<double> eye = to_double(c.from);
+  const double view_distance = std::sqrt(dot(to_double(c.at) - eye, to_double(c.at) - eye));
+  const float largest_ambient = std::max({scene.ambient.x, scene.ambient.y, scene.ambient.z});
+  if (largest_ambient == 0.f) scene.ambient = {0.1f, 0.1f, 0.1f};
+  const float light = std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));
+  LightDesc key;
+  key.kind = LightDesc::Kind::point;
+  key.position = to_float(eye + (frame.right + frame.up) * (0.5 * view_distance));
+  key.color = Vec3<float>{1.f, 1.f, 1.f} * (kDefaultKeyShare * light);
+  LightDesc fill = key;
+  fill.position = c.from;
+  fill.color = Vec3<float>{1.f, 1.f, 1.f} * ((1.f - kDefaultKeyShare) * light);
+  scene.lights = {key, fill};
+  if (!scene.background) scene.background = Vec3<float>{1.f, 1.f, 1.f} * kDefaultRigBackground;
+  return true;
+}
+
+std::optional<DefaultView> add_default_view(SceneDesc& scene, int width, int height,
+                                            const std::optional<Vec3<double>>& up) {
+  std::optional<DefaultView> view = add_default_camera(scene, width, height, up);
+  add_default_lights(scene);
+  return view;
 }
 
 }  // namespace quiver

@@ -344,7 +344,7 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   if (!desc.camera) throw std::invalid_argument("the scene has no camera");
   Scene scene;
   scene.camera = *desc.camera;
-  scene.background = desc.background;
+  scene.background = desc.background.value_or(Vec3<float>{0.f, 0.f, 0.f});
   scene.ambient = desc.ambient;
   scene.lights = desc.lights;
   scene.materials = desc.materials;

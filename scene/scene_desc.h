@@ -144,7 +144,7 @@ struct SceneInstance {
 
 struct SceneDesc {
   std::optional<CameraDesc> camera;
-  Vec3<float> background{0.f, 0.f, 0.f};
+  std::optional<Vec3<float>> background;  // none: black, or the default rig's grey
   Vec3<float> ambient{0.1f, 0.1f, 0.1f};  // Ia
   std::vector<LightDesc> lights;
   std::vector<MaterialDesc> materials;
@@ -157,6 +157,13 @@ struct SceneDesc {
   std::vector<SceneMesh> meshes;
   std::vector<SceneInstance> instances;
   RenderDesc render;
+  // The model's up axis where its format states one (STL: +z), and which
+  // convention that is, for the default view (scene/auto_view.h).
+  struct StatedUp {
+    Vec3<float> axis;
+    std::string convention;
+  };
+  std::optional<StatedUp> model_up;
   // The files the scene was read from, each once, in reading order: the
   // scene file, meshes, MTL libraries, and a glTF's buffer and image files
   // (texture images are also in textures[].path).

@@ -703,6 +703,16 @@ TEST_F(Cli, TheDefaultViewStandsAMeshOnItsBaseAndInfoNamesIt) {
   EXPECT_EQ(zero.exit_code, 2) << zero.err;
   EXPECT_NE(zero.err.find("--up"), std::string::npos) << zero.err;
   EXPECT_FALSE(fs::exists(work() / "zero.png"));
+  // info takes the camera flags and prints the view and rig they give.
+  const Outcome below = run({"info", "column.obj", "--look-from", "0,0,-9", "--up", "0,1,0", "--fov", "30"});
+  ASSERT_EQ(below.exit_code, 0) << below.err;
+  EXPECT_NE(below.out.find("from (0 0 -9)"), std::string::npos) << below.out;
+  EXPECT_NE(below.out.find("angle 30 degrees"), std::string::npos) << below.out;
+  EXPECT_NE(below.out.find("up +y, from --up"), std::string::npos) << below.out;
+  EXPECT_NE(below.out.find("1: point position (0 0 -9)"), std::string::npos) << below.out;  // the fill, at the eye
+  const Outcome wide = run({"info", "column.obj", "--fov", "180"});
+  EXPECT_EQ(wide.exit_code, 2) << wide.err;
+  EXPECT_NE(wide.err.find("--fov"), std::string::npos) << wide.err;
 }
 
 TEST_F(Cli, InfoPrintsTheCounts) {

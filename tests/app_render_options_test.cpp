@@ -1,14 +1,22 @@
 // Command-line options -> RenderSettings (app/render_options.h): defaults,
 // the scene's RenderDesc, the aspect rule, bounds, --preset spd and its
 // conflicts, the AOV list, the seed and the ISA choice.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "app/render_options.h"
+#include "io/mesh_import.h"
+#include "io/parse_error.h"
+#include "io/scene_loader.h"
 #include "scene/anti_aliasing.h"
 
 namespace quiver {
@@ -270,6 +278,125 @@ TEST(RenderOptions, CameraFlagsOverrideTheScenesCamera) {
   camera = scene_camera;
   camera.from = {3, 4, 5};
   EXPECT_TRUE(throws_usage_error([&] { apply_camera_flags(along_view, camera); }));
+}
+
+// Without a camera or lights, the default camera is placed before the
+// camera flags and the rig after them: a view from behind the model has
+// its key light above and to the right of that eye and its fill at it.
+TEST(RenderOptions, TheDefaultLightsFollowTheCameraFlags) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  CameraFlags behind;
+  behind.look_from = Vec3<float>{0.f, 0.f, -6.f};
+  const std::optional<DefaultView> view = set_view(scene, behind, 64, 64);
+  ASSERT_TRUE(view.has_value());
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_TRUE(same_vector(scene.lights[1].position, Vec3<float>{0.f, 0.f, -6.f}));
+  // Looking along +z with up +y, the camera's right is -x.
+  EXPECT_LT(scene.lights[0].position.x, 0.f);
+  EXPECT_GT(scene.lights[0].position.y, 0.f);
+  EXPECT_FLOAT_EQ(scene.lights[0].position.z, -6.f);
+  // A scene with a camera of its own keeps it; the rig still follows the flags.
+  SceneDesc framed = scene_with_camera(32, 32);
+  framed.spheres = scene.spheres;
+  EXPECT_FALSE(set_view(framed, behind, 32, 32).has_value());
+  ASSERT_EQ(framed.lights.size(), 2u);
+  EXPECT_TRUE(same_vector(framed.lights[1].position, Vec3<float>{0.f, 0.f, -6.f}));
+}
+
+// What a first look shows, over the meshes a user brings: every model of
+// ../shared/meshes and of Debian's assimp-testmodels that loads, rendered
+// with no flags at 96x96, white and matte so that only the light counts.
+// A model pixel (finite depth) receives direct light when it is brighter
+// than with the lights turned off; the model's image spans the covered
+// pixels' box.
+struct FirstLook {
+  double lit_share = 0.0;  // of the model's pixels
+  double span = 0.0;       // the box's larger side over the image's shorter side
+};
+
+FirstLook first_look(SceneDesc desc) {
+  constexpr int kSide = 96;
+  set_view(desc, {}, kSide, kSide);
+  for (MaterialDesc& m : desc.materials) {
+    m = MaterialDesc{};
+    m.color = {1.f, 1.f, 1.f};
+    m.kd = 1.f;
+    m.ks = 0.f;
+  }
+  RenderSettings settings;
+  settings.width = settings.height = kSide;
+  settings.aa = parse_anti_aliasing("none");
+  settings.aov_depth = true;
+  const Framebuffer lit = render(build_scene(desc, {}), settings).image;
+  for (LightDesc& light : desc.lights) light.color = {0.f, 0.f, 0.f};
+  const Framebuffer dark = render(build_scene(desc, {}), settings).image;
+  std::size_t model = 0, reached = 0;
+  int lo[2] = {kSide, kSide}, hi[2] = {-1, -1};
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const std::size_t p = std::size_t(y) * kSide + std::size_t(x);
+      if (!std::isfinite(lit.depth[p])) continue;
+      ++model;
+      reached += lit.rgb[3 * p] > dark.rgb[3 * p];
+      lo[0] = std::min(lo[0], x);
+      hi[0] = std::max(hi[0], x);
+      lo[1] = std::min(lo[1], y);
+      hi[1] = std::max(hi[1], y);
+    }
+  }
+  FirstLook look;
+  if (model == 0) return look;
+  look.lit_share = double(reached) / double(model);
+  look.span = double(std::max(hi[0] - lo[0], hi[1] - lo[1]) + 1) / double(kSide);
+  return look;
+}
+
+std::filesystem::path folder_from(const char* variable, const char* configured) {
+  const char* env = std::getenv(variable);
+  return env != nullptr && *env != '\0' ? std::filesystem::path(env) : std::filesystem::path(configured);
+}
+
+TEST(FirstLook, EveryMeshIsLitAndFramed) {
+  std::vector<std::filesystem::path> models;
+  const std::filesystem::path shared = folder_from("QUIVER_SHARED_DIR", QUIVER_SHARED_DIR) / "meshes";
+  const std::filesystem::path assimp = folder_from("QUIVER_ASSIMP_MODELS_DIR", QUIVER_ASSIMP_MODELS_DIR);
+  for (const std::filesystem::path& root : {shared, assimp}) {
+    if (!std::filesystem::is_directory(root)) {
+      GTEST_SKIP() << "no " << root << ": set QUIVER_SHARED_DIR to the folder holding meshes/ and install "
+                   << "assimp-testmodels (or set QUIVER_ASSIMP_MODELS_DIR)";
+    }
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+      std::string extension = entry.path().extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (entry.is_regular_file() && (extension == ".obj" || is_imported_mesh_extension(extension))) {
+        models.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(models.begin(), models.end());
+  std::size_t looked = 0;
+  double least_lit = 1.0, least_span = 1.0;
+  for (const std::filesystem::path& model : models) {
+    SceneDesc desc;
+    try {
+      desc = load_scene(model);
+    } catch (const ParseError&) {
+      continue;  // broken on purpose, or a feature not read: io_mesh_import_test checks the error
+    }
+    if (desc.camera || !desc.lights.empty()) continue;  // not a first look at a bare model
+    const FirstLook look = first_look(desc);
+    ++looked;
+    least_lit = std::min(least_lit, look.lit_share);
+    least_span = std::min(least_span, look.span);
+    EXPECT_GE(look.lit_share, 0.95) << model;
+    EXPECT_GE(look.span, 0.8) << model;
+  }
+  RecordProperty("models", std::to_string(looked));
+  RecordProperty("least_lit_share", std::to_string(least_lit));
+  RecordProperty("least_span", std::to_string(least_span));
+  EXPECT_GE(looked, 40u);
 }
 
 TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {

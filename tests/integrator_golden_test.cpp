@@ -593,7 +593,8 @@ std::optional<Expected> expected_sample(const AnalyticScene& scene, const Camera
   if (!hit) return std::nullopt;
   if (std::isinf(hit->t)) {
     // A miss: the background, weight 1.
-    return Expected{wide(desc.background), wide(desc.background) * kEps, Expected::Kind::background};
+    const V3 background = wide(desc.background.value_or(Vec3<float>{}));
+    return Expected{background, background * kEps, Expected::Kind::background};
   }
   const V3 p = o + d * hit->t;
   const std::size_t material = material_of(desc, *hit);
@@ -638,7 +639,7 @@ std::optional<Expected> expected_sample(const AnalyticScene& scene, const Camera
     const std::optional<AnalyticScene::Hit> beyond =
         scene.cast(p + n * kMargin, reflected, std::numeric_limits<double>::infinity());
     if (!beyond || !std::isinf(beyond->t) || desc.render.max_depth.value_or(5) < 1) return std::nullopt;
-    const V3 sky = wide(desc.background) * double(m.kr);
+    const V3 sky = wide(desc.background.value_or(Vec3<float>{})) * double(m.kr);
     e->rgb = e->rgb + sky;
     e->tolerance = e->tolerance + sky * (4.0 * kEps);
     if (e->kind != Expected::Kind::shadow) e->kind = Expected::Kind::mirror;

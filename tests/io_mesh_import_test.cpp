@@ -150,6 +150,18 @@ TEST(MeshImport, BinaryPlyInEitherByteOrderAndBinaryStlMatchTheObjExactly) {
   expect_same_triangles(obj, read_imported_mesh(kMeshes / "roof.stl"), 1e-6f);  // ASCII STL
 }
 
+// STL states no up axis; CAD and printing tools take +z, so its scenes say
+// so for the default view; PLY and OBJ state none.
+TEST(MeshImport, StlScenesAreZUp) {
+  const SceneDesc stl = read_imported_mesh(kMeshes / "roof.stl");
+  ASSERT_TRUE(stl.model_up.has_value());
+  EXPECT_EQ(stl.model_up->axis.z, 1.f);
+  EXPECT_EQ(stl.model_up->axis.x, 0.f);
+  EXPECT_EQ(stl.model_up->axis.y, 0.f);
+  EXPECT_NE(stl.model_up->convention.find("STL"), std::string::npos) << stl.model_up->convention;
+  EXPECT_FALSE(read_obj_scene(kObj / "roof.obj").model_up.has_value());
+}
+
 TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
   const testing::TemporaryDirectory temporary("quiver_mesh_test");
   const fs::path path = temporary.path() / "quad.ply";

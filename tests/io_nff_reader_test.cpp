@@ -98,7 +98,8 @@ std::string with_material(std::string_view rest) { return std::string(kMaterial)
 TEST(NffReader, ReadsEveryEntityWithExactValues) {
   const SceneDesc scene = read_nff(kTestData / "every_entity.nff");
 
-  expect_vec3(scene.background, 0.1f, 0.2f, 0.3f);
+  ASSERT_TRUE(scene.background.has_value());
+  expect_vec3(*scene.background, 0.1f, 0.2f, 0.3f);
 
   ASSERT_TRUE(scene.camera.has_value());
   const CameraDesc& camera = *scene.camera;
@@ -217,7 +218,7 @@ TEST(NffReader, ReadsCrlfLineEndings) {
 TEST(NffReader, CameraAndBackgroundAreOptional) {
   const SceneDesc scene = read_nff(kTestData / "minimal_no_camera.nff");
   EXPECT_FALSE(scene.camera.has_value());
-  expect_vec3(scene.background, 0.f, 0.f, 0.f);
+  EXPECT_FALSE(scene.background.has_value());
   EXPECT_EQ(scene.spheres.size(), 1u);
 }
 
@@ -564,7 +565,8 @@ TEST(NffSpd, EveryFileLoadsWithTheReadmeCounts) {
     EXPECT_EQ(scene.camera->width, 512);
     EXPECT_EQ(scene.camera->height, 512);
     EXPECT_EQ(scene.camera->angle_degrees, 45.f);
-    expect_vec3(scene.background, 0.078f, 0.361f, 0.753f);
+    ASSERT_TRUE(scene.background.has_value());
+    expect_vec3(*scene.background, 0.078f, 0.361f, 0.753f);
   }
   // Every other .nff there (held-out scenes, for instance) must load too.
   for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {

@@ -79,7 +79,8 @@ constexpr std::string_view kSphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 
 TEST(TomlReader, ReadsEveryKeyWithExactValues) {
   // Its image lies in a sibling folder (../obj/tex): allowed here, refused by default (io/path_rule.h).
   const SceneDesc scene = read_toml_scene(kTestData / "every_key.toml", std::nullopt, false, PathRule{true, {}});
-  expect_vec3(scene.background, 0.1f, 0.2f, 0.3f);
+  ASSERT_TRUE(scene.background.has_value());
+  expect_vec3(*scene.background, 0.1f, 0.2f, 0.3f);
   expect_vec3(scene.ambient, 0.05f, 0.06f, 0.07f);
 
   ASSERT_TRUE(scene.camera.has_value());
@@ -215,7 +216,7 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
   const SceneDesc scene = read_toml_scene(kTestData / "minimal.toml");
   const SceneDesc empty;
   EXPECT_FALSE(scene.camera.has_value());
-  expect_vec3(scene.background, empty.background.x, empty.background.y, empty.background.z);
+  EXPECT_FALSE(scene.background.has_value());
   expect_vec3(scene.ambient, empty.ambient.x, empty.ambient.y, empty.ambient.z);
   EXPECT_FALSE(scene.render.aa.has_value());
   EXPECT_FALSE(scene.render.max_depth.has_value());

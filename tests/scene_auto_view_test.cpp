@@ -10,6 +10,7 @@
 #include <string>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "io/obj_reader.h"
 #include "scene/auto_view.h"
@@ -46,57 +47,118 @@ bool project(const CameraDesc& c, int width, int height, const double p[3], doub
   return true;
 }
 
-// Points spread over the sphere (a Fibonacci lattice).
-void expect_sphere_inside_image(const CameraDesc& c, int width, int height, const double center[3], double radius) {
+// Points spread over a sphere (a Fibonacci lattice).
+std::vector<std::array<double, 3>> sphere_points(const double center[3], double radius) {
   constexpr int kPoints = 2000;
-  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  std::vector<std::array<double, 3>> points;
   for (int i = 0; i < kPoints; ++i) {
     const double z = 1.0 - 2.0 * (i + 0.5) / kPoints;
     const double ring = std::sqrt(1.0 - z * z);
     const double phi = i * std::numbers::pi * (3.0 - std::sqrt(5.0));
-    const double p[3] = {center[0] + radius * ring * std::cos(phi), center[1] + radius * z,
-                         center[2] + radius * ring * std::sin(phi)};
-    double x = 0.0, y = 0.0;
-    ASSERT_TRUE(project(c, width, height, p, x, y)) << "a point of the sphere is behind the camera";
-    min_x = std::min(min_x, x);
-    max_x = std::max(max_x, x);
-    min_y = std::min(min_y, y);
-    max_y = std::max(max_y, y);
+    points.push_back({center[0] + radius * ring * std::cos(phi), center[1] + radius * z,
+                      center[2] + radius * ring * std::sin(phi)});
   }
-  EXPECT_GE(min_x, 0.0);
-  EXPECT_LE(max_x, double(width));
-  EXPECT_GE(min_y, 0.0);
-  EXPECT_LE(max_y, double(height));
-  // Framed, not lost in the middle: the sphere spans at least half the shorter side.
-  EXPECT_GT(std::max(max_x - min_x, max_y - min_y), 0.5 * std::min(width, height));
+  return points;
 }
 
-TEST(AutoView, FramesTheBoundingSphereOfThePrimitives) {
+// The film box (pixels) of the points' images; fails when one lies behind the camera.
+struct FilmBox {
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+};
+FilmBox film_box(const CameraDesc& c, int width, int height, const std::vector<std::array<double, 3>>& points) {
+  FilmBox box;
+  for (const std::array<double, 3>& p : points) {
+    double x = 0.0, y = 0.0;
+    EXPECT_TRUE(project(c, width, height, p.data(), x, y)) << "a point is behind the camera";
+    box.min_x = std::min(box.min_x, x);
+    box.max_x = std::max(box.max_x, x);
+    box.min_y = std::min(box.min_y, y);
+    box.max_y = std::max(box.max_y, y);
+  }
+  return box;
+}
+
+void expect_inside_image(const FilmBox& box, int width, int height) {
+  EXPECT_GE(box.min_x, 0.0);
+  EXPECT_LE(box.max_x, double(width));
+  EXPECT_GE(box.min_y, 0.0);
+  EXPECT_LE(box.max_y, double(height));
+}
+
+void expect_sphere_inside_image(const CameraDesc& c, int width, int height, const double center[3], double radius) {
+  const FilmBox box = film_box(c, width, height, sphere_points(center, radius));
+  expect_inside_image(box, width, height);
+  // Framed, not lost in the middle: the sphere spans at least half the shorter side.
+  EXPECT_GT(std::max(box.max_x - box.min_x, box.max_y - box.min_y), 0.5 * std::min(width, height));
+}
+
+// The default camera frames a sphere, a triangle and a cone: every point of
+// them is in the image, and the image of the sphere and the triangle (the
+// cone counts by its bounding balls, which reach beyond it) is centred and
+// spans kDefaultViewFill of the side it reaches first.
+TEST(AutoView, FramesEveryPrimitiveCentredFillingTheImage) {
   SceneDesc scene;
   scene.materials.emplace_back();
   scene.spheres.push_back({{{10.f, 2.f, -3.f}, 1.f}, 0});
   SceneTriangle triangle{};
   triangle.triangle.p = {Vec3<float>{14.f, 0.f, -5.f}, Vec3<float>{12.f, 6.f, -3.f}, Vec3<float>{10.f, 2.f, 1.f}};
   scene.triangles.push_back(triangle);
-  scene.cones.push_back({{{8.f, 0.f, -3.f}, 0.5f, {8.f, 3.f, -3.f}, 0.25f}, 0});
+  const double sphere_center[3] = {10.0, 2.0, -3.0};
+  std::vector<std::array<double, 3>> exact = sphere_points(sphere_center, 1.0);
+  for (const Vec3<float>& p : triangle.triangle.p) exact.push_back({p.x, p.y, p.z});
+  SceneDesc with_cone = scene;
+  with_cone.cones.push_back({{{8.f, 0.f, -3.f}, 0.5f, {8.f, 3.f, -3.f}, 0.25f}, 0});
+  std::vector<std::array<double, 3>> rims = exact;
+  for (int k = 0; k < 64; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / 64;
+    rims.push_back({8.0 + 0.5 * std::cos(a), 0.0, -3.0 + 0.5 * std::sin(a)});
+    rims.push_back({8.0 + 0.25 * std::cos(a), 3.0, -3.0 + 0.25 * std::sin(a)});
+  }
   for (const auto& [width, height] : {std::pair{640, 480}, std::pair{300, 900}, std::pair{1, 1}}) {
-    SceneDesc framed = scene;
+    SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
+    SceneDesc framed = scene, framed_with_cone = with_cone;
     add_default_view(framed, width, height);
-    ASSERT_TRUE(framed.camera.has_value());
+    add_default_view(framed_with_cone, width, height);
+    ASSERT_TRUE(framed.camera.has_value() && framed_with_cone.camera.has_value());
     const CameraDesc& c = *framed.camera;
     EXPECT_EQ(c.width, width);
     EXPECT_EQ(c.height, height);
     EXPECT_EQ(c.angle_degrees, kDefaultViewAngleDegrees);
-    // Bounding box x [7.5, 14] (cone rim to triangle), y [-0.5, 6] (cone
-    // base rim to triangle), z [-5, 1] (triangle): its circumscribed sphere.
-    const double center[3] = {10.75, 2.75, -2.0};
-    const double radius = 0.5 * std::sqrt(6.5 * 6.5 + 6.5 * 6.5 + 6.0 * 6.0);
-    if (width > 1) expect_sphere_inside_image(c, width, height, center, radius);
-    // Front (+z), above (+y), to the right (+x) of the centre.
-    EXPECT_GT(c.from.z, center[2]);
-    EXPECT_GT(c.from.y, center[1]);
-    EXPECT_GT(c.from.x, center[0]);
+    // Front (+z), above (+y), to the right (+x) of the model.
+    EXPECT_GT(c.from.z, 1.f);
+    EXPECT_GT(c.from.y, 6.f);
+    EXPECT_GT(c.from.x, 14.f);
+    if (width == 1) continue;
+    expect_inside_image(film_box(*framed_with_cone.camera, width, height, rims), width, height);
+    const FilmBox box = film_box(c, width, height, exact);
+    expect_inside_image(box, width, height);
+    // Pixel centres span width - 1 and height - 1; the fit is exact up to the centring's approximation.
+    const double fill_x = (box.max_x - box.min_x) / double(width - 1);
+    const double fill_y = (box.max_y - box.min_y) / double(height - 1);
+    EXPECT_NEAR(std::max(fill_x, fill_y), kDefaultViewFill, 0.01);
+    EXPECT_LE(std::max(fill_x, fill_y), kDefaultViewFill + 1e-6);
+    EXPECT_NEAR(0.5 * (box.min_x + box.max_x), 0.5 * width, 0.01 * width);
+    EXPECT_NEAR(0.5 * (box.min_y + box.max_y), 0.5 * height, 0.01 * height);
   }
+}
+
+// A different field of view frames the same way.
+TEST(AutoView, FramesForTheAngleGiven) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{0.f, 0.f, 0.f}, 2.f}, 0});
+  for (const float angle : {10.f, 40.f, 120.f}) {
+    SceneDesc framed = scene;
+    add_default_camera(framed, 200, 100, std::nullopt, angle);
+    ASSERT_TRUE(framed.camera.has_value());
+    EXPECT_EQ(framed.camera->angle_degrees, angle);
+    const double center[3] = {0.0, 0.0, 0.0};
+    const FilmBox box = film_box(*framed.camera, 200, 100, sphere_points(center, 2.0));
+    EXPECT_NEAR((box.max_y - box.min_y) / 99.0, kDefaultViewFill, 0.01) << angle;  // the shorter side binds
+  }
+  SceneDesc refused = scene;
+  EXPECT_THROW(add_default_camera(refused, 200, 100, std::nullopt, 180.f), std::invalid_argument);
+  EXPECT_THROW(add_default_camera(refused, 200, 100, std::nullopt, 0.f), std::invalid_argument);
 }
 
 // An instance counts with the eight corners of its mesh's box, placed: a
@@ -153,16 +215,19 @@ TEST(AutoView, ImageSidesUpToTheBound) {
   }
 }
 
-TEST(AutoView, EmptySceneGetsASaneCameraAndALight) {
+TEST(AutoView, EmptySceneGetsASaneCameraAndTheRig) {
   SceneDesc scene;
   add_default_view(scene, 320, 240);
   ASSERT_TRUE(scene.camera.has_value());
   const double unit_center[3] = {0.0, 0.0, 0.0};
   expect_sphere_inside_image(*scene.camera, 320, 240, unit_center, 1.0);
-  ASSERT_EQ(scene.lights.size(), 1u);
+  ASSERT_EQ(scene.lights.size(), 2u);
   EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::point);
   EXPECT_GT(scene.lights[0].color.x, 0.f);
-  EXPECT_GT(scene.lights[0].position.y, scene.camera->from.y);  // above the eye
+  EXPECT_GT(scene.lights[0].position.y, scene.camera->from.y);  // the key, above the eye
+  EXPECT_EQ(scene.lights[1].position.x, scene.camera->from.x);  // the fill, at the eye
+  ASSERT_TRUE(scene.background.has_value());
+  EXPECT_EQ(scene.background->x, kDefaultRigBackground);
 }
 
 // A model spanning +-3.4e38 (the readers' largest coordinates): no camera in
@@ -191,7 +256,10 @@ TEST(AutoView, AModelTooLargeForAFloatCameraIsAnErrorNamingItsFile) {
   for (int a = 0; a < 3; ++a) EXPECT_TRUE(std::isfinite(scene.camera->from[a]) && std::isfinite(scene.lights[0].position[a]));
 }
 
-TEST(AutoView, KeepsWhatTheSceneHas) {
+// The rig follows the scene's camera: the key above and to its right, the
+// fill at its eye, 70% and 30% of 1 minus the ambient; a zero ambient
+// becomes 0.1 and a background of the scene's own stays.
+TEST(AutoView, KeepsWhatTheSceneHasAndLightsItsCamera) {
   SceneDesc scene;
   CameraDesc camera{};
   camera.from = {0.f, 0.f, 5.f};
@@ -202,24 +270,34 @@ TEST(AutoView, KeepsWhatTheSceneHas) {
   camera.height = 10;
   scene.camera = camera;
   scene.ambient = {0.f, 0.f, 0.f};
+  scene.background = Vec3<float>{0.f, 0.f, 0.f};
   add_default_view(scene, 640, 480);
   EXPECT_EQ(scene.camera->angle_degrees, 60.f);
   EXPECT_EQ(scene.camera->width, 10);
-  ASSERT_EQ(scene.lights.size(), 1u);
-  // Beside the scene's own camera, up and to its right (+x here).
-  EXPECT_GT(scene.lights[0].position.x, 0.f);
-  EXPECT_GT(scene.lights[0].position.y, 0.f);
-  // A zero ambient becomes grey 0.1, every channel.
+  ASSERT_EQ(scene.lights.size(), 2u);
+  // The key: up and to the camera's right (+x here), half the view distance each way.
+  EXPECT_FLOAT_EQ(scene.lights[0].position.x, 2.5f);
+  EXPECT_FLOAT_EQ(scene.lights[0].position.y, 2.5f);
+  EXPECT_FLOAT_EQ(scene.lights[0].position.z, 5.f);
+  EXPECT_FLOAT_EQ(scene.lights[0].color.x, kDefaultKeyShare * 0.9f);
+  // The fill: at the eye, the rest.
+  EXPECT_EQ(scene.lights[1].position.x, 0.f);
+  EXPECT_EQ(scene.lights[1].position.z, 5.f);
+  EXPECT_FLOAT_EQ(scene.lights[1].color.x, (1.f - kDefaultKeyShare) * 0.9f);
+  // A zero ambient becomes grey 0.1, every channel; the black background stays.
   EXPECT_EQ(scene.ambient.x, 0.1f);
   EXPECT_EQ(scene.ambient.y, 0.1f);
   EXPECT_EQ(scene.ambient.z, 0.1f);
+  EXPECT_EQ(scene.background->x, 0.f);
 
   LightDesc light;
   light.position = {1.f, 2.f, 3.f};
   scene.lights = {light};
-  add_default_view(scene, 640, 480);
+  EXPECT_FALSE(add_default_lights(scene));
   EXPECT_EQ(scene.lights.size(), 1u);
   EXPECT_THROW(add_default_view(scene, 0, 480), std::invalid_argument);
+  SceneDesc no_camera;
+  EXPECT_THROW(add_default_lights(no_camera), std::invalid_argument);
 }
 
 // A square of 2 n^2 triangles centred at c, spanning 2 h along axes a and b.
@@ -305,6 +383,26 @@ TEST(AutoView, TheSharedMeshesAreSeenFromTheirHeadsSide) {
     EXPECT_EQ(view.front.x, front.x) << name << ": " << view.front_reason;
     EXPECT_EQ(view.front.z, front.z) << name << ": " << view.front_reason;
   }
+}
+
+// The up axis a format states wins over the shape, and --up over both.
+TEST(AutoView, TheFormatsUpAxisPlacesTheViewUnlessUpIsGiven) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  scene.model_up = SceneDesc::StatedUp{{0.f, 0.f, 1.f}, "STL's convention"};
+  const DefaultView stated = choose_default_view(scene);
+  EXPECT_EQ(stated.up.z, 1.0);
+  EXPECT_EQ(stated.up_reason, "+z, STL's convention");
+  EXPECT_EQ(stated.front.y, -1.0);  // +z's default front
+  const DefaultView given = choose_default_view(scene, Vec3<double>{0.0, 1.0, 0.0});
+  EXPECT_EQ(given.up.y, 1.0);
+  EXPECT_EQ(given.up_reason, "+y, from --up");
+  SceneDesc framed = scene;
+  add_default_view(framed, 64, 64);
+  ASSERT_TRUE(framed.camera.has_value());
+  EXPECT_EQ(framed.camera->up.z, 1.f);
+  EXPECT_GT(framed.camera->from.z, 0.f);  // 25 degrees above, along +z
 }
 
 TEST(AutoView, AMeshOnAFlatBaseAtItsLowestZStandsOnIt) {
