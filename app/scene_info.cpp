@@ -283,11 +283,23 @@ std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& g) {
   return bytes;
 }
 
+// Each mesh file's faces as declared and as kept (SceneDesc::face_tallies).
+void write_face_tallies(std::ostream& out, const SceneDesc& desc) {
+  if (desc.face_tallies.empty()) return;
+  out << "mesh faces      declared, kept\n";
+  for (const FaceTally& t : desc.face_tallies) {
+    out << "  " << t.file << ": " << t.declared << ", " << t.kept;
+    if (t.declared > t.kept) out << " (" << t.declared - t.kept << " not drawn: see the warnings)";
+    out << "\n";
+  }
+}
+
 void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context) {
   out << "scene           " << context.scene << "\n"
       << "load            " << milliseconds(context.load_ms) << "\n"
       << "build           " << milliseconds(context.build_ms) << "\n";
   write_primitives(out, desc, scene);
+  write_face_tallies(out, desc);
   write_camera(out, scene, context.default_view);
   write_render_settings(out, desc.render);
   write_lights(out, desc, scene);

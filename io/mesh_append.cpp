@@ -84,6 +84,7 @@ void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
     }
   }
   scene.warnings.insert(scene.warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
+  scene.face_tallies.insert(scene.face_tallies.end(), mesh.face_tallies.begin(), mesh.face_tallies.end());
   // Room grown geometrically: an exact reserve per mesh copied every earlier
   // mesh's triangles again (quadratic in a scene's [[meshes]] entries).
   const std::size_t needed = scene.triangles.size() + mesh.triangles.size();

@@ -190,6 +190,7 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   }
   std::size_t triangles = 0;
   for (std::size_t i = 0; i < mesh.part_count; ++i) triangles += mesh.parts[i].triangle_count;
+  scene.face_tallies = {{std::string(file), triangles + mesh.dropped_points_and_lines, triangles}};
   if (triangles == 0) {
     const std::size_t others = mesh.dropped_points_and_lines;
     throw ParseError::whole_file(file, others == 0 ? std::string("expected at least one triangle, found none")
@@ -259,7 +260,9 @@ SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double creas
   mesh.material_count = 1;
   mesh.materials = &material;
   mesh.dropped_points_and_lines = ply.point_cloud_vertices;
-  return scene_from(mesh, MeshFormat::ply, file, {}, PathRule{}, crease_angle_degrees, warnings);  // PLY names no files
+  SceneDesc scene = scene_from(mesh, MeshFormat::ply, file, {}, PathRule{}, crease_angle_degrees, warnings);  // PLY names no files
+  scene.face_tallies = {{std::string(file), ply.faces_declared, ply.faces_kept}};
+  return scene;
 }
 
 }  // namespace
@@ -281,17 +284,20 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   const PathRule rule = paths.for_folder(directory);
   ReaderWarnings warnings(strict);
   GltfContents gltf;
+  std::uint64_t declared_triangles = 0;  // as the file counts them; 0 when it does not
   switch (*format) {
     case MeshFormat::ply:
       return scene_from_ply(read_ply(bytes, file, warnings, triangle_budget), file, crease_angle_degrees, warnings);
     case MeshFormat::stl:
-      check_stl(bytes, file);
+      declared_triangles = check_stl(bytes, file).triangles;
       break;
     case MeshFormat::gltf:
       gltf = check_gltf(bytes, file, directory, rule, false, kMaxImportedMeshBytes, triangle_budget);
+      declared_triangles = gltf.placed_triangles;
       break;
     case MeshFormat::glb:
       gltf = check_gltf(bytes, file, directory, rule, true, kMaxImportedMeshBytes, triangle_budget);
+      declared_triangles = gltf.placed_triangles;
       break;
   }
 
@@ -312,6 +318,15 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   if (!handle) throw ParseError::whole_file(file, error);
   SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
   if (*format == MeshFormat::stl) scene.model_up = SceneDesc::StatedUp{{0.f, 0.f, 1.f}, "STL's convention"};
+  // Assimp must return every triangle the file declares; what it does not is named.
+  FaceTally& tally = scene.face_tallies.front();
+  if (declared_triangles > tally.kept) {
+    warnings.warn("triangles declared", {file, 0, 0},
+                  joined({"the ", std::to_string(declared_triangles), " triangles the file declares"}),
+                  joined({std::to_string(tally.kept), " read by Assimp"}), "the others are not drawn");
+    tally.declared += declared_triangles - tally.kept;
+    scene.warnings = warnings.lines();
+  }
   // Its buffer and image files are inputs too, which no output may overwrite.
   for (const fs::path& read : gltf.files) {
     const std::string name = read.string();

@@ -132,6 +132,7 @@ class LineScanner {
 
   // Where token stands, for errors found once what it names is read.
   FilePosition position_of(const Token& token) const { return {std::string(file_), line_, token.column}; }
+  std::string_view file() const { return file_; }
 
   // Once next_statement() returned false: the position past the last byte.
   [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
@@ -486,10 +487,13 @@ class ObjReader {
       } else if (k == "f") {
         const int form = read_corners(keyword, 3, true);
         add_face(form);
+        ++faces_;
       } else if (k == "l") {
         read_corners(keyword, 2, false);
+        undrawn_[0].add(scan_.position_of(keyword));
       } else if (k == "p") {
         read_corners(keyword, 1, false);
+        undrawn_[1].add(scan_.position_of(keyword));
       } else if (k == "o" || k == "g" || one_of(k, kIgnoredObjStatements)) {
         scan_.skip_rest_of_line();
       } else if (k == "s") {
@@ -521,6 +525,12 @@ class ObjReader {
       scan_.fail_at_end_of_file("at least one face ('f'; 'l' and 'p' draw nothing)", kNoObjectsFound);
     }
     add_smooth_normals();
+    for (const Undrawn& u : undrawn_) {
+      if (u.count == 0) continue;
+      warnings_.warn(u.what, u.first, "faces ('f'; quiver draws no lines or points)",
+                     joined({std::to_string(u.count), " ", u.what, ", the first here"}), "they are not drawn");
+    }
+    scene_.face_tallies.push_back({std::string(scan_.file()), faces_ + undrawn_[0].count + undrawn_[1].count, faces_});
     scene_.warnings = warnings_.lines();
     return std::move(scene_);
   }
@@ -740,6 +750,17 @@ class ObjReader {
   std::vector<Vec3<float>> normals_;
   std::size_t corner_count_ = 0;    // of f, l and p
   std::size_t triangle_count_ = 0;  // after triangulation
+  std::uint64_t faces_ = 0;         // f statements
+  // Statements that draw nothing: how many, and where the first is.
+  struct Undrawn {
+    std::string_view what;
+    std::uint64_t count = 0;
+    FilePosition first;
+    void add(const FilePosition& at) {
+      if (count++ == 0) first = at;
+    }
+  };
+  Undrawn undrawn_[2] = {{"line elements ('l')"}, {"point elements ('p')"}};
 
   std::vector<std::string> library_names_;  // as written after mtllib
   std::size_t mtl_bytes_ = 0;

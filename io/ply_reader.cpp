@@ -702,6 +702,7 @@ class PlyWalk {
           ++mesh_.degenerate_strip_triangles;
         } else {
           add_triangles(1);
+          ++mesh_.strip_triangles;
           mesh_.triangles.insert(mesh_.triangles.end(), {a, b, v});
         }
       }
@@ -936,6 +937,13 @@ void read_data(Cursor& in, const PlyHeader& header, const Layout& layout, Reader
                   "they are dropped");
   }
   if (!any_faces) mesh.point_cloud_vertices = static_cast<std::size_t>(layout.vertices);
+  std::uint64_t face_elements = 0, edges = 0;
+  for (const PlyElement& element : header.elements) {
+    if (element.name == "face") face_elements += element.count;
+    if (is_unread_geometry(element.name)) edges += element.count;
+  }
+  mesh.faces_declared = face_elements + mesh.strip_triangles + edges;
+  mesh.faces_kept = face_elements - faces.short_faces + mesh.strip_triangles;
   split_corner_uvs(faces, mesh);
   triangulate(faces, mesh);
 }

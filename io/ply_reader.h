@@ -37,6 +37,10 @@ struct PlyMesh {
   std::vector<std::uint32_t> triangles;    // three vertex indices each, front face counter-clockwise
   std::size_t point_cloud_vertices = 0;    // the vertices of a file without face or tristrips elements
   std::size_t degenerate_strip_triangles = 0;
+  std::uint64_t strip_triangles = 0;  // kept, from tristrips
+  // Faces declared (face elements, strip triangles other than degenerate
+  // joins, edges) and kept (faces of 3 or more vertices, strip triangles).
+  std::uint64_t faces_declared = 0, faces_kept = 0;
 };
 
 // `bytes` is the whole file, `file` its name in messages. At most

@@ -142,6 +142,15 @@ struct SceneInstance {
   AffineTransform object_to_world;
 };
 
+// A mesh file's faces as it declares them and how many of them became
+// triangles (`quiver info` prints both): OBJ's f, l and p statements; PLY's
+// faces, strip triangles and edges; for STL and glTF, the triangles their
+// facets or primitives declare and the points and lines Assimp returns.
+struct FaceTally {
+  std::string file;
+  std::uint64_t declared = 0, kept = 0;
+};
+
 struct SceneDesc {
   std::optional<CameraDesc> camera;
   std::optional<Vec3<float>> background;  // none: black, or the default rig's grey
@@ -164,6 +173,7 @@ struct SceneDesc {
     std::string convention;
   };
   std::optional<StatedUp> model_up;
+  std::vector<FaceTally> face_tallies;  // one per mesh file read, in reading order
   // The files the scene was read from, each once, in reading order: the
   // scene file, meshes, MTL libraries, and a glTF's buffer and image files
   // (texture images are also in textures[].path).

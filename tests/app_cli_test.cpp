@@ -692,6 +692,7 @@ TEST_F(Cli, TheDefaultViewStandsAMeshOnItsBaseAndInfoNamesIt) {
   ASSERT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("up +z: the mesh stands on a flat base at its lowest z"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("front -y, the default"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("mesh faces      declared, kept\n  column.obj: 128, 128\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("up (0 0 1)"), std::string::npos) << info.out;
   const Outcome standing = run({"render", "column.obj", "-o", "standing.exr", "--width", "16", "--height", "16", "-q"});
   ASSERT_EQ(standing.exit_code, 0) << standing.err;

@@ -150,6 +150,25 @@ TEST(MeshImport, BinaryPlyInEitherByteOrderAndBinaryStlMatchTheObjExactly) {
   expect_same_triangles(obj, read_imported_mesh(kMeshes / "roof.stl"), 1e-6f);  // ASCII STL
 }
 
+// The tallies reach the scene: an STL's facets (binary: its count; ASCII:
+// its facet blocks) against the triangles Assimp returns, a PLY's faces.
+TEST(MeshImport, FaceTalliesOfStlAndPlyFiles) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const SceneDesc obj = read_obj_scene(kObj / "roof.obj");
+  const fs::path stl = temporary.path() / "roof.stl";
+  write_file(stl, binary_roof_stl(obj));
+  const fs::path ply = temporary.path() / "roof.ply";
+  write_file(ply, binary_roof_ply(obj, false));
+  for (const fs::path& path : {stl, kMeshes / "roof.stl", ply}) {
+    const SceneDesc scene = read_imported_mesh(path);
+    ASSERT_EQ(scene.face_tallies.size(), 1u) << path;
+    EXPECT_EQ(scene.face_tallies[0].file, path.string());
+    EXPECT_EQ(scene.face_tallies[0].declared, obj.triangles.size()) << path;
+    EXPECT_EQ(scene.face_tallies[0].kept, obj.triangles.size()) << path;
+    EXPECT_TRUE(scene.warnings.empty()) << path;
+  }
+}
+
 // STL states no up axis; CAD and printing tools take +z, so its scenes say
 // so for the default view; PLY and OBJ state none.
 TEST(MeshImport, StlScenesAreZUp) {
@@ -684,6 +703,48 @@ TEST(MeshImportPublicModels, EveryFileLoadsOrIsAnErrorNamingIt) {
   // engine and a bufferView past its buffer are among those refused).
   EXPECT_GE(loaded, 38u);
   EXPECT_GE(refused, 10u);
+}
+
+// glTF's seven primitive modes (the Khronos asset generator's files):
+// triangles, strips and fans kept whole, points and lines counted and named;
+// and a file with an index out of range, whose triangle Assimp drops: the
+// tally against the triangles the accessors declare names the loss.
+TEST(MeshImportPublicModels, GltfFacesOfEveryModeAreTalliedAndALossIsNamed) {
+  const fs::path root = public_models();
+  if (!fs::is_directory(root)) {
+    GTEST_SKIP() << root << " not found: apt-get install assimp-testmodels, or set QUIVER_ASSIMP_MODELS_DIR";
+  }
+  std::size_t files = 0, with_points_or_lines = 0;
+  for (const auto& entry : fs::directory_iterator(root / "glTF2" / "glTF-Asset-Generator" / "Mesh_PrimitiveMode")) {
+    if (entry.path().extension() != ".gltf") continue;
+    SceneDesc scene;
+    try {
+      scene = read_imported_mesh(entry.path());
+    } catch (const ParseError&) {
+      continue;  // points or lines alone: no triangle to draw (MeshImportPublicModels.EveryFileLoadsOrIsAnErrorNamingIt)
+    }
+    ++files;
+    ASSERT_EQ(scene.face_tallies.size(), 1u);
+    const FaceTally& tally = scene.face_tallies[0];
+    EXPECT_EQ(tally.kept, scene.triangles.size()) << entry.path();
+    EXPECT_GE(tally.declared, tally.kept) << entry.path();
+    if (tally.declared > tally.kept) {
+      ++with_points_or_lines;
+      EXPECT_EQ(scene.warnings.size(), 1u) << entry.path();
+    }
+  }
+  EXPECT_GE(files, 4u);
+  const fs::path lossy = root / "glTF2" / "IndexOutOfRange" / "IndexOutOfRange.gltf";
+  const SceneDesc scene = read_imported_mesh(lossy);
+  ASSERT_EQ(scene.face_tallies.size(), 1u);
+  EXPECT_EQ(scene.face_tallies[0].declared, 12u);
+  EXPECT_EQ(scene.face_tallies[0].kept, 11u);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0], lossy.string() + ": warning: expected the 12 triangles the file declares, found 11 "
+                                                "read by Assimp; the others are not drawn");
+  EXPECT_THROW(read_imported_mesh(lossy, kDefaultCreaseAngleDegrees, true), ParseError);
+  RecordProperty("primitive_mode_files", std::to_string(files));
+  RecordProperty("with_points_or_lines", std::to_string(with_points_or_lines));
 }
 
 TEST(MeshImportPublicModels, ReadAsTheirFormatsDescribeThem) {

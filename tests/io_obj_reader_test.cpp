@@ -416,6 +416,31 @@ TEST(ObjReader, AcceptsVertexWAndColoursAndIgnoredStatements) {
   EXPECT_EQ((*scene.triangles[0].triangle.uvs)[1][1], 0.5f);
 }
 
+// Every face element OBJ has: faces of 3, 4 and 5 corners are kept; lines
+// and points are counted against them and named in one warning each (at
+// the first), an error under --strict.
+TEST(ObjReader, FacesDeclaredAndKeptAreCountedAndLinesAndPointsAreNamed) {
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
+      "f 1 2 3\nl 1 2 3\nf 1 2 3 4\np 1\nl 3 4\nf 1 2 3 4 5\np 2 3\np 4\n";
+  const SceneDesc scene = parse(obj);
+  ASSERT_EQ(scene.face_tallies.size(), 1u);
+  EXPECT_EQ(scene.face_tallies[0].file, "test.obj");
+  EXPECT_EQ(scene.face_tallies[0].declared, 8u);  // 3 f, 2 l, 3 p
+  EXPECT_EQ(scene.face_tallies[0].kept, 3u);
+  EXPECT_EQ(scene.triangles.size(), 1u + 2u + 3u);
+  const std::vector<std::string> expected{
+      "test.obj:7:1: warning: expected faces ('f'; quiver draws no lines or points), found 2 line elements ('l'), "
+      "the first here; they are not drawn",
+      "test.obj:9:1: warning: expected faces ('f'; quiver draws no lines or points), found 3 point elements ('p'), "
+      "the first here; they are not drawn"};
+  EXPECT_EQ(scene.warnings, expected);
+  EXPECT_TRUE(obj_error_at(obj, 7, 1, "2 line elements ('l')", true));
+  const SceneDesc faces_only = parse("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  EXPECT_TRUE(faces_only.warnings.empty());
+  EXPECT_EQ(faces_only.face_tallies[0].declared, faces_only.face_tallies[0].kept);
+}
+
 // ---- errors, each at its position ----
 
 TEST(ObjReader, BadNumbersAreErrorsAtTheirToken) {

@@ -225,6 +225,27 @@ TEST(PlyReader, UnreadGeometryIsAWarningNamingItAndOtherElementsAreSkipped) {
   EXPECT_EQ(error_of(text, true), "test.ply:10:1: expected faces or triangle strips, found 2 of element 'edge'");
 }
 
+// Every face element PLY has, counted as declared and kept: faces of 3
+// and 4 vertices kept and one of 2 dropped, strip triangles (not counting
+// a strip's degenerate joins), edges declared and not drawn.
+TEST(PlyReader, FacesDeclaredAndKeptCountEveryFaceElement) {
+  const std::string text = ascii_ladder(
+      "element face 3\nproperty list uchar int vertex_indices\n"
+      "element tristrips 1\nproperty list int int vertex_indices\n"
+      "element edge 2\nproperty int vertex1\nproperty int vertex2\n",
+      "3 0 1 2\n4 0 1 3 2\n2 4 5\n6 0 1 2 2 3 4\n0 1\n1 2\n");
+  ReaderWarnings warnings(false);
+  const PlyMesh mesh = read_ply(text, kFile, warnings);
+  EXPECT_EQ(mesh.strip_triangles, 2u);
+  EXPECT_EQ(mesh.faces_declared, 3u + 2u + 2u);
+  EXPECT_EQ(mesh.faces_kept, 2u + 2u);
+  EXPECT_EQ(triangles_of(mesh).size(), 1u + 2u + 2u);
+  EXPECT_EQ(warnings.lines().size(), 2u);  // the short face and the edges
+  const PlyMesh whole = read(ascii_ladder("element face 1\nproperty list uchar int vertex_indices\n", "3 0 1 2\n"));
+  EXPECT_EQ(whole.faces_declared, 1u);
+  EXPECT_EQ(whole.faces_kept, 1u);
+}
+
 // MeshLab's texture coordinates per face corner: each corner becomes a
 // vertex of its own with them.
 TEST(PlyReader, PerCornerTextureCoordinatesOfFacesAreRead) {

@@ -529,6 +529,13 @@ TEST(TomlReader, InstancesShareTheirMeshAndKeepTheirTransforms) {
   EXPECT_NE(scene.meshes[2].name.find("roof.obj, crease angle 0"), std::string::npos) << scene.meshes[2].name;
   EXPECT_TRUE(scene.meshes[0].triangles[0].triangle.normals.has_value());
   EXPECT_FALSE(scene.meshes[2].triangles[0].triangle.normals.has_value());
+  // One face tally per mesh read (each read once), for `quiver info`.
+  ASSERT_EQ(scene.face_tallies.size(), 3u);
+  for (const FaceTally& tally : scene.face_tallies) {
+    EXPECT_NE(tally.file.find("roof.obj"), std::string::npos) << tally.file;
+    EXPECT_EQ(tally.declared, 2u);
+    EXPECT_EQ(tally.kept, 2u);
+  }
   const AffineTransform& moved = scene.instances[0].object_to_world;
   EXPECT_EQ(moved.m, (std::array<float, 12>{1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3}));
   // scale 2 then 90 degrees about z: x -> 2y, y -> -2x.
