@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "integrator/ray_differentials.h"
+#include "integrator/visible_lights.h"
 
 namespace quiver {
 
@@ -33,6 +34,7 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
       settings_(settings),
       width_(std::size_t(intersector.lanes())),
       differentials_(rays_carry_differentials(scene, settings)),
+      area_lights_(has_area_lights(scene)),
       materials_(scene.materials),
       shade_wave_(with_kernel_unit(intersector.unit(),
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
@@ -167,6 +169,13 @@ void Tracer::next_wave(int depth, TraceStats& stats) {
 
 void Tracer::resolve_surfaces() {
   surfaces_.resize(rays_.ox.size(), differentials_);
+  if (area_lights_) {
+    Vec3Columns& seen = surfaces_.seen;
+    seen.x.assign(rays_.ox.size(), scene_.background.x);
+    seen.y.assign(rays_.ox.size(), scene_.background.y);
+    seen.z.assign(rays_.ox.size(), scene_.background.z);
+    see_area_lights(scene_, rays_, hits_, seen);
+  }
   for (std::size_t i = 0; i < rays_.count; ++i) {
     const std::int32_t id = hits_.id[i];
     if (id == kNoHit) continue;

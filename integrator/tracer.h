@@ -117,6 +117,7 @@ class Tracer {
   TraceSettings settings_;
   std::size_t width_;
   bool differentials_;  // rays carry differentials: filter_textures in a scene with textures
+  bool area_lights_;    // some light is a rectangle or a sphere, which rays see (visible_lights.h)
   MaterialTable materials_;
   ShadeWaveFunction shade_wave_;
   CameraRaysFunction camera_rays_;

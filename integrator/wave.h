@@ -66,6 +66,9 @@ struct SurfaceColumns {
   AlignedFloats color_r, color_g, color_b;
   Vec3Columns error;                   // SurfaceDetail::instance_error (0 off instances)
   Vec3Columns shadow_lift;             // SurfaceMapping::shadow_lift (0 where not smooth)
+  // What a ray that misses every surface sees (the background, or an area
+  // light: integrator/visible_lights.h); empty when the scene has no area light.
+  Vec3Columns seen;
   // With ray differentials only: the point's change and the shading
   // normal's (in the primitive's orientation) over one sample spacing.
   Vec3Columns point_dx, point_dy, normal_dx, normal_dy;

@@ -410,7 +410,10 @@ void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   // Ambient ka Ia colour where a surface is hit; the background on a miss.
   const F ka = gather_lanes<F>(table.ka.data(), h.material);
   const Vec3<F> ambient = mul(h.weight, mul(Vec3<F>(scene.ambient), h.color) * ka);
-  const Vec3<F> emitted = select(h.hit_mask, ambient, mul(h.weight, Vec3<F>(scene.background)));
+  const SurfaceColumns& columns = *in.surfaces;
+  const Vec3<F> seen = columns.seen.x.empty() ? Vec3<F>(scene.background)
+                                              : load_vec3<F>(columns.seen.x, columns.seen.y, columns.seen.z, first);
+  const Vec3<F> emitted = select(h.hit_mask, ambient, mul(h.weight, seen));
   store_lanes(emitted.x, out.emitted_r.data() + first);
   store_lanes(emitted.y, out.emitted_g.data() + first);
   store_lanes(emitted.z, out.emitted_b.data() + first);
