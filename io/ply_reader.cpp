@@ -18,6 +18,7 @@
 #include <string>
 #include <system_error>
 
+#include "io/face_triangulation.h"
 #include "io/parse_error.h"
 #include "simd/vec3.h"
 
@@ -741,11 +742,7 @@ void split_corner_uvs(const FaceStore& faces, PlyMesh& mesh) {
   }
 }
 
-// ---- triangulation as Assimp 5.2's aiProcess_Triangulate --------------------------
-
-struct Point2 {
-  float x, y;
-};
+// ---- triangulation: quads as Assimp 5.2's aiProcess_Triangulate, larger polygons as OBJ's faces ----
 
 Vec3<float> position(const std::vector<float>& positions, std::uint32_t v) {
   return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]};
@@ -772,91 +769,6 @@ std::size_t quad_fan_corner(const std::vector<float>& positions, std::span<const
     if (angle > kPi) return i;
   }
   return 0;
-}
-
-// Twice the signed area of triangle a b c in double, as Assimp's GetArea2D.
-double signed_area(const Point2& a, const Point2& b, const Point2& c) {
-  return 0.5 * (a.x * (double(c.y) - b.y) + b.x * (double(a.y) - c.y) + c.x * (double(b.y) - a.y));
-}
-
-bool strictly_inside(const Point2& p0, const Point2& p1, const Point2& p2, const Point2& p) {
-  const Point2 v0{p1.x - p0.x, p1.y - p0.y}, v1{p2.x - p0.x, p2.y - p0.y}, v2{p.x - p0.x, p.y - p0.y};
-  const double d00 = v0.x * v0.x + v0.y * v0.y, d01 = v0.x * v1.x + v0.y * v1.y, d02 = v0.x * v2.x + v0.y * v2.y;
-  const double d11 = v1.x * v1.x + v1.y * v1.y, d12 = v1.x * v2.x + v1.y * v2.y;
-  const double inverse = 1 / (d00 * d11 - d01 * d01);
-  const double s = (d11 * d02 - d01 * d12) * inverse, t = (d00 * d12 - d01 * d02) * inverse;
-  return s > 0 && t > 0 && s + t < 1;
-}
-
-bool same_point(const Point2& a, const Point2& b) { return a.x == b.x && a.y == b.y; }
-
-// The polygon projected on the coordinate plane its Newell normal (in
-// float) is most nearly perpendicular to, turned to face that normal.
-std::vector<Point2> projected(const std::vector<float>& positions, std::span<const std::uint32_t> polygon) {
-  const std::size_t n = polygon.size();
-  float xy = 0.f, yz = 0.f, zx = 0.f;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vec3<float> low = position(positions, polygon[k]), mid = position(positions, polygon[(k + 1) % n]),
-                      high = position(positions, polygon[(k + 2) % n]);
-    xy += mid.x * (high.y - low.y);
-    yz += mid.y * (high.z - low.z);
-    zx += mid.z * (high.x - low.x);
-  }
-  const float normal[3] = {yz, zx, xy};
-  std::size_t a = 0, b = 1;
-  float toward = normal[2];
-  if (std::fabs(normal[0]) > std::fabs(normal[1])) {
-    if (std::fabs(normal[0]) > std::fabs(normal[2])) a = 1, b = 2, toward = normal[0];
-  } else if (std::fabs(normal[1]) > std::fabs(normal[2])) {
-    a = 2, b = 0, toward = normal[1];
-  }
-  if (toward < 0.f) std::swap(a, b);
-  std::vector<Point2> points(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const float* p = &positions[3 * polygon[k]];
-    points[k] = {p[a], p[b]};
-  }
-  return points;
-}
-
-// Corner triples of a polygon of five or more corners by ear clipping,
-// searching as Assimp does; where it finds no ear the corners left become a
-// fan (Assimp drops them).
-void clip_ears(const std::vector<float>& positions, std::span<const std::uint32_t> polygon,
-               std::vector<std::array<std::size_t, 3>>& out) {
-  const std::vector<Point2> p = projected(positions, polygon);
-  const std::size_t n = p.size();
-  std::vector<bool> done(n, false);
-  std::size_t left = n, ear = 0, previous = n - 1, next = 0;
-  const auto following = [&](std::size_t k) {
-    do k = k + 1 == n ? 0 : k + 1;
-    while (done[k]);
-    return k;
-  };
-  while (left > 3) {
-    int wraps = 0;
-    for (ear = next;; previous = ear, ear = next) {
-      next = following(ear);
-      if (next < ear && ++wraps == 2) break;
-      const Point2 &p0 = p[previous], &p1 = p[ear], &p2 = p[next];
-      if (signed_area(p0, p1, p2) > 0) continue;  // a reflex corner
-      std::size_t k = 0;
-      while (k < n && (same_point(p[k], p0) || same_point(p[k], p1) || same_point(p[k], p2) ||
-                       !strictly_inside(p0, p1, p2, p[k]))) {
-        ++k;
-      }
-      if (k == n) break;  // nothing inside: an ear
-    }
-    if (wraps == 2) break;
-    out.push_back({previous, ear, next});
-    done[ear] = true;
-    --left;
-  }
-  std::vector<std::size_t> rest;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!done[k]) rest.push_back(k);
-  }
-  for (std::size_t k = 1; k + 1 < rest.size(); ++k) out.push_back({rest[0], rest[k], rest[k + 1]});
 }
 
 // Assimp's n-gon encoding turns a triangle whose first corner is the last
@@ -886,6 +798,7 @@ void triangulate(const FaceStore& faces, PlyMesh& mesh) {
   if (faces.polygons.empty()) return;
   std::vector<std::uint32_t> corners;
   std::vector<std::array<std::size_t, 3>> triples;
+  std::vector<Vec3<float>> corner_points;
   std::vector<bool> quad_at(mesh.triangles.size() / 3, false);
   for (const FaceStore::Polygon& polygon : faces.polygons) {
     corners.assign(mesh.triangles.begin() + polygon.offset, mesh.triangles.begin() + polygon.offset + polygon.corners);
@@ -896,7 +809,11 @@ void triangulate(const FaceStore& faces, PlyMesh& mesh) {
       triples.push_back({s, (s + 2) % 4, (s + 3) % 4});
       quad_at[polygon.offset / 3] = true;
     } else {
-      clip_ears(mesh.positions, corners, triples);
+      corner_points.clear();
+      for (std::uint32_t v : corners) corner_points.push_back(position(mesh.positions, v));
+      triangulate_face(corner_points, triples);
+      // Its slots hold corners - 2 triangles: collinear corners clipped without one leave degenerate ones.
+      triples.resize(polygon.corners - 2, {0, 0, 0});
     }
     std::uint32_t* out = &mesh.triangles[polygon.offset];
     for (const auto& triple : triples) {

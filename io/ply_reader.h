@@ -4,8 +4,8 @@
 // Read: the `vertex` element's x, y, z (any scalar type), nx, ny, nz and
 // texture coordinates (u v, s t or texture_u texture_v) when present;
 // `face` lists (`vertex_indices` or `vertex_index`) as polygons,
-// triangulated as Assimp 5.2 does (quads from their concave corner, larger
-// polygons by ear clipping in their Newell plane), with their `texcoord`
+// triangulated (quads from their concave corner and in Assimp 5.2's corner
+// order, larger polygons as OBJ's faces: io/face_triangulation.h), with their `texcoord`
 // lists (a vertex of its own for each such corner); `tristrips` lists, where
 // -1 restarts a strip and every second triangle turns the other way.
 // Rules: every element count and list length is bounded by the bytes that

@@ -2,6 +2,7 @@
 // layers' own totals, and the count rows show what was read, kept and
 // dropped, split into opaque and transmissive.
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -110,6 +111,50 @@ TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
   EXPECT_NE(report.find("polygons built as triangles: 1 (0 read with vertex normals), as 1 of the triangles kept"),
             std::string::npos)
       << report;
+}
+
+// Each light kind, texture kind and wrap, the instances and the face
+// tallies get their own line, with the values that describe them.
+TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
+  SceneDesc desc = mixed_scene();
+  LightDesc point, directional, rectangle, sphere;
+  point.position = {1.f, 2.f, 3.f};
+  directional.kind = LightDesc::Kind::directional;
+  directional.direction = {0.f, -1.f, 0.f};
+  rectangle.kind = LightDesc::Kind::rectangle;
+  rectangle.position = {0.f, 4.f, 0.f};
+  rectangle.samples = 3;
+  sphere.kind = LightDesc::Kind::sphere;
+  sphere.position = {5.f, 5.f, 5.f};
+  sphere.radius = 0.25f;
+  desc.lights = {point, directional, rectangle, sphere};
+  TextureDesc checks, solid, image;
+  checks.scale = 2.f;
+  solid.kind = TextureDesc::Kind::checker3d;
+  image.kind = TextureDesc::Kind::image;
+  image.wrap = WrapMode::mirror;
+  image.width = image.height = 1;
+  image.rgb = {1.f, 0.f, 0.f};
+  desc.textures = {checks, solid, image};
+  SceneMesh mesh{"box.obj", desc.triangles};
+  desc.meshes = {mesh};
+  desc.instances = {{0, AffineTransform{}}, {0, AffineTransform{}}};
+  desc.face_tallies = {{"box.obj", 3, 1}, {"whole.ply", 2, 2}};
+  const Scene scene = build_scene(desc, {});
+  std::ostringstream out;
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt});
+  const std::string report = out.str();
+  for (const char* line :
+       {"lights          4\n", "  0: point position (1 2 3) colour (1 1 1)\n",
+        "  1: directional direction (0 -1 0) colour (1 1 1)\n",
+        "  2: rectangle corner (0 4 0) edges (1 0 0) (0 0 1) colour (1 1 1) samples 3x3\n",
+        "  3: sphere centre (5 5 5) radius 0.25 colour (1 1 1) samples 4x4\n", "textures        3\n",
+        "  0: checker2d colours (1 1 1) (0 0 0) scale 2\n", "  1: checker3d colours",
+        "  2: image (in memory) 1x1 wrap mirror\n", "instances       2 placed (of 2 read) of 1 mesh, stored once: 1",
+        "  mesh 0: box.obj, 1 triangles\n", "mesh faces      declared, kept\n",
+        "  box.obj: 3, 1 (2 not drawn: see the warnings)\n", "  whole.ply: 2, 2\n"}) {
+    EXPECT_NE(report.find(line), std::string::npos) << "no '" << line << "' in\n" << report;
+  }
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
+#include <tuple>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -266,6 +269,48 @@ TEST(PlyReader, PerCornerTextureCoordinatesOfFacesAreRead) {
   EXPECT_EQ(error_of(ascii_ladder(faces, "3 0 1 2 4 0 0 1 0\n")),
             "test.ply:17:17: expected a 'texcoord' list of 6 values (u v for each of the face's 3 vertices), not 4, "
             "found '0'");
+}
+
+// An L-shaped hexagon (concave at (1, 1)) and a regular octagon, both in
+// the plane z = 0 and turned counter-clockwise: ear clipping covers each
+// exactly once with triangles that all face +z (their areas add up to the
+// polygon's) and none outside it (each centroid inside).
+TEST(PlyReader, PolygonsOfFiveOrMoreCornersAreClippedIntoEarsCoveringThem) {
+  const std::vector<std::array<float, 2>> l_shape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  std::vector<std::array<float, 2>> octagon;
+  for (int k = 0; k < 8; ++k) {
+    const double a = 2.0 * std::acos(-1.0) * k / 8;
+    octagon.push_back({float(std::cos(a)), float(std::sin(a))});
+  }
+  const auto inside_l = [](float x, float y) { return x > 0 && y > 0 && x < 2 && y < 2 && (x < 1 || y < 1); };
+  const auto inside_octagon = [](float x, float y) { return x * x + y * y < 1.f; };
+  for (const auto& [corners, area, inside] :
+       {std::tuple{l_shape, 3.0, std::function<bool(float, float)>(inside_l)},
+        std::tuple{octagon, 2.0 * std::sqrt(2.0), std::function<bool(float, float)>(inside_octagon)}}) {
+    std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(corners.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                       "property list uchar int vertex_indices\nend_header\n";
+    for (const auto& c : corners) text += std::to_string(c[0]) + " " + std::to_string(c[1]) + " 0\n";
+    text += std::to_string(corners.size());
+    for (std::size_t k = 0; k < corners.size(); ++k) text += " " + std::to_string(k);
+    text += "\n";
+    const PlyMesh mesh = read(text);
+    const auto triangles = triangles_of(mesh);
+    ASSERT_EQ(triangles.size(), corners.size() - 2) << corners.size();
+    double covered = 0.0;
+    for (const auto& t : triangles) {
+      const float z = normal_z(mesh, t);
+      EXPECT_GT(z, 0.f) << corners.size();
+      covered += 0.5 * z;
+      float cx = 0.f, cy = 0.f;
+      for (std::uint32_t v : t) {
+        cx += mesh.positions[3 * v] / 3.f;
+        cy += mesh.positions[3 * v + 1] / 3.f;
+      }
+      EXPECT_TRUE(inside(cx, cy)) << corners.size() << ": centroid " << cx << ", " << cy;
+    }
+    EXPECT_NEAR(covered, area, 1e-5) << corners.size();
+  }
 }
 
 TEST(PlyReader, QuadsFanFromTheirConcaveCornerAndNormalsAndUvsAreRead) {
