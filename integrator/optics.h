@@ -9,6 +9,10 @@
 //     rounding error, along the side's normal, then one more ulp outward per
 //     component (after pbrt-v4's OffsetRayOrigin). The bound scales with the
 //     magnitudes that produced the point, so no scene-dependent epsilon.
+//   fresnel_reflectance: a dielectric's reflectance for unpolarised light,
+//     F = (rs^2 + rp^2) / 2 with rs = (eta c1 - c2) / (eta c1 + c2) and
+//     rp = (c1 - eta c2) / (c1 + eta c2), c1 = -I.N, c2 = sqrt k (refract's
+//     k); 1 where k < 0 (total internal reflection).
 //   lifted_origin: the same from p + lift (a shadow ray's start above a
 //     smooth triangle, geometry/surface_mapping.h), the sum's rounding (an
 //     ulp per component) added to the bound.
@@ -66,6 +70,16 @@ inline Vec3<F> offset_origin(const Vec3<F>& p, const Vec3<F>& error, const Vec3<
   const Vec3<F> moved = p + side_normal * distance;
   return {next_float_away(moved.x, side_normal.x), next_float_away(moved.y, side_normal.y),
           next_float_away(moved.z, side_normal.z)};
+}
+
+template <class F>
+inline F fresnel_reflectance(const Vec3<F>& incident, const Vec3<F>& normal, const F& eta) {
+  const F c1 = -dot(incident, normal);
+  const F k = F(1.f) - eta * eta * (F(1.f) - c1 * c1);
+  const Mask<F> transmitted = !(k < F(0.f));
+  const F c2 = sqrt(select(transmitted, k, F(0.f)));
+  const F rs = (eta * c1 - c2) / (eta * c1 + c2), rp = (c1 - eta * c2) / (c1 + eta * c2);
+  return select(transmitted, F(0.5f) * (rs * rs + rp * rp), F(1.f));
 }
 
 template <class F>

@@ -99,8 +99,11 @@ MaterialTable::MaterialTable(const std::vector<MaterialDesc>& scene_materials) {
     kt.push_back(m.kt);
     ior.push_back(m.ior);
     two_sided.push_back(m.two_sided ? 1.f : 0.f);
+    fresnel.push_back(m.fresnel ? 1.f : 0.f);
   }
-  for (AlignedFloats* c : {&ka, &kd, &ks, &shininess, &kr, &kt, &ior, &two_sided}) pad_column(*c, materials.size());
+  for (AlignedFloats* c : {&ka, &kd, &ks, &shininess, &kr, &kt, &ior, &two_sided, &fresnel}) {
+    pad_column(*c, materials.size());
+  }
 }
 
 void ShadowSlot::open(std::size_t capacity) {

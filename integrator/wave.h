@@ -76,9 +76,9 @@ struct SurfaceColumns {
   void resize(std::size_t padded, bool differentials);
 };
 
-// Every material's parameters, one column each (two_sided as 0 or 1).
+// Every material's parameters, one column each (two_sided and fresnel as 0 or 1).
 struct MaterialTable {
-  AlignedFloats ka, kd, ks, shininess, kr, kt, ior, two_sided;
+  AlignedFloats ka, kd, ks, shininess, kr, kt, ior, two_sided, fresnel;
 
   explicit MaterialTable(const std::vector<MaterialDesc>& materials);
 };

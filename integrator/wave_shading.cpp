@@ -321,6 +321,13 @@ SecondaryRays<F> secondary_rays(const WaveShadingInput& in, const PacketHits<F>&
   const Mask<F> total_internal = and_not(transmissive, transmitted);
   r.reflect_weight = select(total_internal, r.reflect_weight + h.weight * kt, r.reflect_weight);
   r.refract_weight = select(total_internal, Vec3<F>(F(0.f), F(0.f), F(0.f)), r.refract_weight);
+  // Fresnel: of the transmitted share, F is reflected (uncoloured, as above), 1 - F refracted.
+  const Mask<F> fresnel = transmissive & transmitted & (gather_lanes<F>(table.fresnel.data(), h.material) > F(0.f));
+  if (any(fresnel)) {
+    const F reflectance = fresnel_reflectance(h.incident, select(r.retry, s.geometric, s.shading), r.eta);
+    r.reflect_weight = select(fresnel, r.reflect_weight + h.weight * (kt * reflectance), r.reflect_weight);
+    r.refract_weight = select(fresnel, r.refract_weight * (F(1.f) - reflectance), r.refract_weight);
+  }
   // SPD (rules 8 and 9): a reflection ray off every reflective or
   // transmissive hit (a transmitter with Ks 0 too, its weight then 0 unless
   // totally internally reflected) and a refraction ray through every

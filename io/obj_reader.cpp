@@ -379,7 +379,8 @@ float mean(const Vec3<float>& c) { return (c.x + c.y + c.z) / 3.f; }
 // MTL in quiver's terms (io/README.md): colour = Kd with kd = 1; ka = mean
 // of Ka (0.1 when Ka is absent); ks = mean of Ks; shininess = Ns; kt = 1 - d
 // in [0, 1]; ior = Ni, 1 when Ni is 0; illum 3 to 7 (ray-traced reflection)
-// adds kr = mean of Ks; two-sided.
+// adds kr = mean of Ks; illum 7 (refraction with Fresnel) sets fresnel;
+// two-sided.
 MaterialDesc material_from_mtl(const MtlMaterial& m) {
   MaterialDesc material;
   material.color = m.diffuse;
@@ -390,6 +391,7 @@ MaterialDesc material_from_mtl(const MtlMaterial& m) {
   material.kt = 1.f - m.dissolve;  // dissolve is in [0, 1] (d and Tr are checked)
   material.ior = m.ior > 0.f ? m.ior : 1.f;
   material.kr = m.illum >= 3 && m.illum <= 7 ? mean(m.specular) : 0.f;
+  material.fresnel = m.illum == 7;
   material.two_sided = true;
   return material;
 }

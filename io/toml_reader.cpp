@@ -505,7 +505,8 @@ class TomlSceneReader {
 
   void read_material(const toml::table& t) {
     constexpr std::string_view s = "[[materials]]";
-    check_keys(t, {"name", "color", "texture", "ka", "kd", "ks", "shininess", "kr", "kt", "ior", "two_sided"}, s);
+    check_keys(t, {"name", "color", "texture", "ka", "kd", "ks", "shininess", "kr", "kt", "ior", "two_sided", "fresnel"},
+               s);
     const std::string name = unique_name(t, s, material_names_);
     MaterialDesc m;
     const toml::node* color_node = t.get("color");
@@ -523,6 +524,7 @@ class TomlSceneReader {
     }
     if (const toml::node* ior = t.get("ior")) m.ior = positive(*ior, "ior", s);
     if (const toml::node* two_sided = t.get("two_sided")) m.two_sided = boolean(*two_sided, "two_sided", s);
+    if (const toml::node* fresnel = t.get("fresnel")) m.fresnel = boolean(*fresnel, "fresnel", s);
     material_names_.emplace(name, scene_.materials.size());
     scene_.materials.push_back(m);
   }

@@ -83,6 +83,10 @@ struct MaterialDesc {
   std::optional<std::size_t> texture{};  // index into SceneDesc::textures
   float ka = 0.1f, kd = 0.9f, ks = 0.f, shininess = 32.f, kr = 0.f, kt = 0.f, ior = 1.f;
   bool two_sided = true;
+  // A dielectric's exact Fresnel reflectance F (unpolarised) splits kt:
+  // F kt is reflected, (1 - F) kt refracted; off, kr and kt stay fixed (the
+  // SPD procedure's Whitted model).
+  bool fresnel = false;
 };
 
 // Render settings a scene file may carry; the command line overrides them.

@@ -61,6 +61,23 @@ TEST(Optics, TotalInternalReflectionBeyondTheCriticalAngle) {
   EXPECT_FALSE(std::isnan(t.y));
 }
 
+// Fresnel reflectance against the textbook values: ((n - 1) / (n + 1))^2 =
+// 0.04 at normal incidence into or out of glass, 1 at grazing incidence
+// and beyond the critical angle, 0 between equal media, and at 45 degrees
+// into glass the mean of rs^2 and rp^2 from Snell's angle in double.
+TEST(Optics, FresnelReflectanceOfADielectric) {
+  const Vec3<float> normal{0.f, 1.f, 0.f}, down{0.f, -1.f, 0.f};
+  EXPECT_NEAR(fresnel_reflectance<float>(down, normal, 1.f / 1.5f), 0.04, 1e-6);
+  EXPECT_NEAR(fresnel_reflectance<float>(down, normal, 1.5f), 0.04, 1e-6);
+  EXPECT_EQ(fresnel_reflectance<float>(down, normal, 1.f), 0.f);
+  EXPECT_NEAR(fresnel_reflectance<float>({1.f, -1e-4f, 0.f}, normal, 1.f / 1.5f), 1.0, 1e-3);
+  const float s = float(std::sqrt(0.5));
+  EXPECT_EQ(fresnel_reflectance<float>({s, -s, 0.f}, normal, 1.5f), 1.f);  // past asin(1 / 1.5)
+  const double ci = std::sqrt(0.5), st = std::sqrt(0.5) / 1.5, ct = std::sqrt(1.0 - st * st);
+  const double rs = (ci - 1.5 * ct) / (ci + 1.5 * ct), rp = (1.5 * ci - ct) / (1.5 * ci + ct);
+  EXPECT_NEAR(fresnel_reflectance<float>({s, -s, 0.f}, normal, 1.f / 1.5f), 0.5 * (rs * rs + rp * rp), 1e-6);
+}
+
 TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
   for (float scale : {1e-4f, 1.f, 1e6f}) {
     const Vec3<float> o{0.f, 10.f * scale, 0.f}, d{0.3f, -1.f, 0.2f};

@@ -843,6 +843,39 @@ TEST(Render, SmoothUvSphereMeshesShadeAsTheSphereAtAGrazingLight) {
   }
 }
 
+// A glass plane seen from above, under a rectangle light behind the camera,
+// against a black background: what a pixel shows is the light reflected,
+// so with Fresnel on it is F kt times the light (0.04 at normal incidence,
+// more towards the image's edge), and with it off nothing (kr 0); the
+// refracted share sees black either way.
+TEST(Render, AFresnelGlassReflectsTheShareItsReflectanceGives) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.f, 2.f, 0.f}, {0.f, 0.f, 0.f}, {0.f, 0.f, -1.f}, 60.f, 0.f, 9, 9};
+  desc.background = Vec3<float>{0.f, 0.f, 0.f};
+  desc.ambient = {0.f, 0.f, 0.f};
+  LightDesc light;
+  light.kind = LightDesc::Kind::rectangle;
+  light.position = {-50.f, 3.f, -50.f};
+  light.edge_u = {100.f, 0.f, 0.f};
+  light.edge_v = {0.f, 0.f, 100.f};
+  light.color = {1.f, 1.f, 1.f};
+  desc.lights.push_back(light);
+  MaterialDesc glass;
+  glass.ka = glass.kd = glass.ks = 0.f;
+  glass.kt = 1.f;
+  glass.ior = 1.5f;
+  desc.materials.push_back(glass);
+  desc.planes.push_back({{{0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}}, 0});
+  RenderSettings settings = small_settings(9, 9);
+  settings.isa = best_supported_isa();
+  const float centre_fixed = render(build_scene(desc, {}), settings).image.rgb[3 * (4 * 9 + 4)];
+  desc.materials[0].fresnel = true;
+  const Framebuffer image = render(build_scene(desc, {}), settings).image;
+  EXPECT_EQ(centre_fixed, 0.f);
+  EXPECT_NEAR(image.rgb[3 * (4 * 9 + 4)], 0.04f, 1e-5f);
+  EXPECT_GT(image.rgb[3 * (4 * 9 + 0)], image.rgb[3 * (4 * 9 + 4)]);  // a more oblique view reflects more
+}
+
 // A shadow ray toward a point light ends at the light: an opaque sphere on
 // the far side of the light (above it, the floor below) casts no shadow,
 // while the same sphere between the floor and the light does.

@@ -251,6 +251,7 @@ TEST(ObjReader, IllumThreeToSevenAddTheMirrorWeight) {
   for (int illum = 0; illum <= 10; ++illum) {
     const MaterialDesc m = mtl_material("newmtl a\nKs 0.5 0.5 0.5\nillum " + std::to_string(illum) + "\n");
     EXPECT_EQ(m.kr, illum >= 3 && illum <= 7 ? 0.5f : 0.f) << "illum " << illum;
+    EXPECT_EQ(m.fresnel, illum == 7) << "illum " << illum;  // refraction with Fresnel
   }
 }
 

@@ -292,7 +292,7 @@ TEST(PlyReader, PolygonsOfFiveOrMoreCornersAreClippedIntoEarsCoveringThem) {
                        "property list uchar int vertex_indices\nend_header\n";
     for (const auto& c : corners) text += std::to_string(c[0]) + " " + std::to_string(c[1]) + " 0\n";
     text += std::to_string(corners.size());
-    for (std::size_t k = 0; k < corners.size(); ++k) text += " " + std::to_string(k);
+    for (std::size_t k = 0; k < corners.size(); ++k) text.append(" ").append(std::to_string(k));
     text += "\n";
     const PlyMesh mesh = read(text);
     const auto triangles = triangles_of(mesh);

@@ -139,12 +139,14 @@ TEST(TomlReader, ReadsEveryKeyWithExactValues) {
   EXPECT_EQ(red.kt, 0.125f);
   EXPECT_EQ(red.ior, 1.33f);
   EXPECT_FALSE(red.two_sided);
+  EXPECT_TRUE(red.fresnel);
   EXPECT_FALSE(red.texture.has_value());
   ASSERT_TRUE(scene.materials[1].texture.has_value());
   EXPECT_EQ(*scene.materials[1].texture, 0u);
   const MaterialDesc defaults;
   EXPECT_EQ(scene.materials[2].kd, defaults.kd);
   EXPECT_TRUE(scene.materials[2].two_sided);
+  EXPECT_FALSE(scene.materials[2].fresnel);
 
   ASSERT_EQ(scene.spheres.size(), 2u);
   expect_vec3(scene.spheres[0].sphere.center, 0.f, 1.f, 0.f);
@@ -299,6 +301,7 @@ TEST(TomlReader, WrongTypesAndMissingKeys) {
   EXPECT_TRUE(error_at("spheres = 3\n", 1, 11, "an array of tables ([[spheres]])"));
   EXPECT_TRUE(error_at("spheres = [1]\n", 1, 12, "a table (an entry of [[spheres]])"));
   EXPECT_TRUE(error_at("[[materials]]\nname = \"m\"\ntwo_sided = 1\n", 3, 13, "true or false"));
+  EXPECT_TRUE(error_at("[[materials]]\nname = \"m\"\nfresnel = \"yes\"\n", 3, 11, "true or false"));
   EXPECT_TRUE(error_at("[render]\nmax_depth = 2.5\n", 2, 13, "an integer from 0 to 64"));
   EXPECT_TRUE(error_at("[[lights]]\ntype = \"spot\"\n", 2, 8, "one of point, directional, rectangle, sphere"));
 }
