@@ -170,9 +170,11 @@ inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& ra
       ->check(kNonEmptyFileName);
   raw.aov_option = render.add_option("--aov", raw.aov,
                                      "Extra channels through each pixel centre, a comma list of depth (Z: distance, "
-                                     "inf on a miss), normal (N.X N.Y N.Z), id (kind and id: primitive kind and "
-                                     "index in the scene file, -1 on a miss); each at most once; needs an .exr "
-                                     "output")
+                                     "inf on a miss), normal (N.X N.Y N.Z), id (id: the primitive's number in the "
+                                     "whole scene, each kind's list in the file in the order spheres, planes, "
+                                     "triangles, polygons, cones, then each instance's triangles; kind: its "
+                                     "kind; -1 on a miss; exact in the EXR's float channels up to 2^24); each at "
+                                     "most once; needs an .exr output")
                        ->type_name("LIST");
   render.add_flag("-q,--quiet", args.quiet,
                   "No progress (a bar with the time left on a terminal, else a line every 5 s) and no summary "

@@ -370,7 +370,8 @@ void Tracer::first_hits(std::span<const Ray<float>> rays, std::span<FirstSurface
     out[i] = first_surface(rays[i], h.t, s.material_index);
     out[i].normal = s.shading;
     out[i].kind = static_cast<std::int32_t>(o.kind);
-    out[i].id = static_cast<std::int32_t>(o.index);
+    const std::uint64_t id = scene_.object_id(s.ref);
+    out[i].id = static_cast<std::int32_t>(std::min<std::uint64_t>(id, std::numeric_limits<std::int32_t>::max()));
   }
 }
 

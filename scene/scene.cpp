@@ -221,6 +221,12 @@ const PrimitiveOrigin& Scene::origin(const PrimitiveRef& ref) const {
   });
 }
 
+std::uint64_t Scene::object_id(const PrimitiveRef& ref) const {
+  const PrimitiveOrigin& o = origin(ref);
+  if (ref.instance >= 0) return instance_object_id_base[std::size_t(ref.instance)] + o.index;
+  return object_id_base[kind_index(o.kind)] + o.index;
+}
+
 std::size_t Scene::memory_bytes() const {
   std::size_t bytes = opaque.memory_bytes() + transmissive.memory_bytes() + bytes_of(material_of_id) +
                       bytes_of(plain_of_id) + instances.memory_bytes();
@@ -338,6 +344,24 @@ void set_bounds(Scene& scene) {
   }
 }
 
+// Scene::object_id_base and instance_object_id_base from the lists as read.
+void set_object_id_bases(const SceneDesc& desc, Scene& scene) {
+  std::uint64_t next = 0;
+  for_each_kind([&]<class K>(K) {
+    scene.object_id_base[kind_index(kind_tag<K>)] = next;
+    next += (desc.*SceneEntries<K>::of).size();
+  });
+  std::vector<std::uint64_t> by_input(desc.instances.size());
+  for (std::size_t j = 0; j < desc.instances.size(); ++j) {
+    by_input[j] = next;
+    next += desc.meshes[desc.instances[j].mesh].triangles.size();
+  }
+  scene.instance_object_id_base.resize(scene.instances.size());
+  for (std::size_t row = 0; row < scene.instances.size(); ++row) {
+    scene.instance_object_id_base[row] = by_input[scene.instances.source[row]];
+  }
+}
+
 }  // namespace
 
 Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
@@ -370,6 +394,7 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   SceneInputs inputs = scene_inputs(desc, origin_of, is_transmissive);
   const std::int32_t next_id = build_stores(inputs, options, scene);
   build_instancing(desc, options, origin_of, is_transmissive, next_id, scene);
+  set_object_id_bases(desc, scene);
   set_bounds(scene);
   return scene;
 }

@@ -129,6 +129,11 @@ struct Scene {
   // normals, no texture), so the material alone says how it looks. Instance
   // hits are never plain (shading needs their transform).
   std::vector<IdRange> id_ranges;  // of the non-empty stores above, ascending
+  // Object ids, one per primitive as read, unique over the whole scene:
+  // each kind's SceneDesc list in kind order, then each instance's mesh
+  // triangles in the order the instances were read (object_id).
+  std::array<std::uint64_t, kKindCount> object_id_base{};
+  std::vector<std::uint64_t> instance_object_id_base;  // per InstanceTable row
   std::vector<std::uint32_t> material_of_id;
   std::vector<std::uint8_t> plain_of_id;
   Vec3<float> bounds_min{0.f, 0.f, 0.f}, bounds_max{0.f, 0.f, 0.f};  // of the built primitives (planes excluded)
@@ -154,6 +159,7 @@ struct Scene {
   }
   const GeometryLayer& layer(bool transmissive_layer) const { return transmissive_layer ? transmissive : opaque; }
   const PrimitiveOrigin& origin(const PrimitiveRef& ref) const;
+  std::uint64_t object_id(const PrimitiveRef& ref) const;
   // Stored primitives: each instanced mesh counted once.
   std::size_t primitive_count() const;
   // Some primitive, instanced or not, lets light through (kt > 0).

@@ -152,5 +152,60 @@ TEST(Scene, ThreeVertexPolygonsAreBuiltAsTrianglesThatKeepTheirOrigin) {
   }
 }
 
+// Object ids number every primitive as read once over the whole scene:
+// each kind's list in kind order (spheres 0 and 1, then the plane 2, the
+// triangle 3, the polygon 4, the cone 5), then each instance's mesh
+// triangles in the order the instances were read, whichever layer, store
+// order or BVH order the builders gave them.
+TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
+  SceneDesc desc;
+  desc.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 45.f, 0.f, 8, 8};
+  desc.materials.resize(2);
+  desc.materials[1].kt = 0.5f;  // a transmissive layer too
+  desc.spheres = {{{{0.f, 0.f, 0.f}, 1.f}, 1}, {{{3.f, 0.f, 0.f}, 1.f}, 0}};
+  desc.planes = {{{{0.f, -2.f, 0.f}, {0.f, 1.f, 0.f}}, 0}};
+  SceneTriangle t;
+  t.triangle.p = {Vec3<float>{0.f, 0.f, 0.f}, Vec3<float>{1.f, 0.f, 0.f}, Vec3<float>{0.f, 1.f, 0.f}};
+  t.material = 0;
+  desc.triangles = {t};
+  ScenePolygon quad;
+  quad.polygon.vertices = {{-1.f, -1.f, -1.f}, {1.f, -1.f, -1.f}, {1.f, 1.f, -1.f}, {-1.f, 1.f, -1.f}};
+  quad.material = 0;
+  desc.polygons = {quad};
+  desc.cones = {{{{0.f, 0.f, 0.f}, 1.f, {0.f, 2.f, 0.f}, 0.5f}, 0}};
+  SceneMesh small{"small", {t, t, t}}, large{"large", {t, t, t, t, t}};
+  for (std::size_t k = 0; k < small.triangles.size(); ++k) small.triangles[k].triangle.p[0].z = float(k);
+  for (std::size_t k = 0; k < large.triangles.size(); ++k) large.triangles[k].triangle.p[0].z = float(k);
+  large.triangles[2].material = 1;
+  desc.meshes = {small, large};
+  AffineTransform moved{};
+  moved.m = {1.f, 0.f, 0.f, 5.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f};
+  desc.instances = {{1, AffineTransform{}}, {0, moved}, {1, moved}};
+  const Scene scene = build_scene(desc, {});
+  // Every hit id: the stores' (material_of_id covers them), then each instance's.
+  std::vector<std::int32_t> hit_ids;
+  for (std::int32_t id = 0; std::size_t(id) < scene.material_of_id.size(); ++id) hit_ids.push_back(id);
+  for (std::size_t row = 0; row < scene.instances.size(); ++row) {
+    const std::size_t count = scene.meshes[scene.instances.mesh[row]].triangle_count();
+    for (std::size_t k = 0; k < count; ++k) hit_ids.push_back(scene.instances.id_base[row] + std::int32_t(k));
+  }
+  std::vector<std::uint64_t> ids, sphere_ids, firsts;
+  for (const std::int32_t id : hit_ids) {
+    const PrimitiveRef ref = scene.locate(id);
+    ids.push_back(scene.object_id(ref));
+    if (ref.kind == kind_tag<SphereKind> && ref.instance < 0) sphere_ids.push_back(ids.back() * 10 + scene.origin(ref).index);
+    if (ref.instance >= 0 && scene.origin(ref).index == 0) firsts.push_back(ids.back());
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<std::uint64_t> every(2 + 1 + 1 + 1 + 1 + 5 + 3 + 5);
+  for (std::size_t k = 0; k < every.size(); ++k) every[k] = k;
+  EXPECT_EQ(ids, every);
+  std::sort(sphere_ids.begin(), sphere_ids.end());
+  EXPECT_EQ(sphere_ids, (std::vector<std::uint64_t>{0, 11}));  // sphere i is object i
+  // The first instance (of the large mesh) starts at 6, the second (small) at 11, the third at 14.
+  std::sort(firsts.begin(), firsts.end());
+  EXPECT_EQ(firsts, (std::vector<std::uint64_t>{6, 11, 14}));
+}
+
 }  // namespace
 }  // namespace quiver
