@@ -142,19 +142,25 @@ TEST(AutoView, FramesEveryPrimitiveCentredFillingTheImage) {
   }
 }
 
-// A different field of view frames the same way.
+// A different field of view frames the same way; a ball fills the shorter
+// side, across or up, as its silhouette (not its centre) reaches it.
 TEST(AutoView, FramesForTheAngleGiven) {
   SceneDesc scene;
   scene.materials.emplace_back();
   scene.spheres.push_back({{{0.f, 0.f, 0.f}, 2.f}, 0});
   for (const float angle : {10.f, 40.f, 120.f}) {
-    SceneDesc framed = scene;
-    add_default_camera(framed, 200, 100, std::nullopt, angle);
-    ASSERT_TRUE(framed.camera.has_value());
-    EXPECT_EQ(framed.camera->angle_degrees, angle);
-    const double center[3] = {0.0, 0.0, 0.0};
-    const FilmBox box = film_box(*framed.camera, 200, 100, sphere_points(center, 2.0));
-    EXPECT_NEAR((box.max_y - box.min_y) / 99.0, kDefaultViewFill, 0.01) << angle;  // the shorter side binds
+    for (const bool landscape : {true, false}) {
+      const int width = landscape ? 200 : 100, height = landscape ? 100 : 200;
+      SceneDesc framed = scene;
+      add_default_camera(framed, width, height, std::nullopt, angle);
+      ASSERT_TRUE(framed.camera.has_value());
+      EXPECT_EQ(framed.camera->angle_degrees, angle);
+      const double center[3] = {0.0, 0.0, 0.0};
+      const FilmBox box = film_box(*framed.camera, width, height, sphere_points(center, 2.0));
+      expect_inside_image(box, width, height);
+      const double fill = landscape ? (box.max_y - box.min_y) / 99.0 : (box.max_x - box.min_x) / 99.0;
+      EXPECT_NEAR(fill, kDefaultViewFill, 0.01) << angle << (landscape ? " landscape" : " portrait");
+    }
   }
   SceneDesc refused = scene;
   EXPECT_THROW(add_default_camera(refused, 200, 100, std::nullopt, 180.f), std::invalid_argument);
