@@ -251,6 +251,29 @@ TEST(RenderOptions, CameraFlagsAreCheckedBeforeTheScene) {
   RenderOptions options;
   options.camera.fov = 1e-3;
   EXPECT_NO_THROW(check_render_options(options));
+  // check_camera_flags alone (quiver info's check), with its message.
+  CameraFlags flags;
+  flags.fov = 179.99;
+  EXPECT_NO_THROW(check_camera_flags(flags));
+  flags.fov = 180.0;
+  try {
+    check_camera_flags(flags);
+    ADD_FAILURE() << "no UsageError";
+  } catch (const UsageError& error) {
+    EXPECT_EQ(std::string(error.what()), "--fov: expected degrees in (0, 180), found 180");
+  }
+}
+
+TEST(RenderOptions, PresetNamesSpdOnly) {
+  EXPECT_NO_THROW(check_preset("spd"));
+  for (const char* bad : {"SPD", "", "spd ", "pov"}) {
+    try {
+      check_preset(bad);
+      ADD_FAILURE() << "'" << bad << "' accepted";
+    } catch (const UsageError& error) {
+      EXPECT_EQ(std::string(error.what()), std::string("--preset: expected spd, found '") + bad + "'");
+    }
+  }
 }
 
 // Each camera flag replaces its field of the scene's camera, the others

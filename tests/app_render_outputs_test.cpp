@@ -3,6 +3,8 @@
 // are not, and every role of a file read is named.
 #include "app/render_outputs.h"
 
+#include <sys/stat.h>
+
 #include <fstream>
 #include <string>
 #include <vector>
@@ -41,6 +43,29 @@ TEST_F(RenderOutputs, OneFileUnderEveryName) {
   EXPECT_TRUE(same_file(at("missing.png"), dir_.path() / "sub" / ".." / "missing.png"));  // neither exists
   EXPECT_FALSE(same_file(at("missing.png"), dir_.path() / "sub" / "missing.png"));  // one name, two folders
   EXPECT_FALSE(same_file(at("scene.nff"), dir_.path() / "sub" / "scene.nff"));
+}
+
+// Outputs are renamed into place: a new name or an existing regular file
+// (through a symlink too) is fine; a directory, a FIFO or a character
+// device is a usage error naming the role, the path and what it is.
+TEST_F(RenderOutputs, AnOutputMustNameARegularFileOrNothing) {
+  EXPECT_NO_THROW(check_outputs_are_regular_files(
+      {{"-o", at("new.png")}, {"--stats", at("scene.nff")}, {"--checkpoint", at("link.nff")}}));
+  ASSERT_EQ(::mkfifo(at("fifo").c_str(), 0600), 0);
+  const struct {
+    fs::path path;
+    const char* what;
+  } refused[] = {{at("sub"), "a directory"}, {at("fifo"), "a FIFO"}, {"/dev/null", "a character device"}};
+  for (const auto& r : refused) {
+    try {
+      check_outputs_are_regular_files({{"-o", at("fine.png")}, {"--stats", r.path}});
+      ADD_FAILURE() << r.path << " accepted";
+    } catch (const UsageError& error) {
+      EXPECT_EQ(std::string(error.what()), "--stats names '" + r.path.string() + "', " + r.what +
+                                               "; outputs are written whole and renamed into place, so each must "
+                                               "name a regular file (new or existing)");
+    }
+  }
 }
 
 TEST_F(RenderOutputs, AnOutputNamingAnInputIsAUsageErrorNamingBoth) {

@@ -29,8 +29,11 @@ TEST(TileSchedule, GivesTheCostliestTilesFirstAndSkipsDoneOnes) {
   std::vector<bool> done(6, false);
   done[5] = true;  // resumed: the costliest, never given
   TileSchedule schedule(6, done, costs, 2);
+  EXPECT_EQ(schedule.tile_count(), 6u);
   EXPECT_EQ(schedule.done_count(), 1u);
   EXPECT_EQ(schedule.waiting(), 5u);
+  EXPECT_TRUE(schedule.is_done(5));
+  EXPECT_FALSE(schedule.is_done(0));
   std::vector<std::uint32_t> order;
   while (schedule.waiting() > 0) {
     for (std::uint32_t t : schedule.take(1, 100)) order.push_back(t);
@@ -38,6 +41,9 @@ TEST(TileSchedule, GivesTheCostliestTilesFirstAndSkipsDoneOnes) {
   EXPECT_EQ(order, (std::vector<std::uint32_t>{1, 3, 2, 4, 0}));  // ties keep tile order
   EXPECT_EQ(schedule.outstanding(1), 5u);
   EXPECT_TRUE(schedule.take(1, 100).empty());
+  EXPECT_TRUE(schedule.complete(3, 1));
+  EXPECT_TRUE(schedule.is_done(3));
+  EXPECT_FALSE(schedule.is_done(1));
 }
 
 TEST(TileSchedule, WorkDoneWeighsTilesByTheirEstimatedCost) {
