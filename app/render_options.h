@@ -28,10 +28,9 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Image size bounds: kMaxImageSide, kMaxImagePixels; the render settings'
-// bounds and defaults: kMaxMaxDepth, valid_min_weight, ... (all in
-// scene/scene_desc.h). The defaults of the rest:
-inline constexpr int kDefaultImageSide = 512;  // scenes without a camera
+// Image size bounds: kMaxImageSide, kMaxImagePixels; kDefaultImageSide; the
+// render settings' bounds and defaults: kMaxMaxDepth, valid_min_weight, ...
+// (all in scene/scene_desc.h). The defaults of the rest:
 inline constexpr int kMaxThreads = 1024;
 // --preset spd: corner sampling, 4 bounces (5 levels with the eye ray), no
 // weight cut-off, every surface two-sided.

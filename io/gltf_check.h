@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,9 @@ struct GltfContents {
   // check_gltf_contents adds the images'; check_gltf (io/mesh_file_check.h)
   // puts the buffers' before them.
   std::vector<std::filesystem::path> files;
+  // Its camera (io/gltf_camera.h), filled by check_gltf (io/mesh_file_check.h).
+  std::optional<CameraDesc> camera;
+  std::string unused_camera;  // a camera a node names that is not used, and why
 };
 
 // `document` is the parsed glTF whose buffers (byteLength) have been checked

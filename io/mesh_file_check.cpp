@@ -11,6 +11,7 @@
 #include <system_error>
 #include <vector>
 
+#include "io/gltf_camera.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/uri_path.h"
@@ -184,6 +185,9 @@ GltfContents check_gltf_json(std::string_view json_text, std::string_view file, 
   }
   GltfContents contents = check_gltf_contents(document, file, directory, paths, triangle_budget);
   contents.files.insert(contents.files.begin(), buffer_files.begin(), buffer_files.end());
+  GltfCamera camera = gltf_camera(document, file);
+  contents.camera = camera.camera;
+  contents.unused_camera = std::move(camera.unused);
   return contents;
 }
 

@@ -318,6 +318,12 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   if (!handle) throw ParseError::whole_file(file, error);
   SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
   if (*format == MeshFormat::stl) scene.model_up = SceneDesc::StatedUp{{0.f, 0.f, 1.f}, "STL's convention"};
+  scene.camera = gltf.camera;
+  if (!gltf.unused_camera.empty()) {
+    warnings.warn("gltf camera", {file, 0, 0}, "a perspective camera", gltf.unused_camera,
+                  "the default view is used");
+    scene.warnings = warnings.lines();
+  }
   // Assimp must return every triangle the file declares; what it does not is named.
   FaceTally& tally = scene.face_tallies.front();
   if (declared_triangles > tally.kept) {

@@ -20,6 +20,9 @@ namespace quiver {
 
 // Largest image side and pixel count any scene or command line may ask for.
 inline constexpr int kMaxImageSide = 65'536;
+// The side of a scene's image when nothing gives one (no camera, or a glTF
+// camera's longer side).
+inline constexpr int kDefaultImageSide = 512;
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 
 // Pinhole camera: eye, look-at point, up hint (any length, not parallel to
