@@ -13,6 +13,8 @@
 //     F = (rs^2 + rp^2) / 2 with rs = (eta c1 - c2) / (eta c1 + c2) and
 //     rp = (c1 - eta c2) / (c1 + eta c2), c1 = -I.N, c2 = sqrt k (refract's
 //     k); 1 where k < 0 (total internal reflection).
+//   terminator_lift_share: how much of that lift a shadow ray takes, by N.L
+//     and Ng.L (below).
 //   lifted_origin: the same from p + lift (a shadow ray's start above a
 //     smooth triangle, geometry/surface_mapping.h), the sum's rounding (an
 //     ulp per component) added to the bound.
@@ -80,6 +82,19 @@ inline F fresnel_reflectance(const Vec3<F>& incident, const Vec3<F>& normal, con
   const F c2 = sqrt(select(transmitted, k, F(0.f)));
   const F rs = (eta * c1 - c2) / (eta * c1 + c2), rp = (c1 - eta * c2) / (c1 + eta * c2);
   return select(transmitted, F(0.5f) * (rs * rs + rp * rp), F(1.f));
+}
+
+// How much of SurfaceMapping::shadow_lift a shadow ray takes: all of it
+// where the face turns from the light (Ng.L <= 0), none where both N.L and
+// Ng.L are at least kTerminatorBand, linearly between; a lift far from the
+// terminator would only let thin parts of a coarse mesh shade themselves
+// (Cycles restricts Hanika's lift the same way).
+inline constexpr float kTerminatorBand = 0.1f;
+template <class F>
+inline F terminator_lift_share(const F& n_dot_l, const F& ng_dot_l) {
+  const F band(kTerminatorBand);
+  const F below = F(2.f) - (ng_dot_l + n_dot_l) / band, above = F(1.f) - ng_dot_l / band;
+  return min(max(select(n_dot_l < band, below, above), F(0.f)), F(1.f));
 }
 
 template <class F>

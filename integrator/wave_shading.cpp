@@ -219,19 +219,6 @@ PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
   return h;
 }
 
-// How much of SurfaceMapping::shadow_lift a shadow ray takes: all of it
-// where the face turns from the light (Ng.L <= 0), none where both N.L and
-// Ng.L are at least kTerminatorBand, linearly between; a lift far from the
-// terminator would only let thin parts of a coarse mesh shade themselves
-// (Cycles restricts Hanika's lift the same way).
-constexpr float kTerminatorBand = 0.1f;
-template <class F>
-F terminator_lift_share(const F& n_dot_l, const F& ng_dot_l) {
-  const F band(kTerminatorBand);
-  const F below = F(2.f) - (ng_dot_l + n_dot_l) / band, above = F(1.f) - ng_dot_l / band;
-  return min(max(select(n_dot_l < band, below, above), F(0.f)), F(1.f));
-}
-
 // Each light sample's contribution I_i (kd (N.L) colour + ks (N.H)^n) times
 // the path weight, appended with its shadow ray to the sample slot's
 // stream where the lit surface faces the light.

@@ -78,6 +78,20 @@ TEST(Optics, FresnelReflectanceOfADielectric) {
   EXPECT_NEAR(fresnel_reflectance<float>({s, -s, 0.f}, normal, 1.f / 1.5f), 0.5 * (rs * rs + rp * rp), 1e-6);
 }
 
+// The lift's share: whole where the face turns from the light, none where
+// N.L and Ng.L both reach the band, linear between, and continuous where
+// N.L crosses the band.
+TEST(Optics, TerminatorLiftShareFadesOutOverTheBand) {
+  const float band = kTerminatorBand;
+  EXPECT_EQ(terminator_lift_share(0.5f, -0.2f), 1.f);
+  EXPECT_EQ(terminator_lift_share(0.5f, 0.f), 1.f);
+  EXPECT_EQ(terminator_lift_share(band, band), 0.f);
+  EXPECT_EQ(terminator_lift_share(0.9f, 0.8f), 0.f);
+  EXPECT_NEAR(terminator_lift_share(0.05f, 0.12f), 2.0 - 0.17 / 0.1, 1e-5);  // N.L in the band
+  EXPECT_NEAR(terminator_lift_share(0.5f, 0.03f), 1.0 - 0.03 / 0.1, 1e-5);   // N.L above it
+  EXPECT_NEAR(terminator_lift_share(std::nextafter(band, 0.f), 0.04f), terminator_lift_share(band, 0.04f), 1e-5);
+}
+
 TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
   for (float scale : {1e-4f, 1.f, 1e6f}) {
     const Vec3<float> o{0.f, 10.f * scale, 0.f}, d{0.3f, -1.f, 0.2f};
