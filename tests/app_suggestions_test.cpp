@@ -34,6 +34,9 @@ TEST(NearestWord, OnlyNearEnoughToBeATypo) {
   EXPECT_EQ(nearest_word("scene.nff", commands), std::nullopt);
   EXPECT_EQ(nearest_word("rndr", commands), std::nullopt);  // 2 edits of 4 characters: too far
   EXPECT_EQ(nearest_word("x", commands), std::nullopt);
+  // At most two edits, however long the word: three are not a typo.
+  EXPECT_EQ(nearest_word("--max-dept", std::vector<std::string>{"--max-depth"}), "--max-depth");
+  EXPECT_EQ(nearest_word("--mux-dapt", std::vector<std::string>{"--max-depth"}), std::nullopt);
   const std::vector<std::string> flags{"--width", "--height", "--seed", "--simd"};
   EXPECT_EQ(nearest_word("--widht", flags), "--width");
   EXPECT_EQ(nearest_word("--heigth", flags), "--height");
