@@ -93,9 +93,16 @@ run_tests() {
   fi
 }
 
-if ((check == 0)) && [[ ! -f $tree/build/CMakeCache.txt ]]; then
-  (cd "$tree" && CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache cmake --preset release) \
-    >"$logs/configure.log" 2>&1 || { echo "configure failed: $logs/configure.log" >&2; exit 1; }
+# The copy's tests read ../shared beside the worktree, not beside the copy
+# (without it the tests that need it skip, and mutants they would kill survive).
+shared=${QUIVER_SHARED_DIR:-$(cd "$repo/.." && pwd)/shared}
+if ((check == 0)); then
+  if [[ ! -f $tree/build/CMakeCache.txt ]]; then
+    (cd "$tree" && CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache cmake --preset release) \
+      >"$logs/configure.log" 2>&1 || { echo "configure failed: $logs/configure.log" >&2; exit 1; }
+  fi
+  cmake -DQUIVER_SHARED_DIR="$shared" "$tree/build" >>"$logs/configure.log" 2>&1 ||
+    { echo "configure failed: $logs/configure.log" >&2; exit 1; }
 fi
 if ((check == 0)); then
 echo "building and testing the unmutated copy"
