@@ -249,7 +249,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
         from = select(lifted, lifted_origin(s.position, s.error, h.lift * share, s.geometric), h.origin);
         direction = select(lifted, light_sample_direction(in, l, j, n, from, first, tmax), direction);
       }
-      // No shadow ray where the surface faces away from the light.
+      // No shadow ray where the shading faces away from the light, nor where the face does unless lifted.
       Mask<F> cast = lit & (n_dot_l > F(0.f)) & (lifted | (dot(s.geometric, to_light) > F(0.f)));
       const Vec3<F> half = normalize(to_light + to_eye);
       const F n_dot_h = max(dot(s.shading, half), F(0.f));
@@ -401,7 +401,7 @@ void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   PacketHits<F> h = load_packet_hits<F>(in, first);
   out.counts.hits += std::popcount(lane_bits(h.hit_mask));
 
-  // Ambient ka Ia colour where a surface is hit; the background on a miss.
+  // Ambient ka Ia colour where a surface is hit; on a miss, what the ray sees (the background or an area light).
   const F ka = gather_lanes<F>(table.ka.data(), h.material);
   const Vec3<F> ambient = mul(h.weight, mul(Vec3<F>(scene.ambient), h.color) * ka);
   const SurfaceColumns& columns = *in.surfaces;

@@ -1,10 +1,12 @@
 // Shading a wave in packets: for every hit, the surface in lanes (point,
 // error bound, geometric and shading normals, side), the materials gathered
-// from their columns, the ambient term (the background for misses), every
-// light sample (point, directional, stratified rectangle and sphere
-// samples) with its Phong diffuse and specular terms and its shadow ray,
-// and the reflection and refraction rays (Snell, total internal
-// reflection), weights and the min-weight cut-off. Written once as templates
+// from their columns, the ambient term (for misses, the background or the
+// area light the ray sees), every light sample (point, directional,
+// stratified rectangle and sphere samples) with its Phong diffuse and
+// specular terms and its shadow ray (from the lifted point near a smooth
+// triangle's terminator), and the reflection and refraction rays (Snell,
+// total internal reflection, Fresnel where the material asks), weights and
+// the min-weight cut-off. Written once as templates
 // over the lane type; integrator/wave_shading.cpp is compiled per kernel
 // unit, the scalar unit being the reference, so every width gives the same
 // bits. Masks: padding lanes and misses cast nothing; a packet with no
