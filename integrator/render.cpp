@@ -161,10 +161,10 @@ std::vector<double> FrameRenderer::estimate_costs(std::span<const std::size_t> t
         for (int y = tile.y0 + stride / 2; y < tile.y0 + tile.height; y += stride) {
           for (int x = tile.x0 + stride / 2; x < tile.x0 + tile.width; x += stride) w.film.push(x + 0.5, y + 0.5, 0, 0, 0);
         }
-        const std::uint64_t before = scratch.rays.total();
         w.colors.resize(w.film.size());
+        const auto start = std::chrono::steady_clock::now();
         w.tracer.trace(s.camera, w.film, w.colors, scratch);
-        costs[k] = double(scratch.rays.total() - before);
+        costs[k] = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
       }
     });
   });

@@ -153,9 +153,10 @@ class FrameRenderer {
                            const std::atomic<bool>* stop = nullptr);
 
   // A cheap estimate of each tile's cost, for scheduling the costliest
-  // first: the rays traced (of every kind) from one ray per stride x stride
-  // pixels through their centres, without anti-aliasing. Leaves stats() as
-  // it was.
+  // first and for the time left: the microseconds taken to trace (every ray
+  // kind) from one ray per stride x stride pixels through their centres,
+  // without anti-aliasing; time, not a count of rays, as a ray's cost
+  // differs from one part of a frame to another. Leaves stats() as it was.
   std::vector<double> estimate_costs(std::span<const std::size_t> tiles, int stride) const;
 
   // A tile's part of a film as bytes: its colours (corners mode: the corners
