@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "geometry/kinds/sphere.h"
+
 namespace quiver {
 
 namespace {
@@ -20,17 +22,13 @@ std::optional<float> rectangle_distance(const LightDesc& light, const Ray<float>
   return t;
 }
 
-// |o + t d - c|^2 = r^2, the nearer root in front of tmin (the farther one
-// from inside); the half-b form, b' = (o - c).d.
-std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& ray) {
-  const Vec3<float> oc = ray.origin - light.position;
-  const float a = dot(ray.direction, ray.direction), half_b = dot(oc, ray.direction);
-  const float c = dot(oc, oc) - light.radius * light.radius;
-  const float discriminant = half_b * half_b - a * c;
-  if (!(discriminant >= 0.f) || !(a > 0.f)) return std::nullopt;
-  const float root = std::sqrt(discriminant);
-  const float near = (-half_b - root) / a, far = (-half_b + root) / a;
-  return near > ray.tmin ? near : far;
+// The robust sphere kernel (geometry/kinds/sphere.h) in one lane: the
+// nearer root past tmin, the farther one from inside.
+std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& ray, float t_limit) {
+  const SphereLanes<float> sphere{light.position, light.radius * light.radius, 1.f / light.radius};
+  Candidate<float> hit;
+  if (!SphereRobust::intersect(prepare_sphere_ray(ray), sphere, t_limit, true, hit)) return std::nullopt;
+  return hit.t;
 }
 
 }  // namespace
@@ -38,7 +36,7 @@ std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& r
 std::optional<float> area_light_distance(const LightDesc& light, const Ray<float>& ray, float t_limit) {
   std::optional<float> t;
   if (light.kind == LightDesc::Kind::rectangle) t = rectangle_distance(light, ray);
-  if (light.kind == LightDesc::Kind::sphere) t = sphere_distance(light, ray);
+  if (light.kind == LightDesc::Kind::sphere) t = sphere_distance(light, ray, t_limit);
   if (!t || !(*t > ray.tmin && *t < t_limit)) return std::nullopt;
   return t;
 }

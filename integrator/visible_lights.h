@@ -3,8 +3,9 @@
 // sides, as it lights both) and a sphere light are met where a ray crosses
 // them in (tmin, t), t the ray's closest hit so far (its tmax on a miss):
 // the ray ends there, showing the light's colour unshaded. Shadow rays do
-// not see them (a light does not hide itself). One scalar formula serves
-// every kernel unit, so the widths agree bit for bit.
+// not see them (a light does not hide itself). One scalar test serves every
+// kernel unit, so the widths agree bit for bit: a sphere light by the
+// robust sphere kernel (geometry/kinds/sphere.h) in one lane.
 #pragma once
 
 #include <cstddef>

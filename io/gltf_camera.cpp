@@ -69,16 +69,20 @@ class CameraReader {
     throw ParseError::whole_file(file_, "expected " + path + " to be " + std::string(expected));
   }
 
-  // The scene Assimp reads: "scene", else the first; without scenes, every node no other names.
+  // The roots Assimp reads, as io/gltf_check.cpp counts them: the nodes of
+  // "scene", else of every scene in turn; without scenes, every node no other names.
   std::vector<std::size_t> root_nodes(const json& nodes) const {
     std::vector<std::size_t> roots;
     const auto scenes = document_.find("scenes");
     if (scenes != document_.end() && scenes->is_array() && !scenes->empty()) {
       const auto chosen = document_.find("scene");
-      const std::size_t s = chosen != document_.end() && chosen->is_number_unsigned() ? chosen->get<std::size_t>() : 0;
-      const json& scene = (*scenes)[s];
-      if (const auto list = scene.find("nodes"); list != scene.end() && list->is_array()) {
-        for (const json& n : *list) roots.push_back(n.get<std::size_t>());
+      const bool one = chosen != document_.end() && chosen->is_number_unsigned();
+      for (std::size_t s = 0; s < scenes->size(); ++s) {
+        if (one && s != chosen->get<std::size_t>()) continue;
+        const json& scene = (*scenes)[s];
+        if (const auto list = scene.find("nodes"); list != scene.end() && list->is_array()) {
+          for (const json& n : *list) roots.push_back(n.get<std::size_t>());
+        }
       }
       return roots;
     }

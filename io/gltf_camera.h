@@ -1,8 +1,8 @@
 // A glTF 2.0 file's camera, read from its JSON after io/gltf_check.h has
 // checked the document (nodes form trees): the first node, depth-first
-// from the roots of the scene Assimp reads ("scene", else the first
-// scene's, else every node without a parent) in their order, that names a
-// perspective camera. The camera looks down the node's -z with +y up, its
+// from the roots Assimp reads ("scene"'s, else every scene's in turn, else
+// every node without a parent; as io/gltf_check.h counts them) in their
+// order, that names a perspective camera. The camera looks down the node's -z with +y up, its
 // world transform the product of its ancestors' (each a "matrix", or
 // translation x rotation x scale). glTF's yfov spans the image's height
 // edge to edge; quiver's angle spans the outermost pixel centres of the

@@ -33,37 +33,47 @@ struct Bounds {
   bool empty() const { return lo[0] > hi[0]; }
 };
 
-// Calls visit(p, margin) for balls that together cover every bounded
-// primitive: each kind's extent, and the corners of each instance's placed
-// mesh box.
-template <class Visit>
-void visit_extent(const SceneDesc& scene, Visit&& visit) {
-  for_each_kind([&]<class K>(K) {
-    for (const auto& entry : scene.*SceneEntries<K>::of) K::extent(entry.*SceneEntries<K>::desc, visit);
-  });
-  std::vector<Bounds> mesh_bounds(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    for (const SceneTriangle& t : scene.meshes[m].triangles) {
-      for (const Vec3<float>& p : t.triangle.p) mesh_bounds[m].add(p);
+// Balls that together cover every bounded primitive: each kind's extent,
+// and the corners of each instance's placed mesh box (the meshes' boxes
+// found once, as the default camera visits the balls several times).
+class ExtentBalls {
+ public:
+  explicit ExtentBalls(const SceneDesc& scene) : scene_(scene), mesh_bounds_(scene.meshes.size()) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      for (const SceneTriangle& t : scene.meshes[m].triangles) {
+        for (const Vec3<float>& p : t.triangle.p) mesh_bounds_[m].add(p);
+      }
     }
   }
-  for (const SceneInstance& instance : scene.instances) {
-    if (instance.mesh >= mesh_bounds.size() || mesh_bounds[instance.mesh].empty()) continue;
-    const Bounds& m = mesh_bounds[instance.mesh];
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
-                          static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
-                          static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
-      visit(apply_point(instance.object_to_world, p), 0.0);
-    }
-  }
-}
 
-Bounds scene_bounds(const SceneDesc& scene) {
-  Bounds b;
-  visit_extent(scene, [&](const Vec3<float>& p, double margin) { b.add(p, margin); });
-  return b;
-}
+  // Calls visit(p, margin) for each ball.
+  template <class Visit>
+  void operator()(Visit&& visit) const {
+    for_each_kind([&]<class K>(K) {
+      for (const auto& entry : scene_.*SceneEntries<K>::of) K::extent(entry.*SceneEntries<K>::desc, visit);
+    });
+    for (const SceneInstance& instance : scene_.instances) {
+      if (instance.mesh >= mesh_bounds_.size() || mesh_bounds_[instance.mesh].empty()) continue;
+      const Bounds& m = mesh_bounds_[instance.mesh];
+      for (int corner = 0; corner < 8; ++corner) {
+        const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
+                            static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
+                            static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
+        visit(apply_point(instance.object_to_world, p), 0.0);
+      }
+    }
+  }
+
+  Bounds bounds() const {
+    Bounds b;
+    (*this)([&](const Vec3<float>& p, double margin) { b.add(p, margin); });
+    return b;
+  }
+
+ private:
+  const SceneDesc& scene_;
+  std::vector<Bounds> mesh_bounds_;
+};
 
 Vec3<float> to_float(const Vec3<double>& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
@@ -173,7 +183,7 @@ DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3
     view.up = unit(to_double(scene.model_up->axis));
     view.up_reason = axis_name(view.up) + ", " + scene.model_up->convention;
   } else if (mesh) {
-    const Bounds bounds = scene_bounds(scene);
+    const Bounds bounds = ExtentBalls(scene).bounds();
     const double least = 0.02 * mesh_area(scene);
     if (base_area(scene, 2, bounds) >= least && base_area(scene, 1, bounds) < least) {
       view.up = z;
@@ -293,14 +303,14 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
   axes.tangent_across = longest * double(std::max(width - 1, 1)) / longer;
   axes.tangent_up = longest * double(std::max(height - 1, 1)) / longer;
 
-  const Bounds bounds = scene_bounds(scene);
+  const ExtentBalls primitives(scene);
+  const Bounds bounds = primitives.bounds();
   Vec3<double> target{0.0, 0.0, 0.0};
   double distance = 0.0;
   if (bounds.empty()) {
     const auto unit_ball = [](auto&& visit) { visit(Vec3<float>{0.f, 0.f, 0.f}, 1.0); };
     distance = fitting_distance(unit_ball, target, axes, kDefaultViewFill);
   } else {
-    const auto primitives = [&](auto&& visit) { visit_extent(scene, visit); };
     for (int a = 0; a < 3; ++a) target[a] = 0.5 * bounds.lo[a] + 0.5 * bounds.hi[a];
     // Fit and centre twice (moving the target changes the depths, so the
     // first centring is close, the second closer), then fit: exact for that target.

@@ -84,6 +84,11 @@ TEST(GltfCamera, TheFirstPerspectiveCameraAndOrthographicOnesNamed) {
   ASSERT_TRUE(found.camera.has_value());
   expect_near(found.camera->from, 1, 0, 0);  // node 2, below node 0, comes before node 1
   EXPECT_EQ(found.unused, "nodes[0] names cameras[0], of type orthographic; quiver's camera is a perspective one");
+  // Without "scene", every scene's roots in turn (as gltf_check counts them).
+  const GltfCamera second_scene = read(R"({"scenes": [{"nodes": [0]}, {"nodes": [1]}], "nodes": [
+      {"translation": [1, 2, 3]}, {"translation": [4, 5, 6], "camera": 1}], )" + cameras + "}");
+  ASSERT_TRUE(second_scene.camera.has_value());
+  expect_near(second_scene.camera->from, 4, 5, 6);
   const GltfCamera none = read(R"({"nodes": [{"translation": [1, 2, 3]}]})");
   EXPECT_FALSE(none.camera.has_value());
   EXPECT_TRUE(none.unused.empty());
