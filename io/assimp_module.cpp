@@ -66,6 +66,9 @@ ImportedMaterial material_of(const aiScene& scene, const aiMaterial& m) {
   float value = 0.f;
   if (m.Get(AI_MATKEY_TRANSMISSION_FACTOR, value) == aiReturn_SUCCESS) out.transmission = value;
   if (m.Get(AI_MATKEY_REFRACTI, value) == aiReturn_SUCCESS) out.ior = value;
+  out.metallic = m.Get(AI_MATKEY_METALLIC_FACTOR, value) == aiReturn_SUCCESS ? value : 1.f;
+  out.roughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, value) == aiReturn_SUCCESS ? value : 1.f;
+  out.metallic_roughness_texture = m.GetTextureCount(aiTextureType_UNKNOWN) > 0 ? 1 : 0;
   aiString texture;
   aiTextureMapMode modes[3] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
   const auto colour_texture = [&](aiTextureType type) {

@@ -14,7 +14,7 @@
 namespace quiver {
 
 // Bumped whenever AssimpModuleApi or the structs below change.
-inline constexpr int kAssimpModuleVersion = 5;
+inline constexpr int kAssimpModuleVersion = 6;
 
 inline constexpr const char* kAssimpModuleEntry = "quiver_assimp_module_api";
 inline constexpr const char* kAssimpModuleFileName = "quiver_assimp.so";
@@ -26,6 +26,8 @@ struct ImportedMaterial {
   int two_sided;        // glTF doubleSided; 1 when the format has no such flag
   float transmission;   // glTF KHR_materials_transmission's factor; 0 when absent
   float ior;            // glTF KHR_materials_ior's; 0 when absent
+  float metallic, roughness;  // glTF's metallic-roughness factors; 1 and 1 (glTF's defaults) when absent
+  int metallic_roughness_texture;  // 1: glTF's metallicRoughnessTexture is named
   char texture[1024];   // the colour texture's path as written ("" none, "*N" embedded), cut to fit
   int wrap_u, wrap_v;   // its aiTextureMapMode per axis: 0 wrap, 1 clamp, 2 mirror, 3 decal (glTF's sampler)
   // An embedded colour texture's image file (PNG, JPEG, ...) bytes, or null;

@@ -1,14 +1,12 @@
 // A glTF 2.0 file's camera, read from its JSON after io/gltf_check.h has
-// checked the document (nodes form trees): the first node, depth-first
-// from the roots Assimp reads ("scene"'s, else every scene's in turn, else
-// every node without a parent; as io/gltf_check.h counts them) in their
-// order, that names a perspective camera. The camera looks down the node's -z with +y up, its
-// world transform the product of its ancestors' (each a "matrix", or
-// translation x rotation x scale). glTF's yfov spans the image's height
-// edge to edge; quiver's angle spans the outermost pixel centres of the
-// longer side, of an image kDefaultImageSide wide or tall as aspectRatio
-// says (square without one). An orthographic camera is not used (quiver's
-// camera is a pinhole): the result says so, for a warning.
+// checked the document (nodes form trees): the first node, depth-first from
+// the roots (io/gltf_node_walk.h), that names a perspective camera. The
+// camera looks down the node's -z with +y up, placed by the node's world
+// transform. glTF's yfov spans the image's height edge to edge; quiver's
+// angle spans the outermost pixel centres of the longer side, of an image
+// kDefaultImageSide wide or tall as aspectRatio says (square without one).
+// An orthographic camera is not used (quiver's camera is a pinhole): the
+// result says so, for a warning.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>

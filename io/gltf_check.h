@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "io/gltf_lights.h"
 #include "io/obj_reader.h"
 #include "io/path_rule.h"
 
@@ -55,6 +56,8 @@ struct GltfContents {
   // Its camera (io/gltf_camera.h), filled by check_gltf (io/mesh_file_check.h).
   std::optional<CameraDesc> camera;
   std::string unused_camera;  // a camera a node names that is not used, and why
+  // Its punctual lights (io/gltf_lights.h), filled by check_gltf.
+  GltfLights lights;
 };
 
 // `document` is the parsed glTF whose buffers (byteLength) have been checked

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/gltf_camera.h"
+#include "io/gltf_lights.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/uri_path.h"
@@ -188,6 +189,7 @@ GltfContents check_gltf_json(std::string_view json_text, std::string_view file, 
   GltfCamera camera = gltf_camera(document, file);
   contents.camera = camera.camera;
   contents.unused_camera = std::move(camera.unused);
+  contents.lights = gltf_lights(document, file);
   return contents;
 }
 

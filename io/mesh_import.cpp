@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@
 #include "io/reader_warnings.h"
 #include "io/text_file.h"
 #include "io/uri_path.h"
+#include "scene/auto_view.h"
 
 namespace quiver {
 
@@ -89,6 +91,26 @@ WrapMode wrap_of(int mode) {
   }
 }
 
+// glTF's metallic-roughness in Phong's and Whitted's terms: a surface's
+// smoothness s = (1 - roughness)^2 is the share of its specular reflectance
+// at normal incidence F0 = 0.04 (1 - metallic) + metallic (glTF's dielectric
+// 4%, a metal's all) that is a mirror image: kr = ks = s F0, what the mirror
+// takes no longer diffused (kd times 1 - kr), highlights of Phong exponent
+// 2 / a^2 - 2 for a = roughness^2 (Walter et al. 2007's match to Beckmann's
+// width; 1 to 10^4). A rough surface (glTF's default: roughness 1) keeps
+// the diffuse base colour, so a file without the factors renders as before.
+void apply_metallic_roughness(float metallic, float roughness, MaterialDesc& material) {
+  const float m = std::clamp(std::isfinite(metallic) ? metallic : 1.f, 0.f, 1.f);
+  const float r = std::clamp(std::isfinite(roughness) ? roughness : 1.f, 0.f, 1.f);
+  const float smoothness = (1.f - r) * (1.f - r);
+  const float mirror = smoothness * (0.04f * (1.f - m) + m);
+  material.kr = mirror;
+  material.ks = mirror;
+  material.kd *= 1.f - mirror;
+  const float width = std::max(r * r, 0.01f);
+  material.shininess = std::clamp(2.f / (width * width) - 2.f, 1.f, 1e4f);
+}
+
 // glTF materials into the scene (PLY and STL: one default material).
 void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
                    const PathRule& paths, ReaderWarnings& warnings, SceneDesc& scene) {
@@ -109,6 +131,11 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
     MaterialDesc material;
     if (m.has_color) material.color = {m.color[0], m.color[1], m.color[2]};
     material.two_sided = m.two_sided != 0;
+    apply_metallic_roughness(m.metallic, m.roughness, material);
+    if (m.metallic_roughness_texture != 0) {
+      warnings.warn("metallic-roughness texture", whole_file, "metallic and roughness as factors",
+                    "a metallicRoughnessTexture", "its factors alone are used");
+    }
     // KHR_materials_transmission and _ior: the transmitted share refracts
     // (Whitted's kt) instead of scattering diffusely; such a surface is seen
     // from inside too, so two-sided (as NFF's transmissive surfaces).
@@ -265,6 +292,35 @@ SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double creas
   return scene;
 }
 
+// A glTF's punctual lights, scaled as io/gltf_lights.h says for the scene's
+// bounds, and what of them quiver does not model named; a scene lit by its
+// own lights gets the default rig's background (glTF has none).
+void use_gltf_lights(const GltfLights& lights, const std::string& file, ReaderWarnings& warnings, SceneDesc& scene) {
+  if (lights.lights.empty()) return;
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  Vec3<float> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  for (const SceneTriangle& t : scene.triangles) {
+    for (const Vec3<float>& p : t.triangle.p) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+    }
+  }
+  const Vec3<float> centre = scene.triangles.empty() ? Vec3<float>{0.f, 0.f, 0.f} : (lo + hi) * 0.5f;
+  scene.lights = scaled_gltf_lights(lights, centre, scene.ambient);
+  if (!scene.background) scene.background = Vec3<float>{1.f, 1.f, 1.f} * kDefaultRigBackground;
+  for (const std::string& spot : lights.spots) {
+    warnings.warn("gltf spot light", {file, 0, 0}, "a point or directional light", spot + ", a spot light",
+                  "it shines as a point light, without its cone");
+  }
+  for (const std::string& ranged : lights.ranges) {
+    warnings.warn("gltf light range", {file, 0, 0}, "a light without a range", ranged + ", with a range",
+                  "its light does not fall off (quiver's lights never do)");
+  }
+  scene.warnings = warnings.lines();
+}
+
 }  // namespace
 
 bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
@@ -324,6 +380,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                   "the default view is used");
     scene.warnings = warnings.lines();
   }
+  use_gltf_lights(gltf.lights, file, warnings, scene);
   // Assimp must return every triangle the file declares; what it does not is named.
   FaceTally& tally = scene.face_tallies.front();
   if (declared_triangles > tally.kept) {

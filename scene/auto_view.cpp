@@ -333,6 +333,11 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
   return view;
 }
 
+float default_light_total(const Vec3<float>& ambient) {
+  const float largest_ambient = std::max({ambient.x, ambient.y, ambient.z});
+  return std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));
+}
+
 bool add_default_lights(SceneDesc& scene) {
   if (!scene.camera) throw std::invalid_argument("add_default_lights: the scene has no camera");
   if (!scene.lights.empty()) return false;
@@ -342,7 +347,7 @@ bool add_default_lights(SceneDesc& scene) {
   const double view_distance = std::sqrt(dot(to_double(c.at) - eye, to_double(c.at) - eye));
   const float largest_ambient = std::max({scene.ambient.x, scene.ambient.y, scene.ambient.z});
   if (largest_ambient == 0.f) scene.ambient = {0.1f, 0.1f, 0.1f};
-  const float light = std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));
+  const float light = default_light_total(scene.ambient);
   LightDesc key;
   key.kind = LightDesc::Kind::point;
   key.position = to_float(eye + (frame.right + frame.up) * (0.5 * view_distance));

@@ -63,6 +63,9 @@ inline constexpr double kDefaultViewFill = 0.9;
 // both stand out against. Returns whether the rig was added; throws as
 // camera_frame (scene/camera_frame.h) for a degenerate camera.
 bool add_default_lights(SceneDesc& scene);
+// The rig's light in all for a scene of this ambient: 1 minus its largest
+// component (taken as at least 0.1), at least 0.3.
+float default_light_total(const Vec3<float>& ambient);
 inline constexpr float kDefaultKeyShare = 0.7f;
 inline constexpr float kDefaultRigBackground = 0.18f;
 

@@ -377,6 +377,50 @@ TEST(MeshImport, GltfTransmissionAndIorBecomeRefraction) {
   EXPECT_EQ(plain.kd, MaterialDesc{}.kd);
 }
 
+// glTF's metallic-roughness factors by io/mesh_import.cpp's rule: a polished
+// metal is a mirror with sharp highlights, a half-rough dielectric keeps
+// most of its diffuse colour, the defaults (rough) change nothing; a
+// metallicRoughnessTexture is named in a warning, its factors used.
+TEST(MeshImport, GltfMetallicRoughnessBecomesMirrorAndHighlights) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const auto material_of = [&](const std::string& factors) {
+    std::string json = file_bytes(kMeshes / "triangle.gltf");
+    const std::size_t at = json.find("\"baseColorFactor\"");
+    json.insert(at, factors);
+    const fs::path path = temporary.path() / "metal.gltf";
+    write_file(path, json);
+    const SceneDesc scene = read_imported_mesh(path);
+    return scene.materials.at(scene.triangles.at(0).material);
+  };
+  const MaterialDesc metal = material_of(R"("metallicFactor": 1.0, "roughnessFactor": 0.0, )");
+  EXPECT_EQ(metal.kr, 1.f);
+  EXPECT_EQ(metal.ks, 1.f);
+  EXPECT_EQ(metal.kd, 0.f);
+  EXPECT_EQ(metal.shininess, 1e4f);
+  const MaterialDesc satin = material_of(R"("metallicFactor": 0.0, "roughnessFactor": 0.5, )");
+  EXPECT_FLOAT_EQ(satin.kr, 0.25f * 0.04f);
+  EXPECT_FLOAT_EQ(satin.ks, 0.25f * 0.04f);
+  EXPECT_FLOAT_EQ(satin.kd, MaterialDesc{}.kd * (1.f - 0.01f));
+  EXPECT_FLOAT_EQ(satin.shininess, 2.f / (0.25f * 0.25f) - 2.f);
+  const MaterialDesc rough = read_imported_mesh(kMeshes / "triangle.gltf").materials.at(0);
+  EXPECT_EQ(rough.kr, 0.f);
+  EXPECT_EQ(rough.ks, 0.f);
+  EXPECT_EQ(rough.kd, MaterialDesc{}.kd);
+
+  std::string json = file_bytes(kMeshes / "textured.gltf");
+  const std::size_t at = json.find("\"baseColorTexture\"");
+  ASSERT_NE(at, std::string::npos);
+  json.insert(at, R"("metallicRoughnessTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 0.0, )");
+  const fs::path path = temporary.path() / "textured_metal.gltf";
+  write_file(path, json);
+  const SceneDesc scene = read_imported_mesh(path);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("a metallicRoughnessTexture; its factors alone are used"), std::string::npos)
+      << scene.warnings[0];
+  EXPECT_FLOAT_EQ(scene.materials.at(scene.triangles.at(0).material).kr, 0.04f);
+  EXPECT_THROW(read_imported_mesh(path, 60.0, true), ParseError);
+}
+
 // A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes).
 std::string glb(std::string json, std::string binary, std::uint32_t stated_length_extra = 0) {
   while (json.size() % 4 != 0) json += ' ';
