@@ -114,7 +114,7 @@ int run_render(const RenderArgs& args) {
     quiver::ProgressBar progress(stderr, quiver::progress_style_for(stderr, args.quiet));
     const quiver::RenderResult result = quiver::render(
         prepared.scene, settings,
-        [&](const quiver::RenderProgressState& p) { progress.update(p.tiles_done, p.tiles_total, p.work_done); },
+        [&](const quiver::RenderProgressState& p) { progress.update(p.tiles_done, p.tiles_total, p.work_done, p.tile_seconds); },
         &quiver::stop_requested());
     progress.finish();
     if (result.stopped()) {

@@ -34,10 +34,12 @@ ProgressBar::ProgressBar(std::FILE* out, ProgressStyle style)
                   style == ProgressStyle::log ? Clock::duration(std::chrono::seconds(5))
                                               : Clock::duration(std::chrono::milliseconds(100))) {}
 
-void ProgressBar::update(std::size_t done, std::size_t total, double work_done) {
+void ProgressBar::update(std::size_t done, std::size_t total, double work_done,
+                         std::optional<double> work_seconds) {
   done_ = done;
   total_ = total;
   work_done_ = work_done;
+  work_seconds_ = work_seconds;
   if (style_ == ProgressStyle::off || finished_) return;
   const Clock::time_point now = Clock::now();
   if (now - start_ < delay_) return;
@@ -58,11 +60,13 @@ void ProgressBar::draw(Clock::time_point now) {
   const std::size_t done = done_, total = total_;
   const double fraction = total == 0 ? 1.0 : double(done) / double(total);
   const double seconds = std::chrono::duration<double>(now - start_).count();
-  const std::optional<double> left = seconds_left(work_done_, seconds);
+  const std::optional<double> left = seconds_left(work_done_, std::min(work_seconds_.value_or(seconds), seconds));
   std::string eta;
   if (left && done < total) {
+    // Two significant digits below 10 s, so the last seconds read as precisely as the first.
     char text[32];
-    std::snprintf(text, sizeof text, ", ETA %.1f s", *left);
+    std::snprintf(text, sizeof text, *left < 1.0 ? ", ETA %.2f s" : *left < 10.0 ? ", ETA %.1f s" : ", ETA %.0f s",
+                  *left);
     eta = text;
   }
   const int percent = static_cast<int>(fraction * 100.0);

@@ -33,8 +33,11 @@ class ProgressBar {
   ProgressBar(std::FILE* out, ProgressStyle style, Clock::duration delay, Clock::duration interval);
   ProgressBar(std::FILE* out, ProgressStyle style);
 
-  // work_done: the share of the work done (0 to 1), behind the time left.
-  void update(std::size_t done, std::size_t total, double work_done);
+  // work_done: the share of the work done (0 to 1), behind the time left;
+  // work_seconds: the time that work took, when the elapsed time holds more
+  // (the setup before the first tile is no part of the work's pace).
+  void update(std::size_t done, std::size_t total, double work_done,
+              std::optional<double> work_seconds = std::nullopt);
   // The bar: draws the final state if it is showing, then a newline. A log:
   // nothing (the render's summary line follows).
   void finish();
@@ -50,6 +53,7 @@ class ProgressBar {
   Clock::time_point start_, last_draw_;
   std::size_t done_ = 0, total_ = 0;
   double work_done_ = 0.0;
+  std::optional<double> work_seconds_;
   bool drawn_ = false, finished_ = false;
 };
 

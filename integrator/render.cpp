@@ -233,6 +233,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
     weights = renderer.estimate_costs(all, kTileCostStride);
     for (double& w : weights) work.add_to_total(w = WorkDone::weight(w));
   }
+  const auto tiles_start = std::chrono::steady_clock::now();
   renderer.render_tiles(
       film,
       [&]() -> std::optional<std::size_t> {
@@ -245,7 +246,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, const Re
         if (progress) {
           std::lock_guard lock(progress_mutex);
           work.add_done(weights[tile]);
-          progress({finished, total, work.share()});
+          progress({finished, total, work.share(),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - tiles_start).count()});
         }
       },
       stop);

@@ -80,6 +80,7 @@ std::vector<PixelTile> pixel_tiles(int width, int height, int side);
 struct RenderProgressState {
   std::size_t tiles_done = 0, tiles_total = 0;
   double work_done = 0.0;  // 0 to 1
+  double tile_seconds = 0.0;  // since the first tile started: the time the work done took
 };
 
 // One ray per this many pixels on a side estimates a tile's cost
@@ -87,10 +88,12 @@ struct RenderProgressState {
 inline constexpr int kTileCostStride = 8;
 
 // The share of a frame's work done, tiles weighted by their estimated cost
-// (plus one, so that no tile weighs nothing).
+// in microseconds, plus a hundredth so that no tile weighs nothing (a larger
+// floor would make the many cheap tiles of a frame's empty parts weigh more
+// than their share).
 class WorkDone {
  public:
-  static double weight(double estimated_cost) { return std::max(estimated_cost, 0.0) + 1.0; }
+  static double weight(double estimated_cost) { return std::max(estimated_cost, 0.0) + 0.01; }
   void add_to_total(double weight) { total_ += weight; }
   void add_done(double weight) { done_ += weight; }
   // 0 to 1; 1 for a frame of no work.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -111,6 +112,28 @@ TEST(ProgressBar, ShowsTheTimeLeftUntilTheLastTile) {
   const std::string text = out.text();
   const std::string last = text.substr(text.rfind('\r'));
   EXPECT_EQ(last.find("ETA"), std::string::npos) << last;  // done: no estimate
+}
+
+// The time left is judged by the pace of the work (work_seconds when given,
+// not the elapsed time, which holds the setup before the first tile), with
+// two significant digits below 10 s.
+TEST(ProgressBar, TheTimeLeftFollowsThePaceOfTheWork) {
+  Capture out;
+  ASSERT_NE(out.file(), nullptr);
+  ProgressBar bar(out.file(), ProgressStyle::log, 0s, 0s);
+  std::this_thread::sleep_for(50ms);  // the elapsed time is now well above the work's
+  bar.update(1, 4, 0.5, 0.004);
+  bar.update(1, 4, 0.5, 0.03);
+  bar.update(2, 4, 0.02, 0.04);
+  bar.update(3, 4, 0.001, 0.04);
+  bar.update(3, 4, 0.5, 5.0);  // more than elapsed: elapsed (0.05 s or a little more) wins
+  const std::string text = out.text();
+  EXPECT_NE(text.find(", ETA 0.00 s\n"), std::string::npos) << text;  // 0.004 s left
+  EXPECT_NE(text.find(", ETA 0.03 s\n"), std::string::npos) << text;
+  EXPECT_NE(text.find(", ETA 2.0 s\n"), std::string::npos) << text;
+  EXPECT_NE(text.find(", ETA 40 s\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find(", ETA 5.0 s"), std::string::npos) << text;
+  EXPECT_EQ(count(text, '\n'), 5u) << text;
 }
 
 TEST(ProgressBar, ALogGetsWholeLinesAndNothingAtTheEnd) {

@@ -47,14 +47,14 @@ TEST(TileSchedule, GivesTheCostliestTilesFirstAndSkipsDoneOnes) {
 }
 
 TEST(TileSchedule, WorkDoneWeighsTilesByTheirEstimatedCost) {
-  // Weights cost + 1: 10, 2, 1, 1 (a negative estimate counts as 0).
+  // Weights cost + 0.01: 9.01, 1.01, 0.01, 0.01 (a negative estimate counts as 0).
   TileSchedule schedule(4, {false, false, false, true}, {9.0, 1.0, -5.0, 0.0}, 1);
-  EXPECT_DOUBLE_EQ(schedule.work_done(), 1.0 / 14.0);  // the tile resumed as done
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 0.01 / 10.04);  // the tile resumed as done
   ASSERT_EQ(schedule.take(0, 1), std::vector<std::uint32_t>{0});
   EXPECT_TRUE(schedule.complete(0, 0));
-  EXPECT_DOUBLE_EQ(schedule.work_done(), 11.0 / 14.0);
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 9.02 / 10.04);
   EXPECT_FALSE(schedule.complete(0, 0));  // a repeat adds nothing
-  EXPECT_DOUBLE_EQ(schedule.work_done(), 11.0 / 14.0);
+  EXPECT_DOUBLE_EQ(schedule.work_done(), 9.02 / 10.04);
   for (std::uint32_t t : {1u, 2u}) EXPECT_TRUE(schedule.complete(t, 0));
   EXPECT_DOUBLE_EQ(schedule.work_done(), 1.0);
 
