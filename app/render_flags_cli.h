@@ -75,8 +75,9 @@ inline void add_camera_flags(CLI::App& command, RawCameraFlags& raw) {
   raw.up_option = command.add_option("--up", raw.up,
                                      "The camera's up direction x,y,z (its part across the view is used); for a "
                                      "scene without a camera, also the model's up axis the default view is "
-                                     "placed around (else +z for STL, CAD's convention; else +y, or +z for a "
-                                     "mesh standing on a flat base at its lowest z; `quiver info` says which)")
+                                     "placed around (else +z for STL, CAD's convention, and for PLY by Blender or "
+                                     "OBJ by FreeCAD, which keep their +z up; else +y, or +z for a mesh standing "
+                                     "on a flat base at its lowest z; `quiver info` says which)")
                       ->type_name("X,Y,Z");
   raw.fov_option = command.add_option("--fov", raw.fov, "Field of view in degrees, (0, 180), as the scene's camera "
                                                         "angle")

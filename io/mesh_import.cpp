@@ -343,7 +343,12 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
   std::uint64_t declared_triangles = 0;  // as the file counts them; 0 when it does not
   switch (*format) {
     case MeshFormat::ply:
-      return scene_from_ply(read_ply(bytes, file, warnings, triangle_budget), file, crease_angle_degrees, warnings);
+    {
+      const PlyMesh ply = read_ply(bytes, file, warnings, triangle_budget);
+      SceneDesc scene = scene_from_ply(ply, file, crease_angle_degrees, warnings);
+      scene.model_up = ply.stated_up;
+      return scene;
+    }
     case MeshFormat::stl:
       declared_triangles = check_stl(bytes, file).triangles;
       break;

@@ -26,6 +26,7 @@
 
 #include "geometry/kinds/polygon.h"
 #include "geometry/vertex_normals.h"
+#include "io/creator_up_axis.h"
 #include "io/face_triangulation.h"
 #include "io/parse_error.h"
 #include "io/reader_warnings.h"
@@ -745,6 +746,21 @@ class ObjReader {
   std::vector<std::array<std::size_t, 3>> triples_;
 };
 
+// The up axis the comment lines at the top of the file state (io/creator_up_axis.h).
+std::optional<SceneDesc::StatedUp> stated_up_of_leading_comments(std::string_view text) {
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string_view line = text.substr(at, end - at);
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string_view::npos) {
+      if (line[first] != '#') break;  // the first statement ends the leading comments
+      if (auto up = creator_up_axis(CreatorFormat::obj, line.substr(first + 1))) return up;
+    }
+    at = end + 1;
+  }
+  return std::nullopt;
+}
+
 SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLookup& find_library,
                     std::size_t triangle_budget, double crease_angle_degrees, bool strict) {
   if (!valid_crease_angle(crease_angle_degrees)) {
@@ -754,7 +770,9 @@ SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLooku
     throw ParseError::whole_file(file,
                                  joined({"larger than the OBJ limit of ", std::to_string(kMaxObjBytes), " bytes"}));
   }
-  return ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
+  SceneDesc scene = ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
+  scene.model_up = stated_up_of_leading_comments(text);
+  return scene;
 }
 
 MtlLookup libraries_beside(const fs::path& obj_path, const PathRule& paths) {

@@ -18,6 +18,7 @@
 #include <string>
 #include <system_error>
 
+#include "io/creator_up_axis.h"
 #include "io/face_triangulation.h"
 #include "io/parse_error.h"
 #include "simd/vec3.h"
@@ -114,6 +115,7 @@ struct PlyHeader {
   std::vector<PlyElement> elements;
   std::size_t data_offset = 0;  // the first byte after end_header's line
   std::size_t lines = 0;        // of the header
+  std::optional<SceneDesc::StatedUp> stated_up;  // by a comment naming the tool that wrote it
 };
 
 // One property line ("property [list COUNT] TYPE NAME") of the last element.
@@ -164,7 +166,12 @@ PlyHeader read_ply_header(std::string_view bytes, std::string_view file, ReaderW
     }
     if (words.empty()) fail(0, "a PLY header line (format, comment, element, property or end_header)");
     const std::string_view keyword = words[0].text;
-    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "comment" || keyword == "obj_info") {
+      if (auto up = creator_up_axis(CreatorFormat::ply, line.substr(words[0].text.size())); up && !header.stated_up) {
+        header.stated_up = std::move(up);
+      }
+      continue;
+    }
     if (keyword == "end_header") {
       if (!have_format) fail(0, "a 'format' line before 'end_header'");
       header.data_offset = std::min(offset, bytes.size());
@@ -880,6 +887,7 @@ PlyMesh read_ply(std::string_view bytes, std::string_view file, ReaderWarnings& 
     BinaryCursor in(bytes, header, file);
     read_data(in, header, layout, warnings, triangle_budget, file, mesh);
   }
+  mesh.stated_up = header.stated_up;
   return mesh;
 }
 

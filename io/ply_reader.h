@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct PlyMesh {
   // Faces declared (face elements, strip triangles other than degenerate
   // joins, edges) and kept (faces of 3 or more vertices, strip triangles).
   std::uint64_t faces_declared = 0, faces_kept = 0;
+  std::optional<SceneDesc::StatedUp> stated_up;  // io/creator_up_axis.h, from a header comment
 };
 
 // `bytes` is the whole file, `file` its name in messages. At most
