@@ -1,5 +1,7 @@
 #include "app/scene_info.h"
 
+#include <cmath>
+#include <numbers>
 #include <charconv>
 #include <initializer_list>
 #include <cstdio>
@@ -24,6 +26,14 @@ std::string number(float value) {
   char text[32];
   const auto end = std::to_chars(text, text + sizeof text, value).ptr;
   return std::string(text, end);
+}
+
+// An angle in degrees from its cosine, to 4 significant digits (the
+// cosine's rounding moves the angle in its sixth).
+std::string degrees_of_cosine(float cosine) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", std::acos(double(cosine)) * 180.0 / std::numbers::pi);
+  return text;
 }
 
 std::string vec(const Vec3<float>& v) {
@@ -59,6 +69,7 @@ std::string_view light_kind(LightDesc::Kind kind) {
     case LightDesc::Kind::directional: return "directional";
     case LightDesc::Kind::rectangle: return "rectangle";
     case LightDesc::Kind::sphere: return "sphere";
+    case LightDesc::Kind::spot: return "spot";
   }
   return "?";
 }
@@ -185,6 +196,10 @@ void write_lights(std::ostream& out, const SceneDesc& desc, const Scene& scene) 
     switch (l.kind) {
       case LightDesc::Kind::point: out << " position " << vec(l.position); break;
       case LightDesc::Kind::directional: out << " direction " << vec(l.direction); break;
+      case LightDesc::Kind::spot:
+        out << " position " << vec(l.position) << " direction " << vec(l.direction) << " cone "
+            << degrees_of_cosine(l.cone_inner_cos) << " to " << degrees_of_cosine(l.cone_outer_cos) << " degrees";
+        break;
       case LightDesc::Kind::rectangle:
         out << " corner " << vec(l.position) << " edges " << vec(l.edge_u) << " " << vec(l.edge_v);
         break;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 
+#include "integrator/light_cone.h"
 #include "integrator/optics.h"
 #include "integrator/ray_differentials.h"
 #include "integrator/sample_hash.h"
@@ -82,7 +83,8 @@ Vec3<F> light_sample_direction(const WaveShadingInput& in, std::size_t light_ind
   const LightDesc& light = in.scene->lights[light_index];
   tmax = kShadowEndFraction;
   switch (light.kind) {
-    case LightDesc::Kind::point: return Vec3<F>(light.position) - origin;
+    case LightDesc::Kind::point:
+    case LightDesc::Kind::spot: return Vec3<F>(light.position) - origin;
     case LightDesc::Kind::directional: tmax = kInfinity; return Vec3<F>(-light.direction);
     case LightDesc::Kind::rectangle:
     case LightDesc::Kind::sphere: break;
@@ -256,7 +258,10 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
       const F specular = select((ks > F(0.f)) & (n_dot_h > F(0.f)), ks * pow_lanes(n_dot_h, shininess), F(0.f));
       // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
       const Vec3<F> reflected = h.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
-      const Vec3<F> contribution = mul(h.weight, mul(intensity, reflected));
+      Vec3<F> contribution = mul(h.weight, mul(intensity, reflected));
+      if (scene.lights[l].kind == LightDesc::Kind::spot) {
+        contribution = contribution * spot_light_share(scene.lights[l], to_light);
+      }
       // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
       if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
       const unsigned bits = lane_bits(cast);

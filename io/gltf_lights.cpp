@@ -46,30 +46,30 @@ class LightReader {
     GltfLight placed;
     placed.light.color = color(light, path);
     placed.intensity = intensity(light, path);
-    if (*type == "directional") {
-      placed.light.kind = LightDesc::Kind::directional;
-      placed.light.direction = gltf_transformed(world, 0, 0, -1, 0);
-      const Vec3<float>& d = placed.light.direction;
-      if (!(dot(d, d) > 0.f) || !std::isfinite(dot(d, d))) {
-        throw gltf_value_error(file_, node_path, "a transform that keeps a directional light's direction");
-      }
-    } else {
-      placed.light.kind = LightDesc::Kind::point;
+    placed.light.kind = *type == "directional" ? LightDesc::Kind::directional
+                        : *type == "spot"        ? LightDesc::Kind::spot
+                                                 : LightDesc::Kind::point;
+    if (placed.light.kind != LightDesc::Kind::directional) {
       placed.light.position = gltf_transformed(world, 0, 0, 0, 1);
       if (!std::isfinite(dot(placed.light.position, placed.light.position))) {
         throw gltf_value_error(file_, node_path, "a transform that places a light at finite coordinates");
       }
     }
-    if (*type == "spot") check_cone(light, path);
-    const std::string named = node_path + " names " + path;
-    if (*type == "spot") out.spots.push_back(named);
-    if (light.contains("range")) out.ranges.push_back(named);
+    if (placed.light.kind != LightDesc::Kind::point) {
+      placed.light.direction = gltf_transformed(world, 0, 0, -1, 0);
+      const Vec3<float>& d = placed.light.direction;
+      if (!(dot(d, d) > 0.f) || !std::isfinite(dot(d, d))) {
+        throw gltf_value_error(file_, node_path, "a transform that keeps a light's direction");
+      }
+    }
+    if (placed.light.kind == LightDesc::Kind::spot) set_cone(light, path, placed.light);
+    if (light.contains("range")) out.ranges.push_back(node_path + " names " + path);
     out.lights.push_back(placed);
   }
 
  private:
   // A spot's "spot" object, which glTF requires: cone angles 0 <= inner < outer <= pi/2.
-  void check_cone(const json& light, const std::string& path) const {
+  void set_cone(const json& light, const std::string& path, LightDesc& spot_light) const {
     const auto spot = light.find("spot");
     const char* expected = "an object whose innerConeAngle (default 0) and outerConeAngle (default pi/4) satisfy "
                            "0 <= inner < outer <= pi/2";
@@ -84,6 +84,8 @@ class LightReader {
     if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2)) {
       throw gltf_value_error(file_, path + ".spot", expected);
     }
+    spot_light.cone_inner_cos = float(std::cos(inner));
+    spot_light.cone_outer_cos = float(std::cos(outer));
   }
 
   Vec3<float> color(const json& light, const std::string& path) const {
@@ -133,7 +135,7 @@ std::vector<LightDesc> scaled_gltf_lights(const GltfLights& lights, const Vec3<f
   double sum = 0.0;
   for (const GltfLight& g : lights.lights) {
     double e = g.intensity;
-    if (g.light.kind == LightDesc::Kind::point) {
+    if (g.light.kind != LightDesc::Kind::directional) {
       double d2 = 0.0;
       for (int a = 0; a < 3; ++a) {
         const double d = double(g.light.position[a]) - double(centre[a]);

@@ -2,19 +2,19 @@
 // JSON after io/gltf_check.h has checked the document: each node, depth
 // first from the roots (io/gltf_node_walk.h), that names a light places one.
 // A point or spot light sits at the node's origin, a directional or spot
-// light shines down the node's -z. glTF's units are physical (candela for
-// point and spot lights, lux for directional ones) and its point lights
-// fall off with the square of the distance; quiver's lights are Whitted's,
-// which do not fall off, so scaled_gltf_lights keeps the lights' colours and
-// how bright each is at the centre of the model, against the others:
+// light shines down the node's -z, a spot within its cone angles. glTF's
+// units are physical (candela for point and spot lights, lux for
+// directional ones) and its point lights fall off with the square of the
+// distance; quiver's lights are Whitted's, which do not fall off, so
+// scaled_gltf_lights keeps the lights' colours and how bright each is at
+// the centre of the model, against the others:
 //   illuminance E = intensity (directional), intensity / d^2 (point, spot;
 //   d from the light to the centre of the scene's bounds),
 //   quiver colour = color * E * total / (sum over the lights of E times
 //   their color's largest channel), total = default_light_total (the
 //   default rig's sum, scene/auto_view.h);
-// lights of zero intensity stay dark. A spot's cone and a light's range
-// are not modelled (a spot shines as a point light): each is named for a
-// warning (an error with --strict).
+// lights of zero intensity stay dark. A light's range is not modelled: it
+// is named for a warning (an error with --strict).
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -27,15 +27,15 @@
 namespace quiver {
 
 struct GltfLight {
-  LightDesc light;          // point or directional, placed; colour = glTF's color, unscaled
+  LightDesc light;          // placed; colour = glTF's color, unscaled
   double intensity = 1.0;   // candela (point, spot) or lux (directional)
 };
 
 struct GltfLights {
   std::vector<GltfLight> lights;
-  // What is not modelled, for warnings: per spot light and per light with
-  // a range, "nodes[N] names extensions.KHR_lights_punctual.lights[M]".
-  std::vector<std::string> spots, ranges;
+  // What is not modelled, for warnings: per light with a range,
+  // "nodes[N] names extensions.KHR_lights_punctual.lights[M]".
+  std::vector<std::string> ranges;
 };
 
 // Throws ParseError naming file and the JSON path of a light that is not an

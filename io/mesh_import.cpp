@@ -310,10 +310,6 @@ void use_gltf_lights(const GltfLights& lights, const std::string& file, ReaderWa
   const Vec3<float> centre = scene.triangles.empty() ? Vec3<float>{0.f, 0.f, 0.f} : (lo + hi) * 0.5f;
   scene.lights = scaled_gltf_lights(lights, centre, scene.ambient);
   if (!scene.background) scene.background = Vec3<float>{1.f, 1.f, 1.f} * kDefaultRigBackground;
-  for (const std::string& spot : lights.spots) {
-    warnings.warn("gltf spot light", {file, 0, 0}, "a point or directional light", spot + ", a spot light",
-                  "it shines as a point light, without its cone");
-  }
   for (const std::string& ranged : lights.ranges) {
     warnings.warn("gltf light range", {file, 0, 0}, "a light without a range", ranged + ", with a range",
                   "its light does not fall off (quiver's lights never do)");

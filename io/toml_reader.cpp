@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -529,11 +530,32 @@ class TomlSceneReader {
     scene_.materials.push_back(m);
   }
 
+  // A spot's cone half-angles in degrees: inner_angle (default 0, full
+  // light within) below outer_angle (default 45, no light beyond), at most 90.
+  void set_spot_cone(const toml::table& t, LightDesc& light) const {
+    constexpr std::string_view s = "[[lights]]";
+    double inner = 0.0, outer = 45.0;
+    const toml::node* inner_node = t.get("inner_angle");
+    const toml::node* outer_node = t.get("outer_angle");
+    if (outer_node) {
+      outer = number(*outer_node, "outer_angle", s);
+      if (!(outer > 0.0 && outer <= 90.0)) fail(*outer_node, expected_for("an angle in (0, 90] degrees", "outer_angle", s));
+    }
+    if (inner_node) {
+      inner = number(*inner_node, "inner_angle", s);
+      if (!(inner >= 0.0 && inner < outer)) {
+        fail(*inner_node, expected_for("an angle of at least 0 degrees, below outer_angle", "inner_angle", s));
+      }
+    }
+    light.cone_inner_cos = float(std::cos(inner * std::numbers::pi / 180.0));
+    light.cone_outer_cos = float(std::cos(outer * std::numbers::pi / 180.0));
+  }
+
   void read_light(const toml::table& t) {
     constexpr std::string_view s = "[[lights]]";
     std::string_view type = "point";
     if (const toml::node* node = t.get("type")) {
-      type = choice(*node, "type", s, {"point", "directional", "rectangle", "sphere"});
+      type = choice(*node, "type", s, {"point", "directional", "rectangle", "sphere", "spot"});
     }
     LightDesc light;
     if (type == "point") {
@@ -544,6 +566,13 @@ class TomlSceneReader {
       check_keys(t, {"type", "direction", "color", "intensity"}, "a directional light");
       light.kind = LightDesc::Kind::directional;
       light.direction = nonzero_vec3(required(t, "direction", s), "direction", s);
+    } else if (type == "spot") {
+      check_keys(t, {"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity"},
+                 "a spot light");
+      light.kind = LightDesc::Kind::spot;
+      light.position = vec3(required(t, "position", s), "position", s);
+      light.direction = nonzero_vec3(required(t, "direction", s), "direction", s);
+      set_spot_cone(t, light);
     } else if (type == "rectangle") {
       check_keys(t, {"type", "corner", "edge_u", "edge_v", "color", "intensity", "samples"}, "a rectangle light");
       light.kind = LightDesc::Kind::rectangle;

@@ -38,10 +38,13 @@ struct CameraDesc {
 // Lights. Intensity is an RGB colour (linear). Area lights are sampled with
 // samples x samples stratified shadow rays.
 struct LightDesc {
-  enum class Kind { point, directional, rectangle, sphere };
+  enum class Kind { point, directional, rectangle, sphere, spot };
   Kind kind = Kind::point;
-  Vec3<float> position{0.f, 0.f, 0.f};    // point; rectangle corner; sphere centre
-  Vec3<float> direction{0.f, -1.f, 0.f};  // directional: the way the light travels
+  Vec3<float> position{0.f, 0.f, 0.f};    // point, spot; rectangle corner; sphere centre
+  Vec3<float> direction{0.f, -1.f, 0.f};  // directional, spot: the way the light travels
+  // spot: cosines of the half-angles of the cone of full light and of the
+  // cone beyond which none falls (inner > outer; integrator/light_cone.h).
+  float cone_inner_cos = 1.f, cone_outer_cos = 0.70710678f;
   Vec3<float> edge_u{1.f, 0.f, 0.f};      // rectangle: corner + s*edge_u + t*edge_v
   Vec3<float> edge_v{0.f, 0.f, 1.f};
   float radius = 1.f;                      // sphere

@@ -117,7 +117,7 @@ TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
 // tallies get their own line, with the values that describe them.
 TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   SceneDesc desc = mixed_scene();
-  LightDesc point, directional, rectangle, sphere;
+  LightDesc point, directional, rectangle, sphere, spot;
   point.position = {1.f, 2.f, 3.f};
   directional.kind = LightDesc::Kind::directional;
   directional.direction = {0.f, -1.f, 0.f};
@@ -127,7 +127,11 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   sphere.kind = LightDesc::Kind::sphere;
   sphere.position = {5.f, 5.f, 5.f};
   sphere.radius = 0.25f;
-  desc.lights = {point, directional, rectangle, sphere};
+  spot.kind = LightDesc::Kind::spot;
+  spot.position = {0.f, 3.f, 0.f};
+  spot.cone_inner_cos = 0.5f;  // 60 degrees
+  spot.cone_outer_cos = 0.f;   // 90 degrees
+  desc.lights = {point, directional, rectangle, sphere, spot};
   TextureDesc checks, solid, image;
   checks.scale = 2.f;
   solid.kind = TextureDesc::Kind::checker3d;
@@ -145,10 +149,12 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt});
   const std::string report = out.str();
   for (const char* line :
-       {"lights          4\n", "  0: point position (1 2 3) colour (1 1 1)\n",
+       {"lights          5\n", "  0: point position (1 2 3) colour (1 1 1)\n",
         "  1: directional direction (0 -1 0) colour (1 1 1)\n",
         "  2: rectangle corner (0 4 0) edges (1 0 0) (0 0 1) colour (1 1 1) samples 3x3\n",
-        "  3: sphere centre (5 5 5) radius 0.25 colour (1 1 1) samples 4x4\n", "textures        3\n",
+        "  3: sphere centre (5 5 5) radius 0.25 colour (1 1 1) samples 4x4\n",
+        "  4: spot position (0 3 0) direction (0 -1 0) cone 60 to 90 degrees colour (1 1 1)\n",
+        "textures        3\n",
         "  0: checker2d colours (1 1 1) (0 0 0) scale 2\n", "  1: checker3d colours",
         "  2: image (in memory) 1x1 wrap mirror\n", "instances       2 placed (of 2 read) of 1 mesh, stored once: 1",
         "  mesh 0: box.obj, 1 triangles\n", "mesh faces      declared, kept\n",

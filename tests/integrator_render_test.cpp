@@ -890,6 +890,35 @@ TEST(Render, AnOccluderBeyondAPointLightCastsNoShadow) {
   EXPECT_EQ(centre_red(between), 0.f);
 }
 
+// A spot light straight above the floor's centre point lights it fully;
+// turned so that the point lies between its cones, by glTF's squared ramp;
+// turned past its outer cone, not at all. Every unit gives the same bits.
+TEST(Render, ASpotLightFallsOffBetweenItsConesAlike) {
+  const auto spot_scene = [](double tilt_degrees) {
+    SceneDesc s = shadow_scene();
+    LightDesc& spot = s.lights[0];
+    spot.kind = LightDesc::Kind::spot;
+    const double tilt = tilt_degrees * std::numbers::pi / 180.0;
+    spot.direction = {float(std::sin(tilt)), float(-std::cos(tilt)), 0.f};
+    spot.cone_inner_cos = float(std::cos(10.0 * std::numbers::pi / 180.0));
+    spot.cone_outer_cos = float(std::cos(20.0 * std::numbers::pi / 180.0));
+    return s;
+  };
+  EXPECT_NEAR(centre_red(spot_scene(0.0)), 0.8f, 1e-5f);
+  const double off_axis = std::cos(15.0 * std::numbers::pi / 180.0);
+  const double ramp = (off_axis - std::cos(20.0 * std::numbers::pi / 180.0)) /
+                      (std::cos(10.0 * std::numbers::pi / 180.0) - std::cos(20.0 * std::numbers::pi / 180.0));
+  EXPECT_NEAR(centre_red(spot_scene(15.0)), 0.8 * ramp * ramp, 1e-4);
+  EXPECT_EQ(centre_red(spot_scene(25.0)), 0.f);
+  const Scene scene = build_scene(spot_scene(14.0), {});
+  RenderSettings settings = small_settings(33, 33);
+  settings.trace.max_depth = 0;
+  settings.isa = Isa::scalar;
+  const Framebuffer scalar = render(scene, settings).image;
+  settings.isa = best_supported_isa();
+  EXPECT_EQ(render(scene, settings).image.rgb, scalar.rgb);
+}
+
 // ---- texture filtering ------------------------------------------------------
 
 // A fine checker floor running to the horizon, lit by the ambient term

@@ -4,6 +4,7 @@
 // (an error with --strict), bad values errors naming their JSON path; read
 // through the mesh importer, they replace the default rig.
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -65,7 +66,6 @@ TEST(GltfLights, PlacedByTheirNodes) {
   expect_near(found.lights[1].light.direction, 0, 1, 0);
   expect_near(found.lights[1].light.color, 1, 1, 1);
   EXPECT_EQ(found.lights[1].intensity, 1.0);
-  EXPECT_TRUE(found.spots.empty());
   EXPECT_TRUE(found.ranges.empty());
 }
 
@@ -97,18 +97,26 @@ TEST(GltfLights, ScaledByTheirIlluminanceAtTheCentre) {
   for (const LightDesc& l : scaled_gltf_lights(lights, {0.f, 0.f, 0.f}, ambient)) expect_near(l.color, 0, 0, 0);
 }
 
-// A spot is placed as a point light and named; so is a light with a range.
-TEST(GltfLights, SpotsAndRangesNamed) {
+// A spot is placed as a point light with a direction and its cone; a light
+// with a range is named.
+TEST(GltfLights, SpotsKeepTheirConeAndRangesAreNamed) {
   const GltfLights found = read(with_lights(
-      R"([{"type": "spot", "spot": {"outerConeAngle": 0.5}}, {"type": "point", "range": 4}])",
+      R"([{"type": "spot", "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.5}}, {"type": "point", "range": 4}])",
       "[" + names_light(0, R"(, "translation": [0, 3, 0])") + "," + names_light(1) + "]"));
   ASSERT_EQ(found.lights.size(), 2u);
-  EXPECT_EQ(found.lights[0].light.kind, LightDesc::Kind::point);
-  expect_near(found.lights[0].light.position, 0, 3, 0);
-  ASSERT_EQ(found.spots.size(), 1u);
-  EXPECT_EQ(found.spots[0], "nodes[0] names extensions.KHR_lights_punctual.lights[0]");
+  const LightDesc& spot = found.lights[0].light;
+  EXPECT_EQ(spot.kind, LightDesc::Kind::spot);
+  expect_near(spot.position, 0, 3, 0);
+  expect_near(spot.direction, 0, 0, -1);
+  EXPECT_FLOAT_EQ(spot.cone_inner_cos, float(std::cos(0.25)));
+  EXPECT_FLOAT_EQ(spot.cone_outer_cos, float(std::cos(0.5)));
+  EXPECT_EQ(found.lights[1].light.kind, LightDesc::Kind::point);
   ASSERT_EQ(found.ranges.size(), 1u);
   EXPECT_EQ(found.ranges[0], "nodes[1] names extensions.KHR_lights_punctual.lights[1]");
+  // glTF's default cone: 0 to pi/4.
+  const GltfLights plain = read(with_lights(R"([{"type": "spot", "spot": {}}])", "[" + names_light(0) + "]"));
+  EXPECT_FLOAT_EQ(plain.lights[0].light.cone_inner_cos, 1.f);
+  EXPECT_FLOAT_EQ(plain.lights[0].light.cone_outer_cos, float(std::cos(std::numbers::pi / 4)));
 }
 
 TEST(GltfLights, BadValuesNameTheirPath) {
@@ -132,24 +140,27 @@ TEST(GltfLights, BadValuesNameTheirPath) {
             "t.gltf: expected nodes[0].extensions.KHR_lights_punctual.light to be an index into the file's "
             "KHR_lights_punctual lights");
   EXPECT_EQ(error_of(with_lights(R"([{"type": "directional"}])", "[" + names_light(0, R"(, "scale": [1, 1, 0])") + "]")),
-            "t.gltf: expected nodes[0] to be a transform that keeps a directional light's direction");
+            "t.gltf: expected nodes[0] to be a transform that keeps a light's direction");
   // No lights and no nodes naming any: nothing, no error.
   EXPECT_TRUE(read(R"({"nodes": [{}]})").lights.empty());
 }
 
-// The test triangle with a point light and a spot (tests/data/mesh/lit.gltf):
-// the scene keeps them (no default rig), on the rig's grey, the spot named
-// in a warning; --strict refuses the spot.
+// The test triangle with a point light and a spot with a range
+// (tests/data/mesh/lit.gltf): the scene keeps them (no default rig), on the
+// rig's grey, the range named in a warning; --strict refuses it.
 TEST(GltfLights, ReadThroughTheImporterInsteadOfTheRig) {
   const std::filesystem::path file = std::filesystem::path(QUIVER_TEST_DATA_DIR) / "mesh" / "lit.gltf";
   const SceneDesc scene = read_imported_mesh(file);
   ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::point);
   expect_near(scene.lights[0].position, 0, 0, 5);
+  EXPECT_EQ(scene.lights[1].kind, LightDesc::Kind::spot);
   expect_near(scene.lights[1].position, 0, 5, 2);
+  expect_near(scene.lights[1].direction, 0, -1, 0);  // turned a quarter about -x: -z to -y
   ASSERT_TRUE(scene.background.has_value());
   expect_near(*scene.background, kDefaultRigBackground, kDefaultRigBackground, kDefaultRigBackground);
   ASSERT_EQ(scene.warnings.size(), 1u);
-  EXPECT_NE(scene.warnings[0].find("nodes[2] names extensions.KHR_lights_punctual.lights[1], a spot light"),
+  EXPECT_NE(scene.warnings[0].find("nodes[2] names extensions.KHR_lights_punctual.lights[1], with a range"),
             std::string::npos)
       << scene.warnings[0];
   EXPECT_THROW(read_imported_mesh(file, 60.0, true), ParseError);

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <numbers>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -245,6 +246,23 @@ TEST(TomlReader, DefaultsForEveryOptionalKey) {
   EXPECT_EQ(camera.materials.size(), 1u);  // no primitive asked for the default
 }
 
+// A spot light: a position, a direction and its cone half-angles in degrees
+// (0 and 45 by default).
+TEST(TomlReader, ASpotLightsConeInDegrees) {
+  const SceneDesc scene = parse(
+      "[[lights]]\ntype = \"spot\"\nposition = [0, 4, 0]\ndirection = [0, -2, 0]\ninner_angle = 15\n"
+      "outer_angle = 30\n[[lights]]\ntype = \"spot\"\nposition = [1, 4, 0]\ndirection = [0, -1, 0]\n" +
+      std::string(kSphere));
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::spot);
+  expect_vec3(scene.lights[0].position, 0.f, 4.f, 0.f);
+  expect_vec3(scene.lights[0].direction, 0.f, -2.f, 0.f);
+  EXPECT_FLOAT_EQ(scene.lights[0].cone_inner_cos, float(std::cos(15.0 * std::numbers::pi / 180.0)));
+  EXPECT_FLOAT_EQ(scene.lights[0].cone_outer_cos, float(std::cos(30.0 * std::numbers::pi / 180.0)));
+  EXPECT_FLOAT_EQ(scene.lights[1].cone_inner_cos, 1.f);
+  EXPECT_FLOAT_EQ(scene.lights[1].cone_outer_cos, float(std::cos(std::numbers::pi / 4.0)));
+}
+
 // ---- errors, each at its position ----
 
 TEST(TomlReader, SyntaxErrorsFromTomlplusplusKeepTheirPosition) {
@@ -303,7 +321,13 @@ TEST(TomlReader, WrongTypesAndMissingKeys) {
   EXPECT_TRUE(error_at("[[materials]]\nname = \"m\"\ntwo_sided = 1\n", 3, 13, "true or false"));
   EXPECT_TRUE(error_at("[[materials]]\nname = \"m\"\nfresnel = \"yes\"\n", 3, 11, "true or false"));
   EXPECT_TRUE(error_at("[render]\nmax_depth = 2.5\n", 2, 13, "an integer from 0 to 64"));
-  EXPECT_TRUE(error_at("[[lights]]\ntype = \"spot\"\n", 2, 8, "one of point, directional, rectangle, sphere"));
+  EXPECT_TRUE(error_at("[[lights]]\ntype = \"area\"\n", 2, 8, "one of point, directional, rectangle, sphere, spot"));
+  EXPECT_TRUE(error_at("[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ndirection = [0, -1, 0]\nouter_angle = 95\n", 5,
+                       15, "an angle in (0, 90] degrees"));
+  EXPECT_TRUE(error_at("[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ndirection = [0, -1, 0]\ninner_angle = 50\n", 5,
+                       15, "an angle of at least 0 degrees, below outer_angle"));
+  EXPECT_TRUE(error_at("[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ndirection = [0, 0, 0]\n", 4, 13,
+                       "a non-zero vector"));
 }
 
 TEST(TomlReader, NamesMustResolve) {
