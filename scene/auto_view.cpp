@@ -333,11 +333,6 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
   return view;
 }
 
-float default_light_total(const Vec3<float>& ambient) {
-  const float largest_ambient = std::max({ambient.x, ambient.y, ambient.z});
-  return std::max(0.3f, 1.f - std::max(largest_ambient, 0.1f));
-}
-
 bool add_default_lights(SceneDesc& scene) {
   if (!scene.camera) throw std::invalid_argument("add_default_lights: the scene has no camera");
   if (!scene.lights.empty()) return false;

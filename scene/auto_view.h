@@ -3,6 +3,7 @@
 // lights that follows whatever camera the scene ends up with.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -65,7 +66,9 @@ inline constexpr double kDefaultViewFill = 0.9;
 bool add_default_lights(SceneDesc& scene);
 // The rig's light in all for a scene of this ambient: 1 minus its largest
 // component (taken as at least 0.1), at least 0.3.
-float default_light_total(const Vec3<float>& ambient);
+inline float default_light_total(const Vec3<float>& ambient) {
+  return std::max(0.3f, 1.f - std::max({ambient.x, ambient.y, ambient.z, 0.1f}));
+}
 inline constexpr float kDefaultKeyShare = 0.7f;
 inline constexpr float kDefaultRigBackground = 0.18f;
 

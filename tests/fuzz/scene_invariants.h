@@ -35,14 +35,17 @@ inline void check_scene(const SceneDesc& scene) {
     check(std::int64_t{c.width} * c.height <= kMaxImagePixels);
     check(!(c.at.x == c.from.x && c.at.y == c.from.y && c.at.z == c.from.z));
   }
-  check(finite(scene.background) && non_negative(scene.background));
+  if (scene.background) check(finite(*scene.background) && non_negative(*scene.background));
   check(finite(scene.ambient) && non_negative(scene.ambient));
   for (const LightDesc& l : scene.lights) {
     check(finite(l.position) && finite(l.direction) && finite(l.edge_u) && finite(l.edge_v));
     check(finite(l.color) && non_negative(l.color));
     check(finite(l.radius) && l.radius > 0.f);
     check(l.samples >= 1 && l.samples <= 64);
-    if (l.kind == LightDesc::Kind::directional) check(!is_zero(l.direction));
+    if (l.kind == LightDesc::Kind::directional || l.kind == LightDesc::Kind::spot) check(!is_zero(l.direction));
+    if (l.kind == LightDesc::Kind::spot) {
+      check(l.cone_outer_cos >= 0.f && l.cone_outer_cos <= l.cone_inner_cos && l.cone_inner_cos <= 1.f);
+    }
     if (l.kind == LightDesc::Kind::rectangle) check(!is_zero(l.edge_u) && !is_zero(l.edge_v));
   }
   for (const TextureDesc& t : scene.textures) {
