@@ -9,8 +9,12 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <limits>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -23,6 +27,7 @@
 #include "app/trace_command.h"
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
+#include "io/srgb_encoding.h"
 #include "python/arguments.h"
 #include "python/camera_rays.h"
 #include "python/output_buffers.h"
@@ -47,8 +52,28 @@ QueryThreads query_threads(const py::handle& threads, const std::optional<std::s
   return {options.threads, choose_isa(simd, std::getenv("QUIVER_SIMD"))};
 }
 
+// Hit points origin + t direction, in double from the float32 ray as traced
+// (float64 input rounded to nearest, as the query reads it), rounded to
+// float32; NaN for misses.
+py::array_t<float> hit_points(const RayArrays& rays, const float* t) {
+  const auto n = py::ssize_t(rays.count);
+  py::array_t<float> points({n, py::ssize_t(3)});
+  float* out = points.mutable_data();
+  const auto component = [&](const void* column, std::size_t k) {
+    return rays.type == ArrayFloat::float32 ? static_cast<const float*>(column)[k]
+                                            : static_cast<float>(static_cast<const double*>(column)[k]);
+  };
+  for (std::size_t i = 0; i < rays.count; ++i) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double o = component(rays.origins, 3 * i + a), d = component(rays.directions, 3 * i + a);
+      out[3 * i + a] = std::isfinite(t[i]) ? float(o + double(t[i]) * d) : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return points;
+}
+
 py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions, double tmin,
-                   double tmax, const py::handle& threads, const std::optional<std::string>& simd) {
+                          double tmax, const py::handle& threads, const std::optional<std::string>& simd, bool points) {
   const RayArrays rays = ray_arrays(origins, directions);
   const RayInterval interval = checked_interval(tmin, tmax);
   const QueryThreads query = query_threads(threads, simd);
@@ -83,7 +108,20 @@ py::dict intersect_arrays(const PythonScene& scene, const py::handle& origins, c
   result["u"] = u;
   result["v"] = v;
   result["normal"] = normal;
+  if (points) result["points"] = hit_points(rays, floats);
   return result;
+}
+
+// Linear values as the 8-bit sRGB codes quiver's PNG and JPEG writers store
+// (io/srgb_encoding.h), in an array of the input's shape.
+py::array_t<std::uint8_t> to_srgb(const py::array_t<float, py::array::c_style | py::array::forcecast>& linear) {
+  py::array_t<std::uint8_t> codes(std::vector<py::ssize_t>(linear.shape(), linear.shape() + linear.ndim()));
+  const float* in = linear.data();
+  std::uint8_t* out = codes.mutable_data();
+  const auto n = std::size_t(linear.size());
+  py::gil_scoped_release release;
+  for (std::size_t i = 0; i < n; ++i) out[i] = srgb_byte(in[i]);
+  return codes;
 }
 
 py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& origins, const py::handle& directions,
@@ -102,13 +140,14 @@ py::array_t<bool> occluded_arrays(const PythonScene& scene, const py::handle& or
   return blocked;
 }
 
-SceneHandle load_file(const std::string& path, const std::optional<double>& crease_angle, bool allow_outside_paths) {
+SceneHandle load_file(const std::filesystem::path& path, const std::optional<double>& crease_angle,
+                      bool allow_outside_paths) {
   check_crease_angle(crease_angle);
   py::gil_scoped_release release;
   SceneLoadOptions options;
   options.crease_angle_degrees = crease_angle;
   options.allow_outside_paths = allow_outside_paths;
-  return std::make_shared<PythonScene>(make_python_scene(path, load_scene(path, options)));
+  return std::make_shared<PythonScene>(make_python_scene(path.string(), load_scene(path.string(), options)));
 }
 
 SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object& vertices, const py::object& triangles) {
@@ -232,14 +271,20 @@ PYBIND11_MODULE(quiver, m) {
            })
       .def("intersect", &intersect_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
-           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, instance, u, v, normal")
+           py::kw_only(), arg("points") = false,
+           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, instance, u, v, "
+           "normal; with points=True also points, (N, 3) float32 origin + t direction (NaN for misses)")
       .def("occluded", &occluded_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");
 
+  m.def("to_srgb", &to_srgb, arg("linear"),
+        "The 8-bit sRGB codes (uint8, the input's shape) that quiver's PNG writer stores for linear values, e.g. "
+        "quiver.render's image: the sRGB curve of each value clamped to [0, 1], to the nearest code; NaN is 0");
   m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(), py::kw_only(),
         arg("allow_outside_paths") = false,
-        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl) and builds it. Files the scene names "
+        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl; a str or os.PathLike path) and builds it. "
+        "Files the scene names "
         "must lie in its folder or below unless allow_outside_paths (as `quiver render --allow-outside-paths`)");
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
         arg("triangles") = py::none(),

@@ -9,6 +9,7 @@ a child interpreter under PYTHONMALLOC=debug, where reading a freed object
 import array
 import fractions
 import os
+import pathlib
 import subprocess
 import sys
 
@@ -266,6 +267,23 @@ def test_numpy_scalars_are_read_as_their_values(scene, spheres):
     hits = spheres.intersect(GOOD, DOWN, tmin=np.float32(0.5), tmax=np.float64(4.5), threads=np.int32(1))
     np.testing.assert_array_equal(hits["t"], [4.0, np.inf])
     assert quiver.load(TINY, crease_angle=np.float32(30)).primitive_count == scene.primitive_count
+
+
+def test_load_takes_str_and_path_like_paths(tmp_path):
+    from_str = quiver.load(TINY)
+    from_path = quiver.load(pathlib.Path(TINY))
+
+    class PathLike:
+        def __fspath__(self):
+            return TINY
+
+    from_path_like = quiver.load(PathLike())
+    for scene in (from_path, from_path_like):
+        assert scene.primitive_count == from_str.primitive_count and scene.bounds == from_str.bounds
+    with pytest.raises(TypeError):
+        quiver.load(3)
+    with pytest.raises(quiver.ParseError):
+        quiver.load(tmp_path / "missing.nff")
 
 
 def test_arguments_of_the_wrong_type_raise_type_errors(scene, spheres):

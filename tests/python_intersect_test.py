@@ -145,6 +145,23 @@ def test_misses_are_inf_and_minus_one():
     assert scene.intersect(origins[:1], directions[:1], tmin=4.5)["t"][0] == np.float32(6.0)
 
 
+def test_hit_points_are_the_origin_plus_t_times_the_direction():
+    scene = quiver.from_arrays(spheres=np.array([[0.0, 0.0, 0.0, 1.0]]))
+    origins = np.array([[0.0, 0.0, 5.0], [0.0, 3.0, 5.0], [0.25, 0.5, -4.0]])
+    directions = np.array([[0.0, 0.0, -2.0], [0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    result = scene.intersect(origins, directions, points=True)
+    assert "points" not in scene.intersect(origins, directions)
+    points = result["points"]
+    assert points.dtype == np.float32 and points.shape == (3, 3)
+    np.testing.assert_array_equal(points[0], np.float32([0.0, 0.0, 1.0]))  # t = 2 along a direction of length 2
+    assert np.isnan(points[1]).all()  # a miss
+    t = np.float64(result["t"][2])
+    np.testing.assert_array_equal(points[2], (origins[2] + t * directions[2]).astype(np.float32))
+    assert abs(np.linalg.norm(points[2]) - 1.0) < 1e-6  # on the sphere
+    with pytest.raises(TypeError):
+        scene.intersect(origins, directions, 0.0, np.inf, 0, None, True)  # points is keyword-only
+
+
 def test_occluded_agrees_with_intersect():
     scene = quiver.load(TINY)
     rays = quiver.camera_rays(scene, width=32, height=24)

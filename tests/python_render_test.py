@@ -103,6 +103,27 @@ def test_render_from_arrays_frames_them_with_the_default_view():
         quiver.render(scene, look_from=5)
 
 
+def test_to_srgb_gives_the_bytes_the_png_writer_stores(tmp_path):
+    codes = quiver.to_srgb(np.array([0.0, 0.5, 1.0, 2.0, np.nan, -1.0, 0.0031308]))
+    assert codes.dtype == np.uint8
+    np.testing.assert_array_equal(codes, [0, 188, 255, 255, 0, 0, 10])
+    assert quiver.to_srgb(np.float64(0.5)).shape == ()
+    image = quiver.render(quiver.load(TINY), width=24, height=16)
+    png = str(tmp_path / "cli.png")
+    code, _, err = run_cli("render", TINY, "--width", "24", "--height", "16", "-o", png, "-q")
+    assert code == 0, err
+    ppm = str(tmp_path / "cli.ppm")
+    subprocess.run([tool("oiiotool"), png, "-o", ppm], check=True, capture_output=True)
+    with open(ppm, "rb") as f:
+        data = f.read()
+    header = data.split(b"\n", 3)  # P6, width height, maxval, then the rows
+    assert header[0] == b"P6" and header[1] == b"24 16" and header[2] == b"255"
+    written = np.frombuffer(header[3], dtype=np.uint8).reshape(16, 24, 3)
+    srgb = quiver.to_srgb(image)
+    assert srgb.shape == image.shape and srgb.any()
+    np.testing.assert_array_equal(srgb, written)
+
+
 def test_render_options_are_checked_as_the_cli_flags():
     scene = quiver.load(TINY)
     bad = [{"aa": "grid:0"}, {"max_depth": 65}, {"min_weight": -1.0}, {"aov": "depth,depth"},
