@@ -63,9 +63,18 @@ TEST(ImageSignature, TgaNeedsItsExtensionAndAHeaderThatDescribesAnImage) {
   EXPECT_EQ(image_format_of(tga_header(), ".tga"), "targa");
   EXPECT_EQ(image_format_of(tga_header(), ".TGA"), "targa");
   EXPECT_EQ(image_format_of(tga_header(), ".png"), std::nullopt);
-  std::string run_length = tga_header();
-  run_length[2] = 10;
-  EXPECT_EQ(image_format_of(run_length, ".tga"), "targa");
+  // Every image type TGA defines, plain (1-3) and run-length (9-11), and
+  // none next to them.
+  for (const char type : {1, 2, 3, 9, 10, 11}) {
+    std::string typed = tga_header();
+    typed[2] = type;
+    EXPECT_EQ(image_format_of(typed, ".tga"), "targa") << "type " << int(type);
+  }
+  for (const char type : {4, 8, 12}) {
+    std::string typed = tga_header();
+    typed[2] = type;
+    EXPECT_EQ(image_format_of(typed, ".tga"), std::nullopt) << "type " << int(type);
+  }
   const std::string zeros(kImageSignatureBytes, '\0');
   EXPECT_EQ(image_format_of(zeros, ".tga"), std::nullopt);  // image type 0: no image data
   // A colour map type, image type or depth TGA does not define; a zero side.
