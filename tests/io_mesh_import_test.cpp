@@ -2,6 +2,8 @@
 // through the quiver_assimp module), io/mesh_file_check.h (the bounds
 // checked before Assimp reads a file) and io/mesh_append.h (a mesh of any
 // format under a transform).
+#include <sys/mman.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "io/mesh_append.h"
+#include "io/mesh_file_check.h"
 #include "io/mesh_import.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
@@ -687,6 +690,26 @@ TEST(MeshFileCheck, StlAndGltfStateTheirSizesTruthfully) {
   write_file(gltf, "{\"asset\": {\"version\": \"2.0\"},\n \"buffers\": [,]}\n");
   EXPECT_EQ(import_error(gltf).rfind(gltf.string() + ":2:14: expected glTF's JSON, found ',]}'", 0), 0u)
       << import_error(gltf);
+}
+
+// A binary STL may state up to kMaxObjTriangles triangles, not one more:
+// the bytes of a file of exactly that many, mapped without being touched
+// (anonymous pages read as zeros; only the count is written).
+TEST(MeshFileCheck, AnStlOfAsManyTrianglesAsTheBoundPassesAndOneMoreDoesNot) {
+  for (const std::uint64_t triangles : {std::uint64_t{kMaxObjTriangles}, std::uint64_t{kMaxObjTriangles} + 1}) {
+    const std::size_t size = std::size_t(84 + 50 * triangles);
+    void* mapped = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    ASSERT_NE(mapped, MAP_FAILED);
+    auto* bytes = static_cast<unsigned char*>(mapped);
+    for (int k = 0; k < 4; ++k) bytes[80 + k] = static_cast<unsigned char>(triangles >> (8 * k));
+    const std::string_view view(static_cast<const char*>(mapped), size);
+    if (triangles == kMaxObjTriangles) {
+      EXPECT_EQ(check_stl(view, "big.stl").triangles, kMaxObjTriangles);
+    } else {
+      EXPECT_THROW(check_stl(view, "big.stl"), ParseError);
+    }
+    ::munmap(mapped, size);
+  }
 }
 
 TEST(MeshImport, AssimpsOwnErrorsNameTheFileAndAnEmptyMeshIsAnError) {
