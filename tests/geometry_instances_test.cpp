@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -345,6 +346,63 @@ TEST(Instances, OffsetRaysNeverHitTheirOwnTriangleAgain) {
   };
   EXPECT_EQ(self_hits(leaving), 0u) << "of " << leaving.count;
   EXPECT_GT(self_hits(unmoved), leaving.count / 100);
+}
+
+// The error bound of an instance's hit holds: the computed point lies
+// within it of the triangle's true plane (the object triangle placed in
+// double), measured along the unit normal, for rays whose direction the
+// sheared placement nearly cancels (W d small beside |W| |d|) and for rays
+// from far away, where the carried direction's rounding times t is the
+// largest part of the error.
+TEST(Instances, HitPointsLieWithinTheirErrorBoundOfTheTruePlane) {
+  const std::vector<SceneTriangle> mesh = bumpy_sphere(8, false);
+  const std::vector<AffineTransform> where = hard_placements();
+  const Scene scene = build_scene(instanced_scene(mesh, where), {});
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> unit(-1.f, 1.f);
+  RaySoA rays;
+  for (std::size_t i = 0; i < 20000; ++i) {
+    const AffineTransform& t = where[i % where.size()];
+    const Vec3<float> target = apply_point(t, Vec3<float>(unit(rng), unit(rng), unit(rng)) * 0.8f);
+    // Along the shear's near-null direction (40, -1, ...) half the time, else from 10^4 away.
+    const Vec3<float> along = i % 2 == 0 ? Vec3<float>(40.f, -1.f, 0.3f * unit(rng)) * 1000.f
+                                         : Vec3<float>(unit(rng), unit(rng), unit(rng)) * 1e4f;
+    rays.push({target + along, -along, 0.f, std::numeric_limits<float>::infinity()});
+  }
+  rays.pad();
+  const HitSoA hits = closest(scene, rays, best_supported_isa());
+  std::size_t checked = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < rays.count; ++i) {
+    if (hits.id[i] == kNoHit) continue;
+    const SurfacePoint s = surface_at(scene, rays.get(i), hits.get(i));
+    if (s.ref.instance < 0) continue;
+    const std::size_t row = std::size_t(s.ref.instance);
+    const AffineTransform& m = scene.instances.object_to_world[row];
+    const TriangleDesc& tri = mesh[scene.origin(s.ref).index].triangle;
+    std::array<std::array<double, 3>, 3> v{};
+    for (int k = 0; k < 3; ++k) {
+      for (int r = 0; r < 3; ++r) {
+        v[k][r] = double(m.at(r, 0)) * tri.p[k].x + double(m.at(r, 1)) * tri.p[k].y + double(m.at(r, 2)) * tri.p[k].z +
+                  double(m.at(r, 3));
+      }
+    }
+    const std::array<double, 3> e1{v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
+    const std::array<double, 3> e2{v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
+    std::array<double, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double distance = 0.0, bound = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      n[a] /= length;
+      distance += n[a] * (double(s.position[a]) - v[0][a]);
+      bound += std::fabs(n[a]) * double(s.error[a]);
+    }
+    worst = std::max(worst, std::fabs(distance) / bound);
+    EXPECT_LE(std::fabs(distance), bound) << "ray " << i;
+    ++checked;
+  }
+  ASSERT_GT(checked, 5000u);
+  RecordProperty("worst_distance_over_bound", std::to_string(worst));
 }
 
 // 200 instances store the mesh once: memory within 5% of one instance's
