@@ -30,6 +30,7 @@
 #include "io/srgb_encoding.h"
 #include "python/arguments.h"
 #include "python/camera_rays.h"
+#include "python/docstrings.h"
 #include "python/output_buffers.h"
 #include "python/python_scene.h"
 #include "python/ray_queries.h"
@@ -254,7 +255,7 @@ PYBIND11_MODULE(quiver, m) {
   for_each_kind([&]<class K>(K) { kinds.append(std::string(K::name)); });
   m.attr("KINDS") = py::tuple(kinds);
 
-  py::class_<PythonScene, SceneHandle>(m, "Scene", "A scene built for queries and renders (quiver.load, quiver.from_arrays)")
+  py::class_<PythonScene, SceneHandle>(m, "Scene", docstrings::kScene)
       .def_property_readonly("name", [](const PythonScene& s) { return s.name; })
       .def_property_readonly("primitive_count", [](const PythonScene& s) { return s.built.primitive_count(); },
                              "Primitives as built (degenerate ones dropped)")
@@ -271,33 +272,23 @@ PYBIND11_MODULE(quiver, m) {
            })
       .def("intersect", &intersect_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
-           py::kw_only(), arg("points") = false,
-           "Closest hits of (N, 3) float32/float64 rays in (tmin, tmax): a dict of t, primitive, kind, instance, u, v, "
-           "normal; with points=True also points, (N, 3) float32 origin + t direction (NaN for misses)")
+           py::kw_only(), arg("points") = false, docstrings::kIntersect)
       .def("occluded", &occluded_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
-           "Whether anything lies in (tmin, tmax) along each ray: an (N,) bool array");
+           docstrings::kOccluded);
 
-  m.def("to_srgb", &to_srgb, arg("linear"),
-        "The 8-bit sRGB codes (uint8, the input's shape) that quiver's PNG writer stores for linear values, e.g. "
-        "quiver.render's image: the sRGB curve of each value clamped to [0, 1], to the nearest code; NaN is 0");
+  m.def("to_srgb", &to_srgb, arg("linear"), docstrings::kToSrgb);
   m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(), py::kw_only(),
-        arg("allow_outside_paths") = false,
-        "Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl; a str or os.PathLike path) and builds it. "
-        "Files the scene names "
-        "must lie in its folder or below unless allow_outside_paths (as `quiver render --allow-outside-paths`)");
+        arg("allow_outside_paths") = false, docstrings::kLoad);
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
-        arg("triangles") = py::none(),
-        "A scene of spheres (N, 4: centre, radius) and triangles (vertices (V, 3), indices (F, 3))");
+        arg("triangles") = py::none(), docstrings::kFromArrays);
   m.def("render", &render_arrays, arg("scene"), py::kw_only(), arg("width") = py::none(), arg("height") = py::none(),
         arg("aa") = py::none(), arg("max_depth") = py::none(), arg("min_weight") = py::none(), arg("threads") = 0,
         arg("simd") = py::none(), arg("seed") = 0, arg("aov") = py::none(), arg("preset") = py::none(),
         arg("two_sided") = false, arg("robust_methods") = false, arg("look_from") = py::none(),
         arg("look_at") = py::none(), arg("up") = py::none(), arg("fov") = py::none(),
-        arg("texture_filter") = py::none(),
-        "Renders as `quiver render`: an (H, W, 3) float32 linear image; with aov, (image, dict of AOV arrays)");
+        arg("texture_filter") = py::none(), docstrings::kRender);
   m.def("camera_rays", &camera_ray_arrays, arg("scene"), py::kw_only(), arg("width") = py::none(),
         arg("height") = py::none(), arg("look_from") = py::none(), arg("look_at") = py::none(),
-        arg("up") = py::none(), arg("fov") = py::none(),
-        "The primary rays of `quiver trace` in its order: origins, directions, pixels, tile_starts");
+        arg("up") = py::none(), arg("fov") = py::none(), docstrings::kCameraRays);
 }

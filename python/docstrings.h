@@ -1,0 +1,166 @@
+// The module's help texts, in NumPy's docstring style (a summary, then
+// Parameters, Returns and Raises sections); pybind11 puts each function's
+// signature above its text. docs/PYTHON.md says more of each.
+#pragma once
+
+namespace quiver::docstrings {
+
+inline constexpr const char* kScene = R"(A scene built for queries and renders (quiver.load, quiver.from_arrays).
+
+Attributes
+----------
+name : str
+    The file it was read from, or "<arrays>".
+primitive_count : int
+    Primitives as built (degenerate ones dropped).
+bounds : tuple
+    ((xmin, ymin, zmin), (xmax, ymax, zmax)) of the bounded primitives.)";
+
+inline constexpr const char* kIntersect = R"(Closest hits of rays in (tmin, tmax), as `quiver trace` finds them.
+
+Parameters
+----------
+origins, directions : numpy.ndarray
+    (N, 3) float32 or float64 arrays (one type for both), C-contiguous.
+tmin, tmax : float
+    The interval of the ray parameter; tmin finite and >= 0, tmax > tmin.
+threads : int
+    Worker threads, 0 for one per core (as --threads).
+simd : str or None
+    Lane width: auto, scalar, sse4, avx2 or avx512 (as --simd); every one gives the same hits.
+points : bool
+    Also return the hit points.
+
+Returns
+-------
+dict
+    t (N,) float32 (inf on a miss), primitive, kind and instance (N,) int32 (-1 on a miss),
+    u, v (N,) float32, normal (N, 3) float32; with points, points (N, 3) float32:
+    origin + t direction in double from the float32 ray (NaN on a miss).
+
+Raises
+------
+ValueError
+    Arrays of another shape, dtype or layout, a ray not finite in float32 or of zero direction, a bad interval.
+quiver.UsageError
+    threads or simd as the program would refuse them.)";
+
+inline constexpr const char* kOccluded = R"(Whether anything lies in (tmin, tmax) along each ray.
+
+Parameters
+----------
+origins, directions : numpy.ndarray
+    (N, 3) float32 or float64 arrays, as for intersect.
+tmin, tmax : float
+    The interval of the ray parameter.
+threads : int
+    Worker threads, 0 for one per core.
+simd : str or None
+    Lane width, as for intersect.
+
+Returns
+-------
+numpy.ndarray
+    (N,) bool.
+
+Raises
+------
+ValueError
+    As for intersect.)";
+
+inline constexpr const char* kToSrgb = R"(Linear values as the 8-bit sRGB codes quiver's PNG writer stores.
+
+Parameters
+----------
+linear : array_like
+    Linear values of any shape, such as quiver.render's image.
+
+Returns
+-------
+numpy.ndarray
+    uint8 codes of the same shape: the sRGB curve of each value clamped to [0, 1], to the nearest code; NaN is 0.)";
+
+inline constexpr const char* kLoad = R"(Reads a scene file and builds it, as `quiver render` does.
+
+Parameters
+----------
+path : str or os.PathLike
+    A .nff, .toml, .obj, .ply, .gltf, .glb or .stl file.
+crease_angle : float or None
+    Smooth normals for meshes without them, 0 to 180 degrees (as --crease-angle).
+allow_outside_paths : bool
+    Let the scene name files outside its own folder (as --allow-outside-paths).
+
+Returns
+-------
+quiver.Scene
+
+Raises
+------
+quiver.ParseError
+    A bad file: file:line:column: expected WHAT, found 'TOKEN'.)";
+
+inline constexpr const char* kFromArrays = R"(A scene of spheres and triangles, each with one white material.
+
+Parameters
+----------
+spheres : array_like or None
+    (N, 4) rows of centre x, y, z and radius.
+vertices : array_like or None
+    (V, 3) vertex positions.
+triangles : array_like or None
+    (F, 3) int32 or int64 vertex indices into vertices.
+
+Returns
+-------
+quiver.Scene
+
+Raises
+------
+ValueError
+    A value not finite in float32, a radius not above 0, an index outside [0, V).)";
+
+inline constexpr const char* kRender = R"(Renders as `quiver render` does with the same options.
+
+Parameters
+----------
+scene : quiver.Scene
+width, height : int or None
+    Image size in pixels; the scene camera's without them.
+aa, max_depth, min_weight, threads, simd, seed, preset, two_sided, robust_methods, texture_filter
+    As the flags of the same names (--aa, --max-depth, ...); None is the flag absent.
+aov : str or None
+    Extra outputs, any of "depth,normal,id".
+look_from, look_at, up : str or sequence of 3 numbers or None
+    The camera flags (--look-from, ...).
+fov : float or None
+    Field of view in degrees.
+
+Returns
+-------
+numpy.ndarray or tuple
+    An (H, W, 3) float32 linear image, row 0 at the top; with aov, (image, dict of depth, normal, kind, id).
+
+Raises
+------
+quiver.UsageError
+    An option the program would refuse, with its message.)";
+
+inline constexpr const char* kCameraRays = R"(The primary rays `quiver trace` casts, in its order.
+
+Parameters
+----------
+scene : quiver.Scene
+width, height : int or None
+    Image size in pixels.
+look_from, look_at, up : str or sequence of 3 numbers or None
+    The camera flags.
+fov : float or None
+    Field of view in degrees.
+
+Returns
+-------
+dict
+    origins, directions (N, 3) float32, pixels (N, 2) int32, tile_starts (T + 1) int64, width, height.)";
+
+}  // namespace quiver::docstrings
