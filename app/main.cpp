@@ -161,6 +161,7 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     context.load_ms = load_ms;
     context.build_ms = build_ms;
     context.default_view = default_view;
+    context.peak_resident_bytes = quiver::peak_resident_bytes();
     quiver::write_scene_info(std::cout, as_read, scene, context);
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);
@@ -322,7 +323,7 @@ int main(int argc, char** argv) {
   CLI::App* info = app.add_subcommand(
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
               "camera (the view the camera flags give), lights, materials, textures, memory (bytes) per "
-              "structure, load and build times (ms)");
+              "structure against the process's peak resident memory, load and build times (ms)");
   add_info_flags(*info, info_args);
 
   TraceArgs trace_args;

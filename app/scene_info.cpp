@@ -1,5 +1,7 @@
 #include "app/scene_info.h"
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <numbers>
 #include <charconv>
@@ -309,6 +311,12 @@ void write_face_tallies(std::ostream& out, const SceneDesc& desc) {
   }
 }
 
+std::size_t peak_resident_bytes() {
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return std::size_t(usage.ru_maxrss) * 1024;
+}
+
 void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context) {
   out << "scene           " << context.scene << "\n"
       << "load            " << milliseconds(context.load_ms) << "\n"
@@ -322,6 +330,10 @@ void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& sce
   write_textures(out, desc, scene);
   write_memory(out, scene);
   write_acceleration(out, scene);
+  if (context.peak_resident_bytes) {
+    out << "peak memory     " << *context.peak_resident_bytes << " bytes resident at most (loading and building), for "
+        << scene.memory_bytes() + scene.acceleration_bytes() << " kept (memory and acceleration totals)\n";
+  }
 }
 
 }  // namespace quiver

@@ -25,7 +25,12 @@ struct SceneInfoContext {
   std::string scene;  // the file as named on the command line
   double load_ms = 0.0, build_ms = 0.0;
   std::optional<DefaultView> default_view;  // the file had no camera: the view added
+  std::optional<std::size_t> peak_resident_bytes;  // the process's most resident memory, after load and build
 };
+
+// The most memory the process has held resident so far (getrusage's
+// ru_maxrss, which Linux gives in KiB), in bytes.
+std::size_t peak_resident_bytes();
 
 // desc is the scene as read (before any default view was added).
 void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context);

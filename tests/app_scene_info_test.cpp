@@ -163,5 +163,25 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   }
 }
 
+// The peak resident memory against what the scene keeps, when given; the
+// process's peak covers memory it has touched.
+TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
+  const SceneDesc desc = mixed_scene();
+  const Scene scene = build_scene(desc, {});
+  std::ostringstream without;
+  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt});
+  EXPECT_EQ(without.str().find("peak memory"), std::string::npos);
+  std::ostringstream with;
+  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789});
+  const std::string line = "peak memory     123456789 bytes resident at most (loading and building), for " +
+                           std::to_string(scene.memory_bytes() + scene.acceleration_bytes()) +
+                           " kept (memory and acceleration totals)\n";
+  EXPECT_NE(with.str().find(line), std::string::npos) << with.str();
+  std::vector<char> touched(std::size_t(64) << 20);
+  for (std::size_t i = 0; i < touched.size(); i += 4096) touched[i] = 1;
+  asm volatile("" : : "r"(touched.data()) : "memory");  // the stores happen before the measurement
+  EXPECT_GE(peak_resident_bytes(), touched.size());
+}
+
 }  // namespace
 }  // namespace quiver
