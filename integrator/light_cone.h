@@ -16,9 +16,9 @@
 namespace quiver {
 inline namespace QUIVER_UNIT_NAMESPACE {
 
+// axis: the light's unit direction (normalize(light.direction), found once per light).
 template <class F>
-F spot_light_share(const LightDesc& light, const Vec3<F>& to_light) {
-  const Vec3<float> axis = normalize(light.direction);
+F spot_light_share(const LightDesc& light, const Vec3<float>& axis, const Vec3<F>& to_light) {
   const F cosine = -dot(Vec3<F>(axis), to_light);
   // The cones' cosines at least 2^-20 apart, so the ramp never divides by 0.
   const float span = std::max(light.cone_inner_cos - light.cone_outer_cos, 0x1p-20f);

@@ -237,6 +237,8 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const int n = samples_per_side(scene.lights[l]);
     const Vec3<F> intensity(scene.lights[l].color / float(n * n));
+    const bool spot = scene.lights[l].kind == LightDesc::Kind::spot;
+    const Vec3<float> spot_axis = spot ? normalize(scene.lights[l].direction) : Vec3<float>{0.f, 0.f, 0.f};
     for (int j = 0; j < n * n; ++j, ++slot) {
       float tmax;
       Vec3<F> direction = light_sample_direction(in, l, j, n, h.origin, first, tmax);
@@ -259,9 +261,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
       // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
       const Vec3<F> reflected = h.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
       Vec3<F> contribution = mul(h.weight, mul(intensity, reflected));
-      if (scene.lights[l].kind == LightDesc::Kind::spot) {
-        contribution = contribution * spot_light_share(scene.lights[l], to_light);
-      }
+      if (spot) contribution = contribution * spot_light_share(scene.lights[l], spot_axis, to_light);
       // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
       if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
       const unsigned bits = lane_bits(cast);

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "geometry/box.h"
 #include "io/assimp_loader.h"
 #include "io/file_extension.h"
 #include "io/mesh_file_check.h"
@@ -297,17 +297,11 @@ SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double creas
 // own lights gets the default rig's background (glTF has none).
 void use_gltf_lights(const GltfLights& lights, const std::string& file, ReaderWarnings& warnings, SceneDesc& scene) {
   if (lights.lights.empty()) return;
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  Vec3<float> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  Box bounds = empty_box();
   for (const SceneTriangle& t : scene.triangles) {
-    for (const Vec3<float>& p : t.triangle.p) {
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a]);
-      }
-    }
+    for (const Vec3<float>& p : t.triangle.p) grow(bounds, p);
   }
-  const Vec3<float> centre = scene.triangles.empty() ? Vec3<float>{0.f, 0.f, 0.f} : (lo + hi) * 0.5f;
+  const Vec3<float> centre = is_empty(bounds) ? Vec3<float>{0.f, 0.f, 0.f} : centroid(bounds);
   scene.lights = scaled_gltf_lights(lights, centre, scene.ambient);
   if (!scene.background) scene.background = Vec3<float>{1.f, 1.f, 1.f} * kDefaultRigBackground;
   for (const std::string& ranged : lights.ranges) {

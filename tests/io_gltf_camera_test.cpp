@@ -15,17 +15,14 @@
 #include "io/gltf_camera.h"
 #include "io/mesh_import.h"
 #include "io/parse_error.h"
+#include "support/vec3_expect.h"
 
 namespace quiver {
 namespace {
 
 GltfCamera read(const std::string& text) { return gltf_camera(nlohmann::json::parse(text), "t.gltf"); }
 
-void expect_near(const Vec3<float>& v, double x, double y, double z) {
-  EXPECT_NEAR(v.x, x, 1e-5);
-  EXPECT_NEAR(v.y, y, 1e-5);
-  EXPECT_NEAR(v.z, z, 1e-5);
-}
+using testing::expect_vec3_near;
 
 std::string error_of(const std::string& text) {
   try {
@@ -49,9 +46,9 @@ TEST(GltfCamera, ThroughNestedTransformsWithTheAngleOverTheLongerSide) {
   const GltfCamera found = read(doc);
   ASSERT_TRUE(found.camera.has_value());
   const CameraDesc& c = *found.camera;
-  expect_near(c.from, 0, 0, 5);
-  expect_near(c.at - c.from, -1, 0, 0);
-  expect_near(c.up, 0, 1, 0);
+  expect_vec3_near(c.from, 0, 0, 5);
+  expect_vec3_near(c.at - c.from, -1, 0, 0);
+  expect_vec3_near(c.up, 0, 1, 0);
   EXPECT_EQ(c.width, 512);
   EXPECT_EQ(c.height, 256);
   EXPECT_NEAR(c.angle_degrees, 2.0 * std::atan(std::tan(0.25) * 511.0 / 256.0) * 180.0 / std::numbers::pi, 1e-4);
@@ -66,7 +63,7 @@ TEST(GltfCamera, AMatrixAndATallAspect) {
     "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0, "aspectRatio": 0.5}}]})";
   const GltfCamera found = read(doc);
   ASSERT_TRUE(found.camera.has_value());
-  expect_near(found.camera->from, 2, 3, 4);
+  expect_vec3_near(found.camera->from, 2, 3, 4);
   EXPECT_EQ(found.camera->width, 256);
   EXPECT_EQ(found.camera->height, 512);
   EXPECT_NEAR(found.camera->angle_degrees, 2.0 * std::atan(std::tan(0.5) * 511.0 / 512.0) * 180.0 / std::numbers::pi,
@@ -82,13 +79,13 @@ TEST(GltfCamera, TheFirstPerspectiveCameraAndOrthographicOnesNamed) {
       {"camera": 0, "children": [2]}, {"translation": [9, 9, 9], "camera": 1}, {"translation": [1, 0, 0], "camera": 1}],
       )" + cameras + "}");
   ASSERT_TRUE(found.camera.has_value());
-  expect_near(found.camera->from, 1, 0, 0);  // node 2, below node 0, comes before node 1
+  expect_vec3_near(found.camera->from, 1, 0, 0);  // node 2, below node 0, comes before node 1
   EXPECT_EQ(found.unused, "nodes[0] names cameras[0], of type orthographic; quiver's camera is a perspective one");
   // Without "scene", every scene's roots in turn (as gltf_check counts them).
   const GltfCamera second_scene = read(R"({"scenes": [{"nodes": [0]}, {"nodes": [1]}], "nodes": [
       {"translation": [1, 2, 3]}, {"translation": [4, 5, 6], "camera": 1}], )" + cameras + "}");
   ASSERT_TRUE(second_scene.camera.has_value());
-  expect_near(second_scene.camera->from, 4, 5, 6);
+  expect_vec3_near(second_scene.camera->from, 4, 5, 6);
   const GltfCamera none = read(R"({"nodes": [{"translation": [1, 2, 3]}]})");
   EXPECT_FALSE(none.camera.has_value());
   EXPECT_TRUE(none.unused.empty());
@@ -118,8 +115,8 @@ TEST(GltfCamera, ThePublicCamerasFileGivesItsScene) {
   }
   const SceneDesc scene = read_imported_mesh(file);
   ASSERT_TRUE(scene.camera.has_value());
-  expect_near(scene.camera->from, 0.5, 0.5, 3);
-  expect_near(scene.camera->at - scene.camera->from, 0, 0, -1);
+  expect_vec3_near(scene.camera->from, 0.5, 0.5, 3);
+  expect_vec3_near(scene.camera->at - scene.camera->from, 0, 0, -1);
   EXPECT_TRUE(scene.warnings.empty());
 }
 

@@ -15,17 +15,14 @@
 #include "io/mesh_import.h"
 #include "io/parse_error.h"
 #include "scene/auto_view.h"
+#include "support/vec3_expect.h"
 
 namespace quiver {
 namespace {
 
 GltfLights read(const std::string& text) { return gltf_lights(nlohmann::json::parse(text), "t.gltf"); }
 
-void expect_near(const Vec3<float>& v, double x, double y, double z) {
-  EXPECT_NEAR(v.x, x, 1e-5);
-  EXPECT_NEAR(v.y, y, 1e-5);
-  EXPECT_NEAR(v.z, z, 1e-5);
-}
+using testing::expect_vec3_near;
 
 std::string error_of(const std::string& text) {
   try {
@@ -59,12 +56,12 @@ TEST(GltfLights, PlacedByTheirNodes) {
   ASSERT_EQ(found.lights.size(), 2u);
   // Depth-first from the roots (nodes 1 and 2, no node names 1 or 2): node 0 under node 1, then node 2.
   EXPECT_EQ(found.lights[0].light.kind, LightDesc::Kind::point);
-  expect_near(found.lights[0].light.position, 2, 4, 7);
-  expect_near(found.lights[0].light.color, 1, 0.5, 0.25);
+  expect_vec3_near(found.lights[0].light.position, 2, 4, 7);
+  expect_vec3_near(found.lights[0].light.color, 1, 0.5, 0.25);
   EXPECT_EQ(found.lights[0].intensity, 40.0);
   EXPECT_EQ(found.lights[1].light.kind, LightDesc::Kind::directional);
-  expect_near(found.lights[1].light.direction, 0, 1, 0);
-  expect_near(found.lights[1].light.color, 1, 1, 1);
+  expect_vec3_near(found.lights[1].light.direction, 0, 1, 0);
+  expect_vec3_near(found.lights[1].light.color, 1, 1, 1);
   EXPECT_EQ(found.lights[1].intensity, 1.0);
   EXPECT_TRUE(found.ranges.empty());
 }
@@ -86,15 +83,15 @@ TEST(GltfLights, ScaledByTheirIlluminanceAtTheCentre) {
   ASSERT_FLOAT_EQ(default_light_total(ambient), 0.9f);
   const std::vector<LightDesc> scaled = scaled_gltf_lights(lights, {1.f, 0.f, 0.f}, ambient);
   ASSERT_EQ(scaled.size(), 2u);
-  expect_near(scaled[0].color, 0.225, 0.225, 0.225);
-  expect_near(scaled[0].position, 1, 10, 0);
-  expect_near(scaled[1].color, 0.675, 0.3375, 0.3375);
+  expect_vec3_near(scaled[0].color, 0.225, 0.225, 0.225);
+  expect_vec3_near(scaled[0].position, 1, 10, 0);
+  expect_vec3_near(scaled[1].color, 0.675, 0.3375, 0.3375);
   // A larger ambient leaves less to the lights, as for the rig.
   EXPECT_NEAR(scaled_gltf_lights(lights, {1.f, 0.f, 0.f}, {0.5f, 0.2f, 0.2f})[0].color.x, 0.5 / 4.0, 1e-6);
   // Dark lights stay dark.
   lights.lights[0].intensity = 0.0;
   lights.lights[1].intensity = 0.0;
-  for (const LightDesc& l : scaled_gltf_lights(lights, {0.f, 0.f, 0.f}, ambient)) expect_near(l.color, 0, 0, 0);
+  for (const LightDesc& l : scaled_gltf_lights(lights, {0.f, 0.f, 0.f}, ambient)) expect_vec3_near(l.color, 0, 0, 0);
 }
 
 // A spot is placed as a point light with a direction and its cone; a light
@@ -106,8 +103,8 @@ TEST(GltfLights, SpotsKeepTheirConeAndRangesAreNamed) {
   ASSERT_EQ(found.lights.size(), 2u);
   const LightDesc& spot = found.lights[0].light;
   EXPECT_EQ(spot.kind, LightDesc::Kind::spot);
-  expect_near(spot.position, 0, 3, 0);
-  expect_near(spot.direction, 0, 0, -1);
+  expect_vec3_near(spot.position, 0, 3, 0);
+  expect_vec3_near(spot.direction, 0, 0, -1);
   EXPECT_FLOAT_EQ(spot.cone_inner_cos, float(std::cos(0.25)));
   EXPECT_FLOAT_EQ(spot.cone_outer_cos, float(std::cos(0.5)));
   EXPECT_EQ(found.lights[1].light.kind, LightDesc::Kind::point);
@@ -153,12 +150,12 @@ TEST(GltfLights, ReadThroughTheImporterInsteadOfTheRig) {
   const SceneDesc scene = read_imported_mesh(file);
   ASSERT_EQ(scene.lights.size(), 2u);
   EXPECT_EQ(scene.lights[0].kind, LightDesc::Kind::point);
-  expect_near(scene.lights[0].position, 0, 0, 5);
+  expect_vec3_near(scene.lights[0].position, 0, 0, 5);
   EXPECT_EQ(scene.lights[1].kind, LightDesc::Kind::spot);
-  expect_near(scene.lights[1].position, 0, 5, 2);
-  expect_near(scene.lights[1].direction, 0, -1, 0);  // turned a quarter about -x: -z to -y
+  expect_vec3_near(scene.lights[1].position, 0, 5, 2);
+  expect_vec3_near(scene.lights[1].direction, 0, -1, 0);  // turned a quarter about -x: -z to -y
   ASSERT_TRUE(scene.background.has_value());
-  expect_near(*scene.background, kDefaultRigBackground, kDefaultRigBackground, kDefaultRigBackground);
+  expect_vec3_near(*scene.background, kDefaultRigBackground, kDefaultRigBackground, kDefaultRigBackground);
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_NE(scene.warnings[0].find("nodes[2] names extensions.KHR_lights_punctual.lights[1], with a range"),
             std::string::npos)

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "io/gltf_node_walk.h"
+#include "support/vec3_expect.h"
 
 namespace quiver {
 namespace {
@@ -29,11 +30,7 @@ std::vector<Visit> walk(const std::string& text, std::size_t stop_after = 1000) 
   return seen;
 }
 
-void expect_near(const Vec3<float>& v, double x, double y, double z) {
-  EXPECT_NEAR(v.x, x, 1e-5);
-  EXPECT_NEAR(v.y, y, 1e-5);
-  EXPECT_NEAR(v.z, z, 1e-5);
-}
+using testing::expect_vec3_near;
 
 // glTF's quaternion (x, y, z, w) of a quarter turn about an axis.
 std::string quarter_turn_about(int axis) {
@@ -70,9 +67,9 @@ TEST(GltfNodeWalk, ChildrenComposeWithTheirParentsDepthFirst) {
   EXPECT_EQ(seen[0].path, "nodes[1]");
   EXPECT_EQ(seen[1].path, "nodes[0]");
   EXPECT_EQ(seen[2].path, "nodes[2]");
-  expect_near(gltf_transformed(seen[1].world, 0, 0, 0, 1), 5, 2, 0);
-  expect_near(gltf_transformed(seen[1].world, 1, 0, 0, 0), 0, 2, 0);  // a direction: no translation
-  expect_near(gltf_transformed(seen[2].world, 1, 1, 1, 1), 8, 9, 10);
+  expect_vec3_near(gltf_transformed(seen[1].world, 0, 0, 0, 1), 5, 2, 0);
+  expect_vec3_near(gltf_transformed(seen[1].world, 1, 0, 0, 0), 0, 2, 0);  // a direction: no translation
+  expect_vec3_near(gltf_transformed(seen[2].world, 1, 1, 1, 1), 8, 9, 10);
   // Stopped after the first node: the rest are not visited.
   EXPECT_EQ(walk(R"({"nodes": [{}, {}, {}]})", 1).size(), 1u);
 }
