@@ -1,7 +1,9 @@
 // quiver, the command-line program: `quiver render [SCENE]` renders a scene
 // file (or the built-in scene) to an image, `quiver info SCENE` reports what
 // a scene holds, `quiver trace SCENE` times the primary rays' closest hits
-// and prints one JSON line (app/trace_command.h). Exit codes: 0 success,
+// and prints one JSON line (app/trace_command.h), `quiver view [SCENE]`
+// serves a page to look around the scene in a browser (app/view_server.h).
+// Exit codes: 0 success,
 // 1 failure (unreadable or invalid scene, render or write error), 2 usage
 // error (bad flag or value, an output naming an input or another output),
 // 130 / 143 interrupted by SIGINT / SIGTERM (app/interrupt.h). Errors go to
@@ -13,6 +15,8 @@
 #include "app/render_flags_cli.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -22,6 +26,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -40,6 +45,8 @@
 #include "app/suggestions.h"
 #include "app/stats_json.h"
 #include "app/trace_command.h"
+#include "app/view_server.h"
+#include "app/view_session.h"
 
 namespace {
 
@@ -133,6 +140,49 @@ int run_render(const RenderArgs& args) {
       quiver::print_render_summary(stderr, result, settings, prepared.load_ms, prepared.build_ms, checked.output,
                                    std::to_string(result.threads) + " threads");
     }
+    return 0;
+  } catch (...) {
+    return report_exception();
+  }
+}
+
+int run_view(const RenderArgs& args, const quiver::cli::ViewFlags& flags) {
+  quiver::Isa isa;
+  try {
+    quiver::check_render_options(args.options);
+    isa = quiver::choose_isa(args.options.simd, std::getenv("QUIVER_SIMD"));
+  } catch (const std::exception& error) {
+    return report(error.what(), kExitUsage);
+  }
+  quiver::install_interrupt_handlers();
+  try {
+    quiver::ViewSession session(args, isa);
+    quiver::ViewServer server(session, {flags.bind, flags.port, ""});
+    if (!quiver::is_loopback_address(flags.bind)) {
+      std::cerr << "quiver: warning: --bind " << flags.bind
+                << " lets other machines reach the viewer; anyone with the URL's token can render views of the "
+                   "scene\n";
+    }
+    std::fprintf(stderr, "quiver view: %s (load %.1f ms, build %.1f ms) at\n  %s\nquiver view: open that URL in a "
+                 "browser; Ctrl-C stops\n", args.scene.empty() ? "the built-in scene" : args.scene.c_str(),
+                 session.load_ms(), session.build_ms(), server.url().c_str());
+    // From here a signal only raises the stop flag; this thread turns it into the server's stop.
+    quiver::set_interrupt_phase(quiver::InterruptPhase::rendering);
+    std::atomic<bool> served{false};
+    std::thread watcher([&] {
+      while (!served.load() && !quiver::stop_requested().load()) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+      server.stop();
+    });
+    const bool listened = server.run();
+    served.store(true);
+    watcher.join();
+    if (const int signal = quiver::interrupting_signal(); signal != 0) {
+      std::cerr << "quiver view: stopped by " << quiver::signal_name(signal) << "\n";
+      return quiver::interrupted_exit_code(signal);
+    }
+    if (!listened) return report("the viewer's server stopped listening", kExitFailure);
     return 0;
   } catch (...) {
     return report_exception();
@@ -310,7 +360,7 @@ int main(int argc, char** argv) {
                "or changed).",
                "quiver"};
   app.footer("'quiver SCENE [options]' is short for 'quiver render SCENE [options]'. Run 'quiver render --help', "
-             "'quiver info --help' or 'quiver trace --help' for the options of each command.");
+             "'quiver info --help', 'quiver trace --help' or 'quiver view --help' for the options of each command.");
   app.set_version_flag("--version", std::string("quiver ") + QUIVER_VERSION, "Print the version and exit");
   app.require_subcommand(1, 1);
 
@@ -339,6 +389,18 @@ int main(int argc, char** argv) {
       "the same for every --threads and --simd");
   add_trace_flags(*trace, trace_args, raw_trace);
 
+  RenderArgs view_args;
+  RawRenderFlags view_raw;
+  quiver::cli::ViewFlags view_flags;
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Look around a scene in a web browser: serves a page on this machine (the URL, with its access token, is "
+      "printed) that shows the scene from any view, refined from a coarse image to the full render; drag to "
+      "orbit, right- or shift-drag to pan, wheel to dolly, f frames the scene, r resets; 'Copy command' gives the "
+      "'quiver render' command that writes the view shown, bit for bit. Takes the render flags (the view's "
+      "camera, size and sampling start from them)");
+  quiver::cli::add_view_flags(*view, view_args, view_raw, view_flags);
+
   const std::vector<std::string> commands = command_names(app);
   std::vector<std::string> args = with_default_command(argc, argv, commands);
   try {
@@ -358,6 +420,14 @@ int main(int argc, char** argv) {
       return report(error.what(), kExitUsage);
     }
     return run_render(render_args);
+  }
+  if (view->parsed()) {
+    try {
+      quiver::cli::collect_render_flags(view_raw, view_args.options);
+    } catch (const UsageError& error) {
+      return report(error.what(), kExitUsage);
+    }
+    return run_view(view_args, view_flags);
   }
   if (trace->parsed()) {
     if (raw_trace.width_option->count()) trace_args.options.width = raw_trace.width;

@@ -31,7 +31,8 @@ struct RawRenderFlags {
   double min_weight = 0.0, crease_angle = 0.0;
   std::string aa, simd, aov, preset, seed, texture_filter;
   CLI::Option *width_option, *height_option, *max_depth_option, *min_weight_option, *crease_angle_option;
-  CLI::Option *aa_option, *simd_option, *aov_option, *preset_option, *seed_option, *texture_filter_option;
+  CLI::Option *aa_option, *simd_option, *preset_option, *seed_option, *texture_filter_option;
+  CLI::Option* aov_option = nullptr;  // render's, not view's
   RawCameraFlags camera;
 };
 
@@ -94,14 +95,19 @@ inline quiver::CameraFlags given_camera_flags(const RawCameraFlags& raw) {
   return flags;
 }
 
-// The scene and the image file.
-inline void add_file_flags(CLI::App& render, RenderArgs& args) {
+// The scene file, for render and view.
+inline void add_scene_argument(CLI::App& render, RenderArgs& args) {
   render.add_option("scene", args.scene,
                     "Scene file: .nff, .toml, .obj, .ply, .gltf, .glb or .stl (any case). Absent: the built-in "
                     "scene. A scene without a camera (a mesh) gets a default view framing it; a scene without "
                     "lights gets a rig that follows the final camera (after the camera flags): a key light above "
                     "and to the right of the eye, a fill at the eye, and a grey background if it has none")
       ->type_name("SCENE");
+}
+
+// The scene and the image file.
+inline void add_file_flags(CLI::App& render, RenderArgs& args) {
+  add_scene_argument(render, args);
   render.add_option("-o,--output", args.output,
                     "Image file: .png/.jpg/.jpeg (8-bit sRGB) or .exr/.hdr/.tif/.tiff (32-bit float linear). "
                     "Default: <scene name>.png in the current directory, quiver.png for the built-in scene. "
@@ -150,8 +156,8 @@ inline void add_image_flags(CLI::App& render, RawRenderFlags& raw) {
                               ->type_name("WEIGHT");
 }
 
-// How the render runs and what else it writes.
-inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
+// How the render runs: threads, lane width and seed.
+inline void add_engine_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("--threads", args.options.threads, "Worker threads, 0..1024; 0: one per core. Default: 0")
       ->type_name("N");
   raw.simd_option = render.add_option("--simd", raw.simd,
@@ -162,6 +168,10 @@ inline void add_run_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& ra
   raw.seed_option = render.add_option("--seed", raw.seed,
                     "Seed (unsigned 64-bit) for jittered anti-aliasing and area-light samples. Default: 0")
       ->type_name("UINT64");
+}
+
+// What else a render writes, and what it says as it goes.
+inline void add_report_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   render.add_option("--stats", args.stats,
                     "Also write render statistics as JSON: timings (ms: render_ms wall time, phases_ms and "
                     "traversal_ms thread time summed over the threads, listed in thread_time_keys), settings, ray "
@@ -209,8 +219,37 @@ inline void add_procedure_flags(CLI::App& render, RenderArgs& args, RawRenderFla
 inline void add_render_flags(CLI::App& render, RenderArgs& args, RawRenderFlags& raw) {
   add_file_flags(render, args);
   add_image_flags(render, raw);
-  add_run_flags(render, args, raw);
+  add_engine_flags(render, args, raw);
+  add_report_flags(render, args, raw);
   add_procedure_flags(render, args, raw);
+}
+
+// What `quiver view` serves, as parsed.
+struct ViewFlags {
+  int port = 0;
+  std::string bind = "127.0.0.1";
+};
+
+// The render flags but the outputs' (a view renders into the page; -o names
+// the copied command's image), and where to listen.
+inline void add_view_flags(CLI::App& view, RenderArgs& args, RawRenderFlags& raw, ViewFlags& flags) {
+  add_scene_argument(view, args);
+  view.add_option("-o,--output", args.output,
+                  "The image file named in the copied 'quiver render' command (nothing is written by the viewer; "
+                  "its Download button saves the same PNG). Default: <scene name>.png, quiver.png for the built-in "
+                  "scene")
+      ->type_name("FILE")
+      ->check(kNonEmptyFileName);
+  add_image_flags(view, raw);
+  add_engine_flags(view, args, raw);
+  add_procedure_flags(view, args, raw);
+  view.add_option("--port", flags.port, "TCP port to listen on, 1..65535. Default: a free one")
+      ->type_name("PORT")
+      ->check(CLI::Range(1, 65535));
+  view.add_option("--bind", flags.bind,
+                  "Address to listen on. Default: 127.0.0.1 (this machine only); any other address lets other "
+                  "machines reach the viewer (with the token), and is warned about")
+      ->type_name("ADDRESS");
 }
 
 // The flags that were given, parsed into the optional fields (UsageError).
@@ -223,7 +262,7 @@ inline void collect_render_flags(const RawRenderFlags& raw, RenderOptions& optio
   options.camera = given_camera_flags(raw.camera);
   if (raw.aa_option->count()) options.aa = quiver::parse_aa_flag(raw.aa);
   if (raw.simd_option->count()) options.simd = raw.simd;
-  if (raw.aov_option->count()) options.aov = quiver::parse_aov_list(raw.aov);
+  if (raw.aov_option != nullptr && raw.aov_option->count()) options.aov = quiver::parse_aov_list(raw.aov);
   if (raw.texture_filter_option->count()) options.filter_textures = quiver::parse_texture_filter(raw.texture_filter);
   if (raw.preset_option->count() && raw.preset != "spd") {
     throw UsageError("--preset: expected spd, found '" + raw.preset + "'");

@@ -34,16 +34,6 @@ json lane_entry(const WaveLanes& lanes) {
           {"utilization_uncompacted", ratio(lanes.active, lanes.issued_uncompacted)}};
 }
 
-// The shortest decimal that reads back as the same float, as a double
-// (0.02f prints as 0.02, not 0.019999999552965164).
-double shortest(float value) {
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  double out = 0.0;
-  std::from_chars(text, end, out);
-  return out;
-}
-
 std::size_t framebuffer_bytes(const Framebuffer& image) {
   return bytes_of(image.rgb) + bytes_of(image.depth) + bytes_of(image.normal) + bytes_of(image.kind) +
          bytes_of(image.id);
@@ -100,7 +90,7 @@ json render_stats_json(const RenderResult& result, const RenderSettings& setting
       {"height", settings.height},
       {"aa", to_string(settings.aa)},
       {"max_depth", settings.trace.max_depth},
-      {"min_weight", shortest(settings.trace.min_weight)},
+      {"min_weight", json_float(settings.trace.min_weight)},
       {"seed", settings.trace.seed},
       {"aovs", aov_names(settings)},
       {"rays",
@@ -155,6 +145,14 @@ void stage_json_file(StagedOutputs& outputs, const fs::path& path, const json& v
     out.close();
     if (!out) fail(path, "cannot write '" + temporary.string() + "'");
   });
+}
+
+double json_float(float value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  double nearest = 0.0;
+  std::from_chars(text, end, nearest);
+  return nearest;
 }
 
 }  // namespace quiver

@@ -48,6 +48,10 @@ struct RenderStatsContext {
 nlohmann::json render_stats_json(const RenderResult& result, const RenderSettings& settings,
                                  const RenderStatsContext& context);
 
+// A float for JSON: the double nearest its shortest round-trip decimal, so
+// 0.02f prints as 0.02, not 0.019999999552965164, and reads back the same.
+double json_float(float value);
+
 // Checks, before rendering, that path can be written: an existing parent
 // directory and not a directory itself. Throws std::runtime_error("<path>: ...").
 void check_stats_path(const std::filesystem::path& path);

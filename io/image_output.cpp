@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -142,10 +143,37 @@ constexpr int kPngCompressionLevel = 2;
   png_longjmp(png, 1);
 }
 
-// 8-bit RGB rows to an open file, tagged sRGB (perceptual intent). Only
+// Where write_png_rows puts the PNG's bytes: an open file, or a string.
+struct PngSink {
+  std::FILE* file = nullptr;
+  std::string* bytes = nullptr;
+};
+
+// libpng's write callback; a short write or a failed allocation is a libpng error.
+void write_to_sink(png_structp png, png_bytep data, png_size_t length) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  bool written = true;
+  if (sink->bytes != nullptr) {
+    try {
+      sink->bytes->append(reinterpret_cast<const char*>(data), length);
+    } catch (const std::bad_alloc&) {
+      written = false;  // libpng's error leaves by longjmp, never from inside a catch
+    }
+  } else {
+    written = std::fwrite(data, 1, length, sink->file) == length;
+  }
+  if (!written) png_error(png, sink->bytes != nullptr ? "out of memory" : "write error");
+}
+
+void flush_sink(png_structp png) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  if (sink->file != nullptr) std::fflush(sink->file);
+}
+
+// 8-bit RGB rows to a sink, tagged sRGB (perceptual intent). Only
 // trivially destructible locals live here, as libpng's errors longjmp
 // back into it; false with the message in error[256] on failure.
-bool write_png_rows(std::FILE* file, int width, int height, const std::uint8_t* rgb, char* error) {
+bool write_png_rows(PngSink* sink, int width, int height, const std::uint8_t* rgb, char* error) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, error, png_error_exit, nullptr);
   if (png == nullptr) {
     std::snprintf(error, 256, "out of memory");
@@ -157,7 +185,7 @@ bool write_png_rows(std::FILE* file, int width, int height, const std::uint8_t* 
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, file);
+  png_set_write_fn(png, sink, write_to_sink, flush_sink);
   png_set_compression_level(png, kPngCompressionLevel);
   png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -175,7 +203,8 @@ void write_png(const fs::path& path, const fs::path& temporary, int width, int h
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   if (file == nullptr) fail(path, "cannot create '" + temporary.string() + "'");
   char error[256] = "";
-  const bool written = write_png_rows(file, width, height, rgb.data(), error);
+  PngSink sink{file, nullptr};
+  const bool written = write_png_rows(&sink, width, height, rgb.data(), error);
   const bool closed = std::fclose(file) == 0;
   if (!written) fail(path, "cannot write: " + std::string(error));
   if (!closed) fail(path, "cannot finish '" + temporary.string() + "'");
@@ -259,14 +288,12 @@ void stage_image(StagedOutputs& outputs, const fs::path& path, const Framebuffer
   if (format.oiio_format == "jpeg" && (framebuffer.width > kMaxJpegSide || framebuffer.height > kMaxJpegSide)) {
     fail(path, "JPEG images hold at most " + std::to_string(kMaxJpegSide) + " pixels per side");
   }
-  const std::size_t n = framebuffer.pixel_count();
 
   std::vector<std::uint8_t> bytes;
   std::vector<float> floats;
   std::vector<std::string> names{"R", "G", "B"};
   if (format.eight_bit_srgb) {
-    bytes.resize(n * 3);
-    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(framebuffer.rgb[i]);
+    bytes = srgb_rgb_bytes(framebuffer);
   } else {
     names = float_channel_names(framebuffer);
     floats = interleaved_floats(framebuffer, names.size());
@@ -289,6 +316,27 @@ void stage_image(StagedOutputs& outputs, const fs::path& path, const Framebuffer
         break;
     }
   });
+}
+
+std::vector<std::uint8_t> srgb_rgb_bytes(const Framebuffer& framebuffer) {
+  std::vector<std::uint8_t> bytes(framebuffer.rgb.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(framebuffer.rgb[i]);
+  return bytes;
+}
+
+std::string encode_png(const Framebuffer& framebuffer) {
+  const std::size_t n = framebuffer.pixel_count();
+  if (framebuffer.width < 1 || framebuffer.height < 1 || framebuffer.rgb.size() != n * 3) {
+    throw std::invalid_argument("encode_png: the framebuffer's colours do not match its size");
+  }
+  const std::vector<std::uint8_t> bytes = srgb_rgb_bytes(framebuffer);
+  std::string png;
+  char error[256] = "";
+  PngSink sink{nullptr, &png};
+  if (!write_png_rows(&sink, framebuffer.width, framebuffer.height, bytes.data(), error)) {
+    throw std::runtime_error("cannot encode a PNG: " + std::string(error));
+  }
+  return png;
 }
 
 void write_image(const fs::path& path, const Framebuffer& framebuffer) {

@@ -12,7 +12,10 @@
 // after a successful close, so a failed write leaves an existing file as it was.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "integrator/framebuffer.h"
 #include "io/output_file.h"
@@ -31,6 +34,15 @@ void check_output_path(const std::filesystem::path& path, bool has_aovs);
 // check_output_path or writing fails, and std::invalid_argument when the
 // framebuffer's arrays do not match its size.
 void stage_image(StagedOutputs& outputs, const std::filesystem::path& path, const Framebuffer& framebuffer);
+
+// The 8-bit sRGB codes (io/srgb_encoding.h) of the colours, 3 per pixel:
+// what PNG and JPEG files hold.
+std::vector<std::uint8_t> srgb_rgb_bytes(const Framebuffer& framebuffer);
+
+// The PNG file a .png output would hold, in memory. Throws
+// std::invalid_argument for colours that do not match the size, and
+// std::runtime_error when encoding fails.
+std::string encode_png(const Framebuffer& framebuffer);
 
 // stage_image and commit for one image on its own.
 void write_image(const std::filesystem::path& path, const Framebuffer& framebuffer);

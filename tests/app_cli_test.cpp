@@ -275,7 +275,7 @@ TEST_F(Cli, ASceneFileAloneRendersAndMistypesGetTheNearestSpelling) {
 
   const Outcome command = run({"rendr", scene});
   EXPECT_EQ(command.exit_code, 2);
-  EXPECT_NE(command.err.find("'rendr' is neither a command (render, info, trace) nor an existing file (did you "
+  EXPECT_NE(command.err.find("'rendr' is neither a command (render, info, trace, view) nor an existing file (did you "
                              "mean 'render'?)"),
             std::string::npos)
       << command.err;

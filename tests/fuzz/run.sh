@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes the scene readers with libFuzzer + ASan + UBSan, each for SECONDS
 # (default 60), one after another.
-#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh, ply, stl, gltf, glb
+#   bash tests/fuzz/run.sh [SECONDS] [FUZZER...]    FUZZER: nff, toml, obj, mesh, ply, stl, gltf, glb, view
 #                                                   (default: nff, toml, obj, mesh)
-# ply, stl, gltf and glb run mesh_fuzzer on one format alone (QUIVER_FUZZ_MESH_KIND).
+# ply, stl, gltf and glb run mesh_fuzzer on one format alone (QUIVER_FUZZ_MESH_KIND);
+# view runs view_request_fuzzer (quiver view's request parameters).
 # Configures the "fuzz" preset when needed (clang++) and builds the fuzzers
 # in build-fuzz/, seeds build-fuzz/corpus-FUZZER from the repository's test
 # data (and the small SPD scenes of ../shared for nff, when present), runs
@@ -13,7 +14,7 @@
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh|ply|stl|gltf|glb ...]  (SECONDS a positive integer, default 60; default: nff toml obj mesh)" >&2
+  echo "usage: $0 [SECONDS] [nff|toml|obj|mesh|ply|stl|gltf|glb|view ...]  (SECONDS a positive integer, default 60; default: nff toml obj mesh)" >&2
   exit 2
 }
 
@@ -26,7 +27,7 @@ if [ "$seconds" -lt 1 ]; then usage; fi
 fuzzers=("$@")
 if [ ${#fuzzers[@]} -eq 0 ]; then fuzzers=(nff toml obj mesh); fi
 for name in "${fuzzers[@]}"; do
-  case "$name" in nff | toml | obj | mesh | ply | stl | gltf | glb) ;; *) usage ;; esac
+  case "$name" in nff | toml | obj | mesh | ply | stl | gltf | glb | view) ;; *) usage ;; esac
 done
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -40,7 +41,7 @@ fi
 targets=()
 # The target each name runs: ply, stl, gltf and glb are mesh_fuzzer with one reader forced.
 binary_of() {
-  case "$1" in ply | stl | gltf | glb) echo mesh ;; *) echo "$1" ;; esac
+  case "$1" in ply | stl | gltf | glb) echo mesh ;; view) echo view_request ;; *) echo "$1" ;; esac
 }
 for name in "${fuzzers[@]}"; do targets+=("$(binary_of "$name")_fuzzer"); done
 cmake --build "$build" -j2 --target "${targets[@]}" >/dev/null
@@ -109,6 +110,13 @@ seed_corpus() {
           { printf '\2'; cat "$seed"; } >"$corpus/seed-$(basename "$seed")"
         done
       fi
+      ;;
+    view)
+      # The page's requests: a view of every stage, and one at the size limits.
+      printf 'from=0,2.2,7&at=0,0.9,0&up=0,1,0&fov=45&width=640&height=360&aa=grid:2&max_depth=5&stage=final' \
+        >"$corpus/seed-view"
+      printf 'from=1e30,-2,3&at=0,0,0&up=0,0,1&fov=179.9&width=65536&height=4096&aa=refine:0.01:16&stage=coarse' \
+        >"$corpus/seed-limits"
       ;;
   esac
   chmod u+w "$corpus"/seed-* 2>/dev/null || true
