@@ -138,13 +138,55 @@ fov : float or None
 
 Returns
 -------
-numpy.ndarray or tuple
-    An (H, W, 3) float32 linear image, row 0 at the top; with aov, (image, dict of depth, normal, kind, id).
+quiver.Image
+    The image, whatever the options: color (H, W, 3) float32 linear, row 0 at the top, and the AOVs
+    asked for (depth, normal, kind, id; None otherwise); save(path) writes it as the program would.
 
 Raises
 ------
 quiver.UsageError
     An option the program would refuse, with its message.)";
+
+inline constexpr const char* kImage = R"(An image quiver.render made: its colour and AOVs as NumPy views.
+
+Attributes
+----------
+width, height : int
+    The size in pixels.
+color : numpy.ndarray
+    (H, W, 3) float32 linear RGB, row 0 at the top.
+depth : numpy.ndarray or None
+    (H, W) float32 distance along the unit primary ray, inf on a miss (aov "depth").
+normal : numpy.ndarray or None
+    (H, W, 3) float32 unit shading normal facing the ray, 0 on a miss (aov "normal").
+kind, id : numpy.ndarray or None
+    (H, W) int32 primitive kind (an index into quiver.KINDS) and id in the whole scene, -1 on a
+    miss (aov "id").
+
+Notes
+-----
+The arrays are views of the image (writing to them changes what save writes); each keeps the
+image alive.)";
+
+inline constexpr const char* kImageSave = R"(Writes the image as `quiver render -o path` would with the same options.
+
+Parameters
+----------
+path : str or os.PathLike
+    .png, .jpg or .jpeg (8-bit sRGB) or .exr, .hdr, .tif or .tiff (32-bit float linear), any case;
+    with AOVs, .exr (they become its Z, N.X N.Y N.Z, kind and id channels). Written to a temporary
+    file and renamed over the target, so a failure leaves an existing file as it was.
+
+Returns
+-------
+None
+
+Raises
+------
+ValueError
+    A path the program would refuse (its extension, AOVs in another format than EXR, a missing folder).
+OSError
+    Writing failed.)";
 
 inline constexpr const char* kCameraRays = R"(The primary rays `quiver trace` casts, in its order.
 

@@ -48,6 +48,26 @@ class Scene:
     ) -> npt.NDArray[np.bool_]:
         """Whether anything lies in (tmin, tmax) along each ray."""
 
+class Image:
+    """An image quiver.render made: its colour and AOVs as NumPy views of it, and save()."""
+
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def color(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def depth(self) -> Optional[npt.NDArray[np.float32]]: ...
+    @property
+    def normal(self) -> Optional[npt.NDArray[np.float32]]: ...
+    @property
+    def kind(self) -> Optional[npt.NDArray[np.int32]]: ...
+    @property
+    def id(self) -> Optional[npt.NDArray[np.int32]]: ...
+    def save(self, path: Union[str, os.PathLike[str]]) -> None:
+        """Writes the image as `quiver render -o path` would with the same options."""
+
 def load(
     path: Union[str, os.PathLike[str]], crease_angle: Optional[float] = None, *, allow_outside_paths: bool = False
 ) -> Scene:
@@ -80,8 +100,8 @@ def render(
     up: Optional[Vector] = None,
     fov: Optional[float] = None,
     texture_filter: Optional[str] = None,
-) -> Union[npt.NDArray[np.float32], tuple[npt.NDArray[np.float32], dict[str, np.ndarray]]]:
-    """Renders as `quiver render`: an (H, W, 3) float32 linear image; with aov, (image, AOV arrays)."""
+) -> Image:
+    """Renders as `quiver render`: color (H, W, 3) float32 linear and the AOVs asked for."""
 
 def camera_rays(
     scene: Scene,

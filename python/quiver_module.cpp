@@ -35,6 +35,7 @@
 #include "python/python_scene.h"
 #include "python/ray_queries.h"
 #include "python/scene_arrays.h"
+#include "python/rendered_image.h"
 #include "python/scene_render.h"
 
 namespace py = pybind11;
@@ -171,15 +172,7 @@ CameraFlags camera_flags(const py::object& look_from, const py::object& look_at,
   return flags;
 }
 
-// Gives the array ownership of the vector's storage (no copy).
-template <class T>
-py::array_t<T> owning_array(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
-  auto* owned = new std::vector<T>(std::move(values));
-  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>(std::move(shape), owned->data(), owner);
-}
-
-py::object render_arrays(const PythonScene& scene, const py::object& width, const py::object& height,
+RenderedImage render_image(const PythonScene& scene, const py::object& width, const py::object& height,
                   std::optional<std::string> aa, const py::object& max_depth, std::optional<double> min_weight,
                   const py::handle& threads, std::optional<std::string> simd, const py::handle& seed, std::optional<std::string> aov,
                   std::optional<std::string> preset, bool two_sided, bool robust_methods, const py::object& look_from,
@@ -201,20 +194,10 @@ py::object render_arrays(const PythonScene& scene, const py::object& width, cons
   options.robust_methods = robust_methods;
   if (texture_filter) options.filter_textures = parse_texture_filter(*texture_filter);
   options.camera = camera_flags(look_from, look_at, up, fov);
-  Framebuffer image;
-  {
-    py::gil_scoped_release release;
-    image = render_python_scene(scene, options);
-  }
-  const auto h = py::ssize_t(image.height), w = py::ssize_t(image.width);
-  py::array_t<float> rgb = owning_array(std::move(image.rgb), {h, w, 3});
-  if (!options.aov) return rgb;
-  py::dict aovs;
-  if (!image.depth.empty()) aovs["depth"] = owning_array(std::move(image.depth), {h, w});
-  if (!image.normal.empty()) aovs["normal"] = owning_array(std::move(image.normal), {h, w, 3});
-  if (!image.kind.empty()) aovs["kind"] = owning_array(std::move(image.kind), {h, w});
-  if (!image.id.empty()) aovs["id"] = owning_array(std::move(image.id), {h, w});
-  return py::make_tuple(rgb, aovs);
+  RenderedImage image;
+  py::gil_scoped_release release;
+  image.frame = render_python_scene(scene, options);
+  return image;
 }
 
 py::dict camera_ray_arrays(const PythonScene& scene, const py::object& width, const py::object& height,
@@ -277,12 +260,13 @@ PYBIND11_MODULE(quiver, m) {
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            docstrings::kOccluded);
 
+  bind_rendered_image(m);
   m.def("to_srgb", &to_srgb, arg("linear"), docstrings::kToSrgb);
   m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(), py::kw_only(),
         arg("allow_outside_paths") = false, docstrings::kLoad);
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
         arg("triangles") = py::none(), docstrings::kFromArrays);
-  m.def("render", &render_arrays, arg("scene"), py::kw_only(), arg("width") = py::none(), arg("height") = py::none(),
+  m.def("render", &render_image, arg("scene"), py::kw_only(), arg("width") = py::none(), arg("height") = py::none(),
         arg("aa") = py::none(), arg("max_depth") = py::none(), arg("min_weight") = py::none(), arg("threads") = 0,
         arg("simd") = py::none(), arg("seed") = 0, arg("aov") = py::none(), arg("preset") = py::none(),
         arg("two_sided") = false, arg("robust_methods") = false, arg("look_from") = py::none(),

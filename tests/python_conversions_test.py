@@ -43,7 +43,7 @@ def text(values):
 
 
 def render(scene, **camera):
-    return quiver.render(scene, width=16, height=12, threads=1, **camera)
+    return quiver.render(scene, width=16, height=12, threads=1, **camera).color
 
 
 def misaligned(values, dtype):
@@ -58,8 +58,8 @@ def misaligned(values, dtype):
 
 
 def test_the_numpy_camera_renders_as_its_text(scene):
-    image = quiver.render(scene, width=32, height=32, look_from=np.array([0, 0.1, 3.0]), look_at=(0, 0.1, 0))
-    expected = quiver.render(scene, width=32, height=32, look_from="0,0.1,3", look_at="0,0.1,0")
+    image = quiver.render(scene, width=32, height=32, look_from=np.array([0, 0.1, 3.0]), look_at=(0, 0.1, 0)).color
+    expected = quiver.render(scene, width=32, height=32, look_from="0,0.1,3", look_at="0,0.1,0").color
     np.testing.assert_array_equal(image, expected)
     # A later, unrelated allocation-heavy call: a heap written through a freed object fails here.
     assert [str(i) for i in range(10000)][-1] == "9999"
@@ -262,8 +262,8 @@ def test_read_only_scene_arrays_build_the_same_scene():
 def test_numpy_scalars_are_read_as_their_values(scene, spheres):
     np.testing.assert_array_equal(
         quiver.render(scene, width=np.int64(16), height=np.uint16(12), threads=np.int8(1), seed=np.uint64(7),
-                      aa="jitter:2", min_weight=np.float32(0.25), fov=np.float16(50)),
-        quiver.render(scene, width=16, height=12, threads=1, seed=7, aa="jitter:2", min_weight=0.25, fov=50.0))
+                      aa="jitter:2", min_weight=np.float32(0.25), fov=np.float16(50)).color,
+        quiver.render(scene, width=16, height=12, threads=1, seed=7, aa="jitter:2", min_weight=0.25, fov=50.0).color)
     hits = spheres.intersect(GOOD, DOWN, tmin=np.float32(0.5), tmax=np.float64(4.5), threads=np.int32(1))
     np.testing.assert_array_equal(hits["t"], [4.0, np.inf])
     assert quiver.load(TINY, crease_angle=np.float32(30)).primitive_count == scene.primitive_count

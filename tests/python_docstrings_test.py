@@ -1,4 +1,4 @@
-"""Every public function and Scene method has a NumPy-style docstring
+"""Every public function, Scene method and Image.save has a NumPy-style docstring
 (python/docstrings.h): a Parameters section naming each of its parameters
 (a line may name several, "origins, directions : ...") and a Returns
 section, so help() documents every argument."""
@@ -41,6 +41,7 @@ def callables():
             yield name, obj
     for name in ("intersect", "occluded"):
         yield "Scene." + name, getattr(quiver.Scene, name)
+    yield "Image.save", quiver.Image.save
 
 
 def test_every_function_documents_each_parameter_and_what_it_returns():
@@ -51,9 +52,15 @@ def test_every_function_documents_each_parameter_and_what_it_returns():
         expected = {p for p in parameters(obj) if p != "self"}
         assert expected <= documented_names(found.get("Parameters", [])), (name, expected)
         seen += 1
-    assert seen >= 7  # five functions and two Scene methods
+    assert seen >= 8  # five functions, two Scene methods and Image.save
 
 
 def test_the_scene_class_documents_its_attributes():
     found = sections(quiver.Scene.__doc__)
     assert documented_names(found["Attributes"]) == {"name", "primitive_count", "bounds"}
+
+
+def test_the_image_class_documents_its_attributes():
+    found = sections(quiver.Image.__doc__)
+    public = {n for n in dir(quiver.Image) if not n.startswith("_")} - {"save"}
+    assert documented_names(found["Attributes"]) == public

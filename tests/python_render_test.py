@@ -65,16 +65,17 @@ def test_render_equals_the_cli_exr(scene_file, options):
         exr = os.path.join(folder, "cli.exr")
         code, _, err = run_cli("render", scene_file, "-o", exr, "-q", "--aov", "depth,normal,id", *cli_flags(options))
         assert code == 0, err
-        image, aovs = quiver.render(quiver.load(scene_file), aov="depth,normal,id", **options)
+        rendered = quiver.render(quiver.load(scene_file), aov="depth,normal,id", **options)
+        image = rendered.color
         assert image.dtype == np.float32 and image.flags["C_CONTIGUOUS"]
-        assert image.shape[2] == 3 and sorted(aovs) == ["depth", "id", "kind", "normal"]
+        assert image.shape == (rendered.height, rendered.width, 3)
         assert image.any()  # not an empty image compared with another
         same_pixels(exr, image, folder, "rgb", "R,G,B")
-        same_pixels(exr, aovs["depth"], folder, "depth", "Z")
-        same_pixels(exr, aovs["normal"], folder, "normal", "N.X,N.Y,N.Z")
+        same_pixels(exr, rendered.depth, folder, "depth", "Z")
+        same_pixels(exr, rendered.normal, folder, "normal", "N.X,N.Y,N.Z")
         # kind and id: integers the EXR stores as floats (exact below 2^24).
-        same_pixels(exr, aovs["kind"].astype(np.float32), folder, "kind", "kind")
-        same_pixels(exr, aovs["id"].astype(np.float32), folder, "id", "id")
+        same_pixels(exr, rendered.kind.astype(np.float32), folder, "kind", "kind")
+        same_pixels(exr, rendered.id.astype(np.float32), folder, "id", "id")
 
 
 def test_render_of_a_mesh_without_camera_equals_the_cli_exr():
@@ -83,22 +84,24 @@ def test_render_of_a_mesh_without_camera_equals_the_cli_exr():
         exr = os.path.join(folder, "cli.exr")
         code, _, err = run_cli("render", bunny, "-o", exr, "-q", "--width", 48, "--height", 36)
         assert code == 0, err
-        image = quiver.render(quiver.load(bunny), width=48, height=36)
+        image = quiver.render(quiver.load(bunny), width=48, height=36).color
         same_pixels(exr, image, folder, "bunny")
 
 
 def test_render_from_arrays_frames_them_with_the_default_view():
     scene = quiver.from_arrays(spheres=np.array([[0.0, 0.0, 0.0, 1.0], [2.5, 0.0, 0.0, 0.5]]))
-    image, aovs = quiver.render(scene, width=64, height=48, aov="id")
+    rendered = quiver.render(scene, width=64, height=48, aov="id")
+    image = rendered.color
     assert image.shape == (48, 64, 3)
-    seen = set(np.unique(aovs["id"]))
+    assert rendered.depth is None and rendered.normal is None  # only the AOVs asked for
+    seen = set(np.unique(rendered.id))
     assert seen == {-1, 0, 1}  # both spheres and the background in view
-    lit = image[aovs["id"] >= 0].max(axis=1)
+    lit = image[rendered.id >= 0].max(axis=1)
     assert (lit > 0).all()  # the default light reaches every visible point's ambient at least
     # Camera flags as sequences of numbers read as the CLI's "x,y,z" text.
     as_text = quiver.render(scene, width=16, height=12, look_from="1,2,8", up="0,1,0")
     as_numbers = quiver.render(scene, width=16, height=12, look_from=(1, 2, 8), up=[0.0, 1.0, 0.0])
-    np.testing.assert_array_equal(as_text, as_numbers)
+    np.testing.assert_array_equal(as_text.color, as_numbers.color)
     with pytest.raises(ValueError, match="look_from: expected"):
         quiver.render(scene, look_from=5)
 
@@ -108,7 +111,7 @@ def test_to_srgb_gives_the_bytes_the_png_writer_stores(tmp_path):
     assert codes.dtype == np.uint8
     np.testing.assert_array_equal(codes, [0, 188, 255, 255, 0, 0, 10])
     assert quiver.to_srgb(np.float64(0.5)).shape == ()
-    image = quiver.render(quiver.load(TINY), width=24, height=16)
+    image = quiver.render(quiver.load(TINY), width=24, height=16).color
     png = str(tmp_path / "cli.png")
     code, _, err = run_cli("render", TINY, "--width", "24", "--height", "16", "-o", png, "-q")
     assert code == 0, err
@@ -122,6 +125,39 @@ def test_to_srgb_gives_the_bytes_the_png_writer_stores(tmp_path):
     srgb = quiver.to_srgb(image)
     assert srgb.shape == image.shape and srgb.any()
     np.testing.assert_array_equal(srgb, written)
+
+
+def test_image_save_writes_the_files_of_the_cli(tmp_path):
+    options = {"width": 20, "height": 14, "aa": "grid:2"}
+    rendered = quiver.render(quiver.load(TINY), **options)
+    assert rendered.kind is None and rendered.id is None
+    assert repr(rendered) == "<quiver.Image 20x14>"
+    png = tmp_path / "saved.png"
+    rendered.save(png)  # os.PathLike
+    code, _, err = run_cli("render", TINY, "-o", str(tmp_path / "cli.png"), "-q", *cli_flags(options))
+    assert code == 0, err
+    assert png.read_bytes() == (tmp_path / "cli.png").read_bytes()
+    with_aovs = quiver.render(quiver.load(TINY), aov="depth,id", **options)
+    assert repr(with_aovs) == "<quiver.Image 20x14, aov depth,id>"
+    exr = str(tmp_path / "saved.exr")
+    with_aovs.save(exr)
+    same_pixels(exr, with_aovs.color, str(tmp_path), "rgb", "R,G,B")
+    same_pixels(exr, with_aovs.depth, str(tmp_path), "depth", "Z")
+    same_pixels(exr, with_aovs.id.astype(np.float32), str(tmp_path), "id", "id")
+    # The arrays are views of the image: a change is what save writes, and a view keeps the image alive.
+    color = quiver.render(quiver.load(TINY), **options).color
+    color[:, :10] = 0.25
+    assert color.base is not None
+    with_aovs.color[:] = 0.5
+    with_aovs.save(exr)
+    same_pixels(exr, np.full((14, 20, 3), 0.5, dtype=np.float32), str(tmp_path), "changed", "R,G,B")
+    with pytest.raises(ValueError, match="exr"):
+        with_aovs.save(str(tmp_path / "aovs.png"))  # AOVs need EXR, as --aov does
+    with pytest.raises(ValueError):
+        with_aovs.save(str(tmp_path / "image.bmp"))
+    with pytest.raises(ValueError):
+        with_aovs.save(str(tmp_path / "missing-folder" / "x.exr"))
+    assert not (tmp_path / "aovs.png").exists()
 
 
 def test_render_options_are_checked_as_the_cli_flags():

@@ -1,5 +1,5 @@
 """The type stubs (python/quiver.pyi, installed beside the module) name
-exactly the module's public functions, classes and Scene members, each
+exactly the module's public functions, classes and Scene and Image members, each
 function with the module's own parameters in the same order and the same
 keyword-only ones (read from the signatures pybind11 writes into the
 docstrings), so the stubs cannot drift from the module."""
@@ -62,3 +62,7 @@ def test_each_function_has_the_modules_parameters():
     assert set(members) == {n for n in dir(quiver.Scene) if not n.startswith("_")}
     for name in ("intersect", "occluded"):
         assert stub_parameters(members[name]) == module_parameters(getattr(quiver.Scene, name)), name
+    image = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Image")
+    members = {n.name: n for n in image.body if isinstance(n, ast.FunctionDef)}
+    assert set(members) == {n for n in dir(quiver.Image) if not n.startswith("_")}
+    assert stub_parameters(members["save"]) == module_parameters(quiver.Image.save)

@@ -35,14 +35,15 @@ def main():
     plt = pyplot(args.output)
 
     scene = quiver.load(args.scene)
-    image, aovs = quiver.render(scene, width=args.width, height=args.height, aa=args.aa, aov="depth")
+    rendered = quiver.render(scene, width=args.width, height=args.height, aa=args.aa, aov="depth")
+    image = rendered.color
     print("%s: %dx%d, mean linear value %.4f" % (scene, image.shape[1], image.shape[0], image.mean()))
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
     left.imshow(srgb(image))
     left.set_title(os.path.basename(args.scene))
     left.axis("off")
-    depth = np.where(np.isfinite(aovs["depth"]), aovs["depth"], np.nan)
+    depth = np.where(np.isfinite(rendered.depth), rendered.depth, np.nan)
     shown = right.imshow(depth, cmap="magma")
     right.set_title("depth AOV (misses blank)")
     right.axis("off")
