@@ -147,6 +147,54 @@ Raises
 quiver.UsageError
     An option the program would refuse, with its message.)";
 
+inline constexpr const char* kFromDict = R"(A scene from a dict of the TOML scene format's keys (docs/PYTHON.md, io/README.md).
+
+Parameters
+----------
+scene : dict
+    Top-level keys (background, ambient), tables (camera, render) as dicts and arrays of tables
+    (lights, textures, materials, spheres, planes, triangles, polygons, cylinders, cones, meshes,
+    instances) as lists of dicts; values bool, int, float, str, os.PathLike, lists, tuples or NumPy
+    arrays and scalars.
+base_dir : str or os.PathLike or None
+    The folder relative file names (meshes, images) are resolved in; the current one without it.
+    Unless allow_outside_paths, every file the scene names lies in it or below.
+crease_angle : float or None
+    As load's.
+strict, allow_outside_paths : bool
+    As --strict and --allow-outside-paths.
+
+Returns
+-------
+quiver.Scene
+    The scene as the TOML reader reads the dict's TOML form (Scene.to_toml writes that form).
+
+Raises
+------
+TypeError
+    A value with no TOML form (None, an object), named by its key ("spheres[2].radius").
+quiver.ParseError
+    What the TOML reader refuses, with its message, at the dict's key ("<dict>: spheres[1].radius: expected ...").)";
+
+inline constexpr const char* kToToml = R"(Writes a scene made by from_dict as the TOML file the CLI reads to the same scene.
+
+Parameters
+----------
+path : str or os.PathLike
+    A .toml file; in the scene's base_dir when the scene names files by relative paths.
+
+Returns
+-------
+None
+
+Raises
+------
+ValueError
+    A scene not made by from_dict, another extension, or another folder than base_dir for a scene
+    naming files.
+OSError
+    Writing failed (the file is written to a temporary name and renamed over the target).)";
+
 inline constexpr const char* kImage = R"(An image quiver.render made: its colour and AOVs as NumPy views.
 
 Attributes

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct PythonScene {
   // Per hit id of built: the primitive's kind and index in its kind's input
   // list (Scene::origin), looked up once here rather than per hit.
   std::vector<std::int32_t> kind_of_id, index_of_id;
+  // A scene from a dict (python/scene_dict.h): its TOML text, and the folder
+  // its relative file names are resolved in.
+  std::string toml_text;
+  std::filesystem::path base_dir;
 };
 
 // Builds the scene for queries; throws as build_named_scene (app/scene_build.h).

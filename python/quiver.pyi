@@ -47,6 +47,8 @@ class Scene:
         simd: Optional[str] = None,
     ) -> npt.NDArray[np.bool_]:
         """Whether anything lies in (tmin, tmax) along each ray."""
+    def to_toml(self, path: Union[str, os.PathLike[str]]) -> None:
+        """Writes a scene made by from_dict as the TOML file the CLI reads to the same scene."""
 
 class Image:
     """An image quiver.render made: its colour and AOVs as NumPy views of it, and save()."""
@@ -72,6 +74,16 @@ def load(
     path: Union[str, os.PathLike[str]], crease_angle: Optional[float] = None, *, allow_outside_paths: bool = False
 ) -> Scene:
     """Reads a scene file (.nff, .toml, .obj, .ply, .gltf, .glb, .stl) and builds it."""
+
+def from_dict(
+    scene: dict[str, Any],
+    base_dir: Optional[Union[str, os.PathLike[str]]] = None,
+    crease_angle: Optional[float] = None,
+    *,
+    strict: bool = False,
+    allow_outside_paths: bool = False,
+) -> Scene:
+    """A scene from a dict of the TOML scene format's keys, read by the TOML reader itself."""
 
 def from_arrays(
     spheres: Optional[npt.ArrayLike] = None,

@@ -36,6 +36,7 @@
 #include "python/ray_queries.h"
 #include "python/scene_arrays.h"
 #include "python/rendered_image.h"
+#include "python/scene_dict.h"
 #include "python/scene_render.h"
 
 namespace py = pybind11;
@@ -152,6 +153,16 @@ SceneHandle load_file(const std::filesystem::path& path, const std::optional<dou
   return std::make_shared<PythonScene>(make_python_scene(path.string(), load_scene(path.string(), options)));
 }
 
+SceneHandle scene_from_dict(const py::object& scene, const std::optional<std::filesystem::path>& base_dir,
+                            const std::optional<double>& crease_angle, bool strict, bool allow_outside_paths) {
+  check_crease_angle(crease_angle);
+  std::string text = toml_text_of_dict(scene);
+  const std::filesystem::path folder = base_dir ? *base_dir : std::filesystem::current_path();
+  py::gil_scoped_release release;
+  return std::make_shared<PythonScene>(
+      read_dict_scene(std::move(text), folder, {crease_angle, strict, allow_outside_paths}));
+}
+
 SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object& vertices, const py::object& triangles) {
   std::optional<CheckedRows<FloatRows>> sphere_rows, vertex_rows;
   std::optional<CheckedRows<IndexRows>> triangle_rows;
@@ -256,6 +267,7 @@ PYBIND11_MODULE(quiver, m) {
       .def("intersect", &intersect_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            py::kw_only(), arg("points") = false, docstrings::kIntersect)
+      .def("to_toml", &write_dict_scene, arg("path"), docstrings::kToToml)
       .def("occluded", &occluded_arrays, arg("origins"), arg("directions"), arg("tmin") = 0.0,
            arg("tmax") = std::numeric_limits<double>::infinity(), arg("threads") = 0, arg("simd") = py::none(),
            docstrings::kOccluded);
@@ -264,6 +276,8 @@ PYBIND11_MODULE(quiver, m) {
   m.def("to_srgb", &to_srgb, arg("linear"), docstrings::kToSrgb);
   m.def("load", &load_file, arg("path"), arg("crease_angle") = py::none(), py::kw_only(),
         arg("allow_outside_paths") = false, docstrings::kLoad);
+  m.def("from_dict", &scene_from_dict, arg("scene"), arg("base_dir") = py::none(), arg("crease_angle") = py::none(),
+        py::kw_only(), arg("strict") = false, arg("allow_outside_paths") = false, docstrings::kFromDict);
   m.def("from_arrays", &scene_from_python_arrays, arg("spheres") = py::none(), arg("vertices") = py::none(),
         arg("triangles") = py::none(), docstrings::kFromArrays);
   m.def("render", &render_image, arg("scene"), py::kw_only(), arg("width") = py::none(), arg("height") = py::none(),

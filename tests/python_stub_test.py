@@ -60,7 +60,7 @@ def test_each_function_has_the_modules_parameters():
     scene = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Scene")
     members = {n.name: n for n in scene.body if isinstance(n, ast.FunctionDef)}
     assert set(members) == {n for n in dir(quiver.Scene) if not n.startswith("_")}
-    for name in ("intersect", "occluded"):
+    for name in ("intersect", "occluded", "to_toml"):
         assert stub_parameters(members[name]) == module_parameters(getattr(quiver.Scene, name)), name
     image = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Image")
     members = {n.name: n for n in image.body if isinstance(n, ast.FunctionDef)}
