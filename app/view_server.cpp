@@ -1,6 +1,7 @@
 #include "app/view_server.h"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <chrono>
@@ -209,6 +210,13 @@ ViewServer::ViewServer(ViewSession& session, ViewServerOptions options)
     : state_(std::make_unique<State>(session, std::move(options))) {
   State& s = *state_;
   if (s.options.token.empty()) s.options.token = random_token();
+  // SO_REUSEADDR (a restart may take the port of a server just stopped), but
+  // not httplib's default SO_REUSEPORT, under which a second viewer would
+  // share the port and answer half the page's requests with its own token.
+  s.http.set_socket_options([](socket_t socket) {
+    const int yes = 1;
+    ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   s.http.set_payload_max_length(kMaxRequestBody);
   s.http.set_read_timeout(kReadTimeoutSeconds);
   s.http.set_write_timeout(kWriteTimeoutSeconds);

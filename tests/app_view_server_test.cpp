@@ -204,6 +204,19 @@ TEST(ViewServer, StopEndsRunWhetherOrNotItHasBegun) {
   thread.join();
 }
 
+TEST(ViewServer, APortInUseIsAnError) {
+  ViewSession session(built_in_scene(8, 8), Isa::scalar);
+  const ViewServer first(session, {"127.0.0.1", 0, kToken});
+  try {
+    const ViewServer second(session, {"127.0.0.1", first.port(), kToken});
+    FAIL() << "a second server listens on port " << first.port();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot listen on 127.0.0.1 port " + std::to_string(first.port())),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(ViewServer, LoopbackAddressesAreKnown) {
   EXPECT_TRUE(is_loopback_address("127.0.0.1"));
   EXPECT_TRUE(is_loopback_address("127.1.2.3"));
