@@ -12,7 +12,8 @@
 //   /api/png          a view's final frame as quiver's PNG writer encodes it
 //                     (a download: it neither cancels frames nor is cancelled)
 // Every request carries token=<the session's token> or gets 403; bad
-// parameters get 400 with the CLI's message. One render at a time: a new
+// parameters get 400 with the CLI's message, as does a view of more than
+// kMaxViewPixels. One render at a time: a new
 // frame request cancels the one in flight (between tiles), which answers
 // 409. Writes time out, so a slow or vanished browser never holds a render.
 #pragma once
@@ -23,6 +24,10 @@
 #include "app/view_session.h"
 
 namespace quiver {
+
+// Most pixels of a frame the page may ask for (a 4096 x 4096 image, 64 MiB
+// of RGBA): larger images are for the copied command, not a browser.
+inline constexpr long long kMaxViewPixels = 1LL << 24;
 
 struct ViewServerOptions {
   std::string bind = "127.0.0.1";

@@ -153,6 +153,11 @@ TEST(ViewServer, BadParametersGet400WithTheReason) {
   bad.width = 0;
   expect_400("/api/frame" + query(bad, "&stage=full"), "--width");
   bad = view;
+  bad.width = 8192;
+  bad.height = 4096;
+  expect_400("/api/frame" + query(bad, "&stage=coarse"), "at most 16777216 pixels");
+  expect_400("/api/png" + query(bad), "at most 16777216 pixels");
+  bad = view;
   bad.fov = 200.0;
   expect_400("/api/command" + query(bad), "--fov");
   ViewRequest unsampled = view;
