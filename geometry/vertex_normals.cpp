@@ -2,12 +2,18 @@
 // face normals and corner angles in double, the corners around each vertex
 // gathered in one compressed array (offsets per position), then each
 // corner's weighted sum over the faces within the crease angle of its own.
+// The per-face passes run in parallel (oneTBB); each writes only its own
+// faces and sums a vertex's faces in corner order, so the normals are the
+// same bits for any thread count.
 #include "geometry/vertex_normals.h"
 
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace quiver {
 
@@ -44,6 +50,16 @@ Face face_of(const std::array<Vec3<double>, 3>& p) {
   return face;
 }
 
+// visit(t) for every face t, in parallel blocks.
+template <class Visit>
+void for_each_face(std::size_t count, const Visit& visit) {
+  constexpr std::size_t kFacesPerTask = 4096;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kFacesPerTask),
+                    [&](const tbb::blocked_range<std::size_t>& block) {
+                      for (std::size_t t = block.begin(); t != block.end(); ++t) visit(t);
+                    });
+}
+
 }  // namespace
 
 bool valid_crease_angle(double crease_angle_degrees) {
@@ -65,10 +81,10 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
   if (crease_angle_degrees == 0.0) return result;
 
   std::vector<Face> faces(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  for_each_face(triangles.size(), [&](std::size_t t) {
     const TriangleIndices& v = triangles[t];
     faces[t] = face_of({widened(positions[v[0]]), widened(positions[v[1]]), widened(positions[v[2]])});
-  }
+  });
 
   // The corners (3 t + k) of valid faces around each position:
   // corners[first[v] .. first[v + 1]).
@@ -92,9 +108,9 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
   const double min_cosine = crease_angle_degrees >= kMaxCreaseAngleDegrees
                                 ? -std::numeric_limits<double>::infinity()
                                 : std::cos(crease_angle_degrees * (std::numbers::pi / 180.0));
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  for_each_face(triangles.size(), [&](std::size_t t) {
     const Face& face = faces[t];
-    if (!face.valid) continue;
+    if (!face.valid) return;
     const Vec3<float> flat = narrowed(face.normal);
     CornerNormals normals{flat, flat, flat};
     bool smoothed = false;  // some corner's normal is not the face normal
@@ -114,7 +130,7 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
       smoothed = smoothed || normals[k].x != flat.x || normals[k].y != flat.y || normals[k].z != flat.z;
     }
     if (smoothed) result[t] = normals;
-  }
+  });
   return result;
 }
 

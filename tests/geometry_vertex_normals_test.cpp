@@ -4,6 +4,7 @@
 // the corner angle (a face split in two weighs as before), not the face
 // count or area; degenerate faces, high-valence vertices and bad arguments.
 #include <gtest/gtest.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -81,8 +82,8 @@ TEST(VertexNormals, CubeEdgesStayHardBelowNinetyDegreesAndAverageAbove) {
   }
 }
 
-TEST(VertexNormals, AFineSpheresNormalsAreRadial) {
-  // A UV sphere of 96 segments and 48 rings, one vertex at each pole.
+// A UV sphere of 96 segments and 48 rings, one vertex at each pole (9,024 triangles).
+Mesh uv_sphere() {
   constexpr std::uint32_t kSegments = 96, kRings = 48;
   Mesh m;
   m.positions.push_back({0.f, 1.f, 0.f});
@@ -105,6 +106,11 @@ TEST(VertexNormals, AFineSpheresNormalsAreRadial) {
     }
     m.triangles.push_back({south, ring(kRings - 1, s), ring(kRings - 1, s + 1)});
   }
+  return m;
+}
+
+TEST(VertexNormals, AFineSpheresNormalsAreRadial) {
+  const Mesh m = uv_sphere();
   const Normals normals = smooth_vertex_normals(m.positions, m.triangles, kDefaultCreaseAngleDegrees);
   double worst = 0.0, worst_faceted = 0.0;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -119,6 +125,35 @@ TEST(VertexNormals, AFineSpheresNormalsAreRadial) {
   }
   EXPECT_LT(worst, 0.05);          // degrees
   EXPECT_GT(worst_faceted, 1.0);   // the face normals are not: the check can fail
+}
+
+// The faces are shared among threads in blocks; each corner's sum runs in
+// corner order, so any thread count gives the same bits.
+TEST(VertexNormals, TheSameBitsForAnyThreadCount) {
+  const Mesh m = uv_sphere();
+  const auto normals_with = [&](int threads) {
+    oneapi::tbb::task_arena arena(threads);
+    return arena.execute([&] { return smooth_vertex_normals(m.positions, m.triangles, kDefaultCreaseAngleDegrees); });
+  };
+  const Normals one = normals_with(1);
+  for (int threads : {2, 3, 8}) {
+    const Normals many = normals_with(threads);
+    ASSERT_EQ(many.size(), one.size());
+    std::size_t differing = 0;
+    for (std::size_t t = 0; t < one.size(); ++t) {
+      if (one[t].has_value() != many[t].has_value()) {
+        ++differing;
+        continue;
+      }
+      if (!one[t]) continue;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3<float>& a = (*one[t])[k];
+        const Vec3<float>& b = (*many[t])[k];
+        differing += a.x != b.x || a.y != b.y || a.z != b.z;
+      }
+    }
+    EXPECT_EQ(differing, 0u) << threads << " threads";
+  }
 }
 
 TEST(VertexNormals, AFlatGridsNormalsAreThePlanes) {

@@ -400,6 +400,10 @@ TEST(MeshImport, GltfMetallicRoughnessBecomesMirrorAndHighlights) {
   EXPECT_EQ(metal.ks, 1.f);
   EXPECT_EQ(metal.kd, 0.f);
   EXPECT_EQ(metal.shininess, 1e4f);
+  // glTF's metallicFactor defaults to 1: polished and without it, a metal.
+  const MaterialDesc unstated = material_of(R"("roughnessFactor": 0.0, )");
+  EXPECT_EQ(unstated.kr, 1.f);
+  EXPECT_EQ(unstated.kd, 0.f);
   const MaterialDesc satin = material_of(R"("metallicFactor": 0.0, "roughnessFactor": 0.5, )");
   EXPECT_FLOAT_EQ(satin.kr, 0.25f * 0.04f);
   EXPECT_FLOAT_EQ(satin.ks, 0.25f * 0.04f);
