@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "geometry/box.h"
@@ -49,28 +48,53 @@ struct ImportDeleter {
 using ImportHandle = std::unique_ptr<void, ImportDeleter>;
 
 // Welds vertices by exact position (-0 as +0), for the normals of meshes
-// whose files share no vertices (STL) or split them at seams.
+// whose files share no vertices (STL) or split them at seams: an open
+// addressing table (linear probing, at most half full) of indices into the
+// positions, which are numbered in the order first seen.
 class PositionWelder {
  public:
+  explicit PositionWelder(std::size_t expected) { rehash(std::bit_ceil(std::max<std::size_t>(2 * expected, 16))); }
+
   std::uint32_t index_of(const Vec3<float>& p) {
     const Vec3<float> q{p.x + 0.f, p.y + 0.f, p.z + 0.f};
-    std::array<std::uint32_t, 3> key;
-    std::memcpy(key.data(), &q.x, 4);
-    std::memcpy(key.data() + 1, &q.y, 4);
-    std::memcpy(key.data() + 2, &q.z, 4);
-    const auto [entry, added] = index_.try_emplace(key, static_cast<std::uint32_t>(positions_.size()));
-    if (added) positions_.push_back(q);
-    return entry->second;
+    const Key key = key_of(q);
+    std::size_t slot = hash(key) & mask_;
+    for (; slots_[slot] != kEmpty; slot = (slot + 1) & mask_) {
+      if (key_of(positions_[slots_[slot]]) == key) return slots_[slot];
+    }
+    const auto index = static_cast<std::uint32_t>(positions_.size());
+    slots_[slot] = index;
+    positions_.push_back(q);
+    if (2 * positions_.size() > slots_.size()) rehash(2 * slots_.size());
+    return index;
   }
   const std::vector<Vec3<float>>& positions() const { return positions_; }
 
  private:
-  struct KeyHash {
-    std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
-      return (std::size_t{k[0]} * 73856093u) ^ (std::size_t{k[1]} * 19349663u) ^ (std::size_t{k[2]} * 83492791u);
+  using Key = std::array<std::uint32_t, 3>;
+  static constexpr std::uint32_t kEmpty = ~std::uint32_t{0};
+
+  static Key key_of(const Vec3<float>& q) { return {std::bit_cast<std::uint32_t>(q.x), std::bit_cast<std::uint32_t>(q.y),
+                                                     std::bit_cast<std::uint32_t>(q.z)}; }
+  // A 64-bit mix of the three words (multiply and xor-shift: every bit reaches the slot bits).
+  static std::size_t hash(const Key& k) {
+    std::uint64_t h = (std::uint64_t{k[0]} << 32 | k[1]) * 0x9E3779B97F4A7C15ull;
+    h ^= (h >> 29) + std::uint64_t{k[2]} * 0xC2B2AE3D27D4EB4Full;
+    h ^= h >> 32;
+    return static_cast<std::size_t>(h * 0x94D049BB133111EBull >> 16);
+  }
+  void rehash(std::size_t capacity) {
+    slots_.assign(capacity, kEmpty);
+    mask_ = capacity - 1;
+    for (std::uint32_t index = 0; index < positions_.size(); ++index) {
+      std::size_t slot = hash(key_of(positions_[index])) & mask_;
+      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
+      slots_[slot] = index;
     }
-  };
-  std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, KeyHash> index_;
+  }
+
+  std::vector<std::uint32_t> slots_;
+  std::size_t mask_ = 0;
   std::vector<Vec3<float>> positions_;
 };
 
@@ -228,8 +252,11 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
 
   // STL's normals are its facets': smooth ones are computed as for PLY.
   const bool file_normals_kept = format != MeshFormat::stl;
-  const bool smooth_missing = format == MeshFormat::ply || format == MeshFormat::stl;
-  PositionWelder welder;
+  // Faceted (crease angle 0): nothing to weld.
+  const bool smooth_missing = (format == MeshFormat::ply || format == MeshFormat::stl) && crease_angle_degrees > 0.0;
+  std::size_t vertices = 0;
+  for (std::size_t i = 0; i < mesh.part_count; ++i) vertices += mesh.parts[i].vertex_count;
+  PositionWelder welder(smooth_missing ? std::min(vertices, 3 * triangles) : 0);
   std::vector<TriangleIndices> welded;    // of the triangles to smooth
   std::vector<std::size_t> welded_owner;  // their index in scene.triangles
   for (std::size_t i = 0; i < mesh.part_count; ++i) {
