@@ -218,17 +218,15 @@ void add_materials(const ImportedMesh& mesh, MeshFormat format, std::string_view
 // within the OBJ reader's coordinate bound, as the camera and bounding
 // boxes need.
 void check_position(const Vec3<float>& p, std::string_view file, std::size_t part, std::uint32_t vertex) {
+  const auto within = [](float c) { return std::fabs(c) <= kLargestMeshCoordinate; };  // false for NaN
+  if (within(p.x) && within(p.y) && within(p.z)) return;  // the common case: no message made
   const std::string where = joined({" (mesh ", std::to_string(part), ", vertex ", std::to_string(vertex), ")"});
   if (!all_finite(p)) {
     throw ParseError::whole_file(file, joined({"expected finite vertex positions, found one that is not", where}));
   }
-  const float largest = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-  if (largest > kLargestMeshCoordinate) {
-    char shown[96];
-    std::snprintf(shown, sizeof shown, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
-    throw ParseError::whole_file(
-        file, joined({"expected vertex positions from -3.4e38 to 3.4e38, found ", shown, where}));
-  }
+  char shown[96];
+  std::snprintf(shown, sizeof shown, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+  throw ParseError::whole_file(file, joined({"expected vertex positions from -3.4e38 to 3.4e38, found ", shown, where}));
 }
 
 SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_view file, const fs::path& directory,
