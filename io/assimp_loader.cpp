@@ -10,7 +10,7 @@ namespace quiver {
 const AssimpModuleApi& assimp_module() {
   static const LoadedModule module =
       load_module({"Assimp", kAssimpModuleFileName, "QUIVER_ASSIMP_MODULE", kAssimpModuleEntry, kAssimpModuleVersion,
-                   "glTF and STL meshes"});
+                   "glTF and ASCII STL meshes"});
   if (module.table == nullptr) throw std::runtime_error(module.failure);
   return *static_cast<const AssimpModuleApi*>(module.table);
 }

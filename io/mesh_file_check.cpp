@@ -1,12 +1,14 @@
 #include "io/mesh_file_check.h"
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -217,6 +219,19 @@ MeshFileCounts check_stl(std::string_view bytes, std::string_view file) {
                joined({"a binary STL's triangle count N with 84 + 50 N = ", std::to_string(bytes.size()),
                        ", the file's size (or an ASCII STL starting 'solid')"}),
                std::to_string(little_endian_u32(bytes, 80)));
+}
+
+std::vector<float> binary_stl_corners(std::string_view bytes, std::size_t triangles) {
+  constexpr std::size_t kHeader = 84, kTriangle = 50, kNormal = 12;
+  if (bytes.size() != kHeader + kTriangle * triangles) {
+    throw std::invalid_argument("binary_stl_corners: not the size check_stl accepted");
+  }
+  std::vector<float> corners(9 * triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const std::size_t at = kHeader + kTriangle * t + kNormal;
+    for (std::size_t k = 0; k < 9; ++k) corners[9 * t + k] = std::bit_cast<float>(little_endian_u32(bytes, at + 4 * k));
+  }
+  return corners;
 }
 
 GltfContents check_gltf(std::string_view bytes, std::string_view file, const fs::path& directory, const PathRule& paths,

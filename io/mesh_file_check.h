@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string_view>
+#include <vector>
 
 #include "io/gltf_check.h"
 #include "io/path_rule.h"
@@ -25,6 +26,12 @@ struct MeshFileCounts {
 
 // `bytes` is the whole file, `file` its name in messages. Throws ParseError.
 MeshFileCounts check_stl(std::string_view bytes, std::string_view file);
+// The corners of a binary STL that check_stl accepted (counts.stl_binary):
+// x y z of each triangle's three vertices in file order, 9 floats a
+// triangle, read from their little-endian bytes (the facet normals and
+// attribute words skipped). quiver reads binary STL itself; ASCII STL goes
+// to Assimp.
+std::vector<float> binary_stl_corners(std::string_view bytes, std::size_t triangles);
 // glTF: the JSON text of a .gltf, or the bytes of a .glb; buffers named by
 // URI are looked for relative to `directory` (outside `paths`, an error:
 // io/path_rule.h), and their sizes added up with the file's against

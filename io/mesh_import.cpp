@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -293,8 +294,23 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   return scene;
 }
 
-// A PLY mesh (io/ply_reader.h) as one part of an import, so that its
-// triangles and smooth normals are built as every imported mesh's.
+// One part of quiver's own reading (a PLY or binary STL mesh, which names
+// no files) as an import with the default material, so that its triangles
+// and smooth normals are built as every imported mesh's.
+SceneDesc scene_from_part(const ImportedPart& part, MeshFormat format, std::string_view file,
+                          double crease_angle_degrees, ReaderWarnings& warnings,
+                          std::size_t dropped_points_and_lines = 0) {
+  const ImportedMaterial material{};
+  ImportedMesh mesh{};
+  mesh.part_count = 1;
+  mesh.parts = &part;
+  mesh.material_count = 1;
+  mesh.materials = &material;
+  mesh.dropped_points_and_lines = dropped_points_and_lines;
+  return scene_from(mesh, format, file, {}, PathRule{}, crease_angle_degrees, warnings);
+}
+
+// A PLY mesh (io/ply_reader.h).
 SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double crease_angle_degrees,
                          ReaderWarnings& warnings) {
   ImportedPart part{};
@@ -305,17 +321,27 @@ SceneDesc scene_from_ply(const PlyMesh& ply, std::string_view file, double creas
   part.uv_stride = 2;
   part.triangle_count = ply.triangles.size() / 3;
   part.indices = ply.triangles.data();
-  const ImportedMaterial material{};
-  ImportedMesh mesh{};
-  mesh.part_count = 1;
-  mesh.parts = &part;
-  mesh.material_count = 1;
-  mesh.materials = &material;
-  mesh.dropped_points_and_lines = ply.point_cloud_vertices;
-  SceneDesc scene = scene_from(mesh, MeshFormat::ply, file, {}, PathRule{}, crease_angle_degrees, warnings);  // PLY names no files
+  SceneDesc scene = scene_from_part(part, MeshFormat::ply, file, crease_angle_degrees, warnings, ply.point_cloud_vertices);
   scene.face_tallies = {{std::string(file), ply.faces_declared, ply.faces_kept}};
   return scene;
 }
+
+// A binary STL's corners (io/mesh_file_check.h): three vertices a triangle,
+// welded by position for the smooth normals.
+SceneDesc scene_from_binary_stl(const std::vector<float>& corners, std::string_view file, double crease_angle_degrees,
+                                ReaderWarnings& warnings) {
+  std::vector<std::uint32_t> indices(corners.size() / 3);
+  std::iota(indices.begin(), indices.end(), 0u);
+  ImportedPart part{};
+  part.vertex_count = indices.size();
+  part.positions = corners.data();
+  part.triangle_count = indices.size() / 3;
+  part.indices = indices.data();
+  return scene_from_part(part, MeshFormat::stl, file, crease_angle_degrees, warnings);
+}
+
+// STL has no up axis of its own; CAD's convention, which STL files follow, is +z.
+const SceneDesc::StatedUp kStlUp{{0.f, 0.f, 1.f}, "STL's convention"};
 
 // A glTF's punctual lights, scaled as io/gltf_lights.h says for the scene's
 // bounds, and what of them quiver does not model named; a scene lit by its
@@ -365,8 +391,17 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
       return scene;
     }
     case MeshFormat::stl:
-      declared_triangles = check_stl(bytes, file).triangles;
+    {
+      const MeshFileCounts counts = check_stl(bytes, file);
+      if (counts.stl_binary) {
+        SceneDesc scene = scene_from_binary_stl(binary_stl_corners(bytes, counts.triangles), file,
+                                                crease_angle_degrees, warnings);
+        scene.model_up = kStlUp;
+        return scene;
+      }
+      declared_triangles = counts.triangles;  // ASCII STL: through Assimp
       break;
+    }
     case MeshFormat::gltf:
       gltf = check_gltf(bytes, file, directory, rule, false, kMaxImportedMeshBytes, triangle_budget);
       declared_triangles = gltf.placed_triangles;
@@ -393,7 +428,7 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
                       ImportDeleter{api});
   if (!handle) throw ParseError::whole_file(file, error);
   SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
-  if (*format == MeshFormat::stl) scene.model_up = SceneDesc::StatedUp{{0.f, 0.f, 1.f}, "STL's convention"};
+  if (*format == MeshFormat::stl) scene.model_up = kStlUp;
   scene.camera = gltf.camera;
   if (!gltf.unused_camera.empty()) {
     warnings.warn("gltf camera", {file, 0, 0}, "a perspective camera", gltf.unused_camera,

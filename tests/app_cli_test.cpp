@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -783,7 +784,7 @@ TEST_F(Cli, AMissingOpenImageIOModuleIsAClearErrorOnlyWhereItIsNeeded) {
 // Assimp, like OpenImageIO, is mapped only by a run that reads a glTF or
 // STL mesh (PLY has quiver's own reader); without its module such a run
 // fails clearly and others work.
-TEST_F(Cli, GltfAndStlRenderWithOneCommandAndOnlyThoseLoadAssimp) {
+TEST_F(Cli, GltfAndAsciiStlRenderWithOneCommandAndOnlyThoseLoadAssimp) {
   const std::string trace = "LD_DEBUG=files";
   const auto maps_assimp = [](const Outcome& r) { return r.err.find("libassimp") != std::string::npos; };
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
@@ -813,13 +814,30 @@ TEST_F(Cli, GltfAndStlRenderWithOneCommandAndOnlyThoseLoadAssimp) {
   const Outcome stl = run({"render", roof_stl.string(), "-o", "stl.png", "--width", "8", "-q"}, environment);
   EXPECT_EQ(stl.exit_code, 1);
   EXPECT_EQ(stl.err.rfind("quiver: " + roof_stl.string() + ": cannot load quiver's Assimp module (quiver_assimp.so; "
-                          "needed for glTF and STL meshes); tried:", 0),
+                          "needed for glTF and ASCII STL meshes); tried:", 0),
             0u)
       << stl.err;
   EXPECT_NE(stl.err.find(missing + ": "), std::string::npos) << stl.err;
   EXPECT_TRUE(fs::is_regular_file(work() / "obj.png"));
   EXPECT_TRUE(fs::is_regular_file(work() / "ply.png"));
   EXPECT_FALSE(fs::exists(work() / "stl.png"));
+
+  // A binary STL is read by quiver itself: no Assimp, mapped or missing.
+  std::string binary(80, ' ');
+  const auto put_u32 = [&](std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) binary += static_cast<char>((v >> (8 * k)) & 0xffu);
+  };
+  const auto put_float = [&](float f) { put_u32(std::bit_cast<std::uint32_t>(f)); };
+  put_u32(1);
+  for (const float f : {0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put_float(f);
+  binary += std::string(2, '\0');
+  const fs::path binary_stl = work() / "binary.stl";
+  std::ofstream(binary_stl, std::ios::binary) << binary;
+  const Outcome traced = run({"render", binary_stl.string(), "-o", "binary.png", "--width", "8", "-q"}, trace);
+  EXPECT_EQ(traced.exit_code, 0) << traced.err;
+  EXPECT_FALSE(maps_assimp(traced));
+  EXPECT_EQ(run({"render", binary_stl.string(), "-o", "binary.png", "--width", "8", "-q"}, environment).exit_code, 0);
+  EXPECT_TRUE(fs::is_regular_file(work() / "binary.png"));
 }
 
 // `quiver trace`: one JSON line on stdout, nothing else, and no files.

@@ -64,6 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 1: {
         const quiver::MeshFileCounts counts = quiver::check_stl(bytes, name);
         check(!counts.stl_binary || 84 + 50 * counts.triangles == bytes.size());
+        if (counts.stl_binary) check(quiver::binary_stl_corners(bytes, counts.triangles).size() == 9 * counts.triangles);
         break;
       }
       default: {
