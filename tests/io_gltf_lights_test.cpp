@@ -88,6 +88,11 @@ TEST(GltfLights, ScaledByTheirIlluminanceAtTheCentre) {
   expect_vec3_near(scaled[1].color, 0.675, 0.3375, 0.3375);
   // A larger ambient leaves less to the lights, as for the rig.
   EXPECT_NEAR(scaled_gltf_lights(lights, {1.f, 0.f, 0.f}, {0.5f, 0.2f, 0.2f})[0].color.x, 0.5 / 4.0, 1e-6);
+  // The lights' largest components sum to the total: a dimmer colour takes less of it.
+  lights.lights[1].light.color = {0.5f, 0.25f, 0.25f};
+  const std::vector<LightDesc> dimmer = scaled_gltf_lights(lights, {1.f, 0.f, 0.f}, ambient);
+  expect_vec3_near(dimmer[0].color, 0.36, 0.36, 0.36);  // 0.9 / (1 + 3 x 0.5)
+  expect_vec3_near(dimmer[1].color, 0.54, 0.27, 0.27);
   // Dark lights stay dark.
   lights.lights[0].intensity = 0.0;
   lights.lights[1].intensity = 0.0;
