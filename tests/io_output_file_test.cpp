@@ -113,6 +113,25 @@ TEST_F(Staged, AFailedRenamePutsBackTheTargetsAlreadyReplaced) {
   EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "c.json"}));  // new.exr did not exist: removed
 }
 
+// A rename that fails after others succeeded (here, its temporary vanished):
+// the replaced target gets its old file back, the new one is removed.
+TEST_F(Staged, ARenameFailingMidwayUndoesTheOnesBefore) {
+  std::ofstream(at("a.png")) << "OLD";
+  StagedOutputs outputs;
+  outputs.stage(at("a.png"), writing("NEW"));
+  outputs.stage(at("new.exr"), writing("NEW"));
+  outputs.stage(at("c.json"), writing("{}"));
+  std::size_t removed = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_.path())) {
+    const bool temporary_of_c = entry.path().extension() == ".json" && entry.path().filename() != "c.json";
+    if (temporary_of_c) removed += fs::remove(entry.path());
+  }
+  ASSERT_EQ(removed, 1u);
+  EXPECT_THROW(outputs.commit(), std::runtime_error);
+  EXPECT_EQ(read_text(at("a.png")), "OLD");                      // put back
+  EXPECT_EQ(names(), std::vector<std::string>{"a.png"});  // new.exr did not exist: removed; no temporary left
+}
+
 TEST_F(Staged, OneOutputKeepsTheOldFileWhenTheWriteFails) {
   std::ofstream(at("a.png")) << "OLD";
   {
