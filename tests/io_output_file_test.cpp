@@ -100,17 +100,18 @@ TEST_F(Staged, DiscardRemovesTheTemporaries) {
   EXPECT_TRUE(names().empty());
 }
 
-TEST_F(Staged, AFailedRenamePutsBackTheTargetsAlreadyReplaced) {
+// A target that no file can replace (a directory) fails the commit before
+// any rename: every target as it was, no temporary left.
+TEST_F(Staged, AnUnreplaceableTargetFailsTheCommitBeforeAnyRename) {
   std::ofstream(at("a.png")) << "OLD";
   StagedOutputs outputs;
   outputs.stage(at("a.png"), writing("NEW"));
   outputs.stage(at("new.exr"), writing("NEW"));
   outputs.stage(at("c.json"), writing("{}"));
-  // A directory with a file in it cannot be replaced by a file.
   fs::create_directories(at("c.json") / "inside");
   EXPECT_THROW(outputs.commit(), std::runtime_error);
-  EXPECT_EQ(read_text(at("a.png")), "OLD");  // put back
-  EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "c.json"}));  // new.exr did not exist: removed
+  EXPECT_EQ(read_text(at("a.png")), "OLD");
+  EXPECT_EQ(names(), (std::vector<std::string>{"a.png", "c.json"}));
 }
 
 // A rename that fails after others succeeded (here, its temporary vanished):
