@@ -3,10 +3,10 @@
 // a scene holds, `quiver trace SCENE` times the primary rays' closest hits
 // and prints one JSON line (app/trace_command.h), `quiver view [SCENE]`
 // serves a page to look around the scene in a browser (app/view_server.h).
-// Exit codes: 0 success,
-// 1 failure (unreadable or invalid scene, render or write error), 2 usage
-// error (bad flag or value, an output naming an input or another output),
-// 130 / 143 interrupted by SIGINT / SIGTERM (app/interrupt.h). Errors go to
+// Exit codes: 0 success, 1 failure (unreadable or invalid scene, render or
+// write error), 2 usage error (bad flag or value, an output naming an input
+// or another output), 130 / 143 interrupted by SIGINT / SIGTERM
+// (app/interrupt.h; for view, the way it stops). Errors go to
 // stderr as "quiver: <message>". A render's outputs are staged and renamed
 // over their targets together once all were written: on any failure or
 // interruption no output file is created or changed.

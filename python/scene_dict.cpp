@@ -92,8 +92,9 @@ class DictConverter {
 
   // NumPy values as Python's own (tolist), paths as str.
   static py::object plain(const py::handle& item) {
-    static const py::object path_like = py::module_::import("os").attr("PathLike");
-    if (py::isinstance(item, path_like)) return py::module_::import("os").attr("fspath")(item);
+    // Kept for the process's life: a static py::object would be released after the interpreter is gone.
+    static const py::object* const os = new py::object(py::module_::import("os"));
+    if (py::isinstance(item, os->attr("PathLike"))) return os->attr("fspath")(item);
     if (!py::isinstance<py::str>(item) && py::hasattr(item, "tolist") && py::hasattr(item, "dtype")) {
       return item.attr("tolist")();
     }
