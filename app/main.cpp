@@ -295,6 +295,56 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
   quiver::cli::add_camera_flags(trace, raw.camera);
 }
 
+// The render flags that were given, into args.options, then run(args); a
+// bad value exits 2.
+template <class Run>
+int with_collected_flags(const RawRenderFlags& raw, RenderArgs& args, const Run& run) {
+  try {
+    quiver::cli::collect_render_flags(raw, args.options);
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  }
+  return run(args);
+}
+
+// `quiver trace` with the optional flags that were given.
+int run_trace_command(const RawTraceFlags& raw, TraceArgs args) {
+  if (raw.width_option->count()) args.options.width = raw.width;
+  if (raw.height_option->count()) args.options.height = raw.height;
+  if (raw.simd_option->count()) args.options.simd = raw.simd;
+  if (raw.crease_angle_option->count()) args.options.crease_angle = raw.crease_angle;
+  try {
+    args.options.camera = quiver::cli::given_camera_flags(raw.camera);
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  }
+  return run_trace(args);
+}
+
+// `quiver info` with the optional flags that were given.
+int run_info_command(InfoArgs args) {
+  if (args.crease_angle_option->count()) args.load_options.crease_angle_degrees = args.crease_angle;
+  quiver::CameraFlags camera_flags;
+  try {
+    camera_flags = quiver::cli::given_camera_flags(args.camera);
+  } catch (const UsageError& error) {
+    return report(error.what(), kExitUsage);
+  }
+  return run_info(args.scene, args.load_options, camera_flags);
+}
+
+CLI::App* add_view_command(CLI::App& app, RenderArgs& args, RawRenderFlags& raw, quiver::cli::ViewFlags& flags) {
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Look around a scene in a web browser: serves a page on this machine (the URL, with its access token, is "
+      "printed) that shows the scene from any view, refined from a coarse image to the full render; drag to "
+      "orbit, right- or shift-drag to pan, wheel to dolly, f frames the scene, r resets; 'Copy command' gives the "
+      "'quiver render' command that writes the view shown, bit for bit. Takes the render flags (the view's "
+      "camera, size and sampling start from them)");
+  quiver::cli::add_view_flags(*view, args, raw, flags);
+  return view;
+}
+
 }  // namespace
 
 // The command names of app, in the order they were added.
@@ -392,14 +442,7 @@ int main(int argc, char** argv) {
   RenderArgs view_args;
   RawRenderFlags view_raw;
   quiver::cli::ViewFlags view_flags;
-  CLI::App* view = app.add_subcommand(
-      "view",
-      "Look around a scene in a web browser: serves a page on this machine (the URL, with its access token, is "
-      "printed) that shows the scene from any view, refined from a coarse image to the full render; drag to "
-      "orbit, right- or shift-drag to pan, wheel to dolly, f frames the scene, r resets; 'Copy command' gives the "
-      "'quiver render' command that writes the view shown, bit for bit. Takes the render flags (the view's "
-      "camera, size and sampling start from them)");
-  quiver::cli::add_view_flags(*view, view_args, view_raw, view_flags);
+  CLI::App* view = add_view_command(app, view_args, view_raw, view_flags);
 
   const std::vector<std::string> commands = command_names(app);
   std::vector<std::string> args = with_default_command(argc, argv, commands);
@@ -413,40 +456,10 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
 
-  if (render->parsed()) {
-    try {
-      quiver::cli::collect_render_flags(raw, render_args.options);
-    } catch (const UsageError& error) {
-      return report(error.what(), kExitUsage);
-    }
-    return run_render(render_args);
-  }
+  if (render->parsed()) return with_collected_flags(raw, render_args, run_render);
   if (view->parsed()) {
-    try {
-      quiver::cli::collect_render_flags(view_raw, view_args.options);
-    } catch (const UsageError& error) {
-      return report(error.what(), kExitUsage);
-    }
-    return run_view(view_args, view_flags);
+    return with_collected_flags(view_raw, view_args, [&](const RenderArgs& a) { return run_view(a, view_flags); });
   }
-  if (trace->parsed()) {
-    if (raw_trace.width_option->count()) trace_args.options.width = raw_trace.width;
-    if (raw_trace.height_option->count()) trace_args.options.height = raw_trace.height;
-    if (raw_trace.simd_option->count()) trace_args.options.simd = raw_trace.simd;
-    if (raw_trace.crease_angle_option->count()) trace_args.options.crease_angle = raw_trace.crease_angle;
-    try {
-      trace_args.options.camera = quiver::cli::given_camera_flags(raw_trace.camera);
-    } catch (const UsageError& error) {
-      return report(error.what(), kExitUsage);
-    }
-    return run_trace(trace_args);
-  }
-  if (info_args.crease_angle_option->count()) info_args.load_options.crease_angle_degrees = info_args.crease_angle;
-  quiver::CameraFlags info_camera_flags;
-  try {
-    info_camera_flags = quiver::cli::given_camera_flags(info_args.camera);
-  } catch (const UsageError& error) {
-    return report(error.what(), kExitUsage);
-  }
-  return run_info(info_args.scene, info_args.load_options, info_camera_flags);
+  if (trace->parsed()) return run_trace_command(raw_trace, trace_args);
+  return run_info_command(info_args);
 }

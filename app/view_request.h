@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/render_options.h"
 #include "scene/anti_aliasing.h"
 #include "simd/vec3.h"
 
@@ -20,6 +21,9 @@ struct ViewRequest {
   int width = 0, height = 0;
   std::optional<AntiAliasing> aa;  // absent: the session's
   std::optional<int> max_depth;    // absent: the session's
+
+  // The camera flags (--look-from, --look-at, --up, --fov) that give this view.
+  CameraFlags camera() const { return {from, at, up, fov}; }
 };
 
 // How far a view is refined: coarse (1/kCoarseScale of each side, rounded

@@ -114,21 +114,19 @@ struct ViewServer::State {
     });
   }
 
-  // The settings of a stage of the view; UsageError (400) for a view the
-  // CLI refuses or one larger than the page may show.
-  RenderSettings checked_settings(const ViewRequest& view, ViewStage stage) const {
-    const RenderSettings settings = session.settings_for(view, stage);
+  // UsageError (400) for a view the CLI refuses or one larger than the page may show.
+  void check_view(const ViewRequest& view, ViewStage stage) const {
+    session.settings_for(view, stage);
     if (static_cast<long long>(view.width) * view.height > kMaxViewPixels) {
       throw UsageError("the viewer shows at most " + std::to_string(kMaxViewPixels) + " pixels (" +
                        std::to_string(view.width) + "x" + std::to_string(view.height) +
                        " asked for): render larger images with the copied command");
     }
-    return settings;
   }
 
   // Renders a stage of the view in its turn; nothing when a newer request cancelled it.
   std::optional<RenderResult> render_in_turn(const ViewRequest& view, ViewStage stage) {
-    checked_settings(view, stage);  // a bad view is a 400 before it cancels anything
+    check_view(view, stage);  // a bad view is a 400 before it cancels anything
     const std::shared_ptr<std::atomic<bool>> stop = supersede();
     const std::lock_guard turn(render_turn);
     if (stop->load()) return std::nullopt;
@@ -145,7 +143,7 @@ struct ViewServer::State {
   // view's, else rendered in its turn; a download neither cancels the
   // page's frames nor is cancelled by them.
   Framebuffer final_frame(const ViewRequest& view) {
-    checked_settings(view, ViewStage::final);
+    check_view(view, ViewStage::final);
     const std::string key = shell_command_line(session.command(view));
     const std::lock_guard turn(render_turn);
     if (final_key != key) {

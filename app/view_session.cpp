@@ -34,7 +34,7 @@ ViewSession::ViewSession(const RenderArgs& args, Isa isa) : args_(args), isa_(is
 
 RenderOptions ViewSession::options_for(const ViewRequest& view) const {
   RenderOptions options = args_.options;
-  options.camera = {view.from, view.at, view.up, view.fov};
+  options.camera = view.camera();
   options.width = view.width;
   options.height = view.height;
   if (!options.preset_spd) {
@@ -60,10 +60,8 @@ RenderResult ViewSession::render(const ViewRequest& view, ViewStage stage, const
   // view's primitives are not kept): the flags over it, then the default rig.
   SceneDesc lit = view_desc_;
   if (!lit.camera) lit.camera = first_camera_;
-  set_view(lit, options_for(view).camera, settings.width, settings.height);
-  scene_.camera = *lit.camera;
-  scene_.lights = std::move(lit.lights);
-  scene_.background = lit.background.value_or(Vec3<float>{0.f, 0.f, 0.f});
+  set_view(lit, view.camera(), settings.width, settings.height);
+  set_scene_view(scene_, lit);
   return ::quiver::render(scene_, settings, {}, stop);
 }
 

@@ -362,7 +362,31 @@ void use_gltf_lights(const GltfLights& lights, const std::string& file, ReaderWa
   scene.warnings = warnings.lines();
 }
 
+// An ASCII STL or a glTF that io/mesh_file_check.h accepted, imported by the
+// Assimp module (loaded on first use): STL from the bytes checked, glTF
+// from its file, whose buffers and images are named relative to it.
+SceneDesc scene_through_assimp(const std::string& bytes, const std::string& file, MeshFormat format,
+                               const fs::path& directory, const PathRule& rule, double crease_angle_degrees,
+                               std::size_t triangle_budget, ReaderWarnings& warnings) {
+  const AssimpModuleApi* api = nullptr;
+  try {
+    api = &assimp_module();
+  } catch (const std::runtime_error& error) {
+    throw ParseError::whole_file(file, error.what());
+  }
+  const bool from_memory = format == MeshFormat::stl;
+  const std::string extension = lowercase_extension(file);
+  ImportedMesh mesh{};
+  char error[1024] = {};
+  ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),
+                                       extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
+                      ImportDeleter{api});
+  if (!handle) throw ParseError::whole_file(file, error);
+  return scene_from(mesh, format, file, directory, rule, crease_angle_degrees, warnings);
+}
+
 }  // namespace
+
 
 bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
 
@@ -412,22 +436,8 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
       break;
   }
 
-  const AssimpModuleApi* api = nullptr;
-  try {
-    api = &assimp_module();
-  } catch (const std::runtime_error& error) {
-    throw ParseError::whole_file(file, error.what());
-  }
-  // STL is read from the bytes checked; glTF from its file, whose buffers
-  // and images are named relative to it.
-  const bool from_memory = *format == MeshFormat::stl;
-  ImportedMesh mesh{};
-  char error[1024] = {};
-  ImportHandle handle(api->import_mesh(file.c_str(), from_memory ? bytes.data() : nullptr, bytes.size(),
-                                       extension.c_str() + 1, triangle_budget, &mesh, error, sizeof error),
-                      ImportDeleter{api});
-  if (!handle) throw ParseError::whole_file(file, error);
-  SceneDesc scene = scene_from(mesh, *format, file, directory, rule, crease_angle_degrees, warnings);
+  SceneDesc scene = scene_through_assimp(bytes, file, *format, directory, rule, crease_angle_degrees,
+                                         triangle_budget, warnings);
   if (*format == MeshFormat::stl) scene.model_up = kStlUp;
   scene.camera = gltf.camera;
   if (!gltf.unused_camera.empty()) {

@@ -364,13 +364,17 @@ void set_object_id_bases(const SceneDesc& desc, Scene& scene) {
 
 }  // namespace
 
-Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
+void set_scene_view(Scene& scene, const SceneDesc& desc) {
   if (!desc.camera) throw std::invalid_argument("the scene has no camera");
-  Scene scene;
   scene.camera = *desc.camera;
   scene.background = desc.background.value_or(Vec3<float>{0.f, 0.f, 0.f});
   scene.ambient = desc.ambient;
   scene.lights = desc.lights;
+}
+
+Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
+  Scene scene;
+  set_scene_view(scene, desc);
   scene.materials = desc.materials;
   for (MaterialDesc& m : scene.materials) {
     if (m.texture && *m.texture >= desc.textures.size()) {

@@ -168,6 +168,12 @@ struct Scene {
   std::size_t acceleration_bytes() const;  // BVH nodes (top level and instanced meshes' included)
 };
 
+// The parts of a built scene that a view changes: desc's camera (which it
+// must have; else std::invalid_argument), background (black when it has
+// none), ambient and lights. build_scene sets them so; quiver view sets
+// them again for each view, the primitives built once.
+void set_scene_view(Scene& scene, const SceneDesc& desc);
+
 // Builds the scene; the SceneDesc must have a camera (scene/auto_view.h adds
 // one). Throws std::invalid_argument for a material or texture index out of
 // range, and what build_texture throws for a bad texture.

@@ -52,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const quiver::ViewRequest view = quiver::parse_view_request(parameter);
     check(finite(view.from) && finite(view.at) && finite(view.up));
     quiver::RenderOptions options;
-    options.camera = {view.from, view.at, view.up, view.fov};
+    options.camera = view.camera();
     options.width = view.width;
     options.height = view.height;
     options.aa = view.aa;
