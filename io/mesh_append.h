@@ -5,7 +5,10 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "geometry/vertex_normals.h"
@@ -37,5 +40,17 @@ void append_mesh(const std::filesystem::path& path, const std::array<float, 16>&
                  std::optional<std::size_t> material_override, SceneDesc& scene,
                  double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
                  const PathRule& paths = {});
+
+// Mesh files held in memory by the name a scene gives them: their bytes.
+using MeshBytes = std::map<std::string, std::string, std::less<>>;
+
+// append_mesh for a PLY or STL held in memory (io/mesh_import.h's
+// read_mesh_bytes): `name` is the file it stands for in messages, and is not
+// listed in scene.source_files, as no file was read. Throws as append_mesh,
+// and std::invalid_argument for another format.
+void append_mesh_bytes(std::string_view bytes, const std::filesystem::path& name,
+                       const std::array<float, 16>& transform, std::optional<std::size_t> material_override,
+                       SceneDesc& scene, double crease_angle_degrees = kDefaultCreaseAngleDegrees,
+                       bool strict = false);
 
 }  // namespace quiver

@@ -365,7 +365,7 @@ void use_gltf_lights(const GltfLights& lights, const std::string& file, ReaderWa
 // An ASCII STL or a glTF that io/mesh_file_check.h accepted, imported by the
 // Assimp module (loaded on first use): STL from the bytes checked, glTF
 // from its file, whose buffers and images are named relative to it.
-SceneDesc scene_through_assimp(const std::string& bytes, const std::string& file, MeshFormat format,
+SceneDesc scene_through_assimp(std::string_view bytes, const std::string& file, MeshFormat format,
                                const fs::path& directory, const PathRule& rule, double crease_angle_degrees,
                                std::size_t triangle_budget, ReaderWarnings& warnings) {
   const AssimpModuleApi* api = nullptr;
@@ -385,28 +385,27 @@ SceneDesc scene_through_assimp(const std::string& bytes, const std::string& file
   return scene_from(mesh, format, file, directory, rule, crease_angle_degrees, warnings);
 }
 
-}  // namespace
-
-
-bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
-
-SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, bool strict,
-                             std::size_t triangle_budget, const PathRule& paths) {
+// The format a mesh file name says, after the arguments every reading checks.
+MeshFormat checked_format(const fs::path& path, double crease_angle_degrees) {
   if (!valid_crease_angle(crease_angle_degrees)) {
     throw std::invalid_argument("mesh reader: the crease angle is not in [0, 180] degrees");
   }
-  const std::string file = path.string();
-  const std::string extension = lowercase_extension(path);
-  const std::optional<MeshFormat> format = format_of(extension);
+  const std::optional<MeshFormat> format = format_of(lowercase_extension(path));
   if (!format) throw std::invalid_argument("read_imported_mesh: not a PLY, glTF or STL file name");
+  return *format;
+}
 
-  const std::string bytes = read_text_file(path, kMaxImportedMeshBytes, "a mesh");
+// A mesh file's bytes read as its format; a glTF's other files from path's folder.
+SceneDesc mesh_from_bytes(std::string_view bytes, const fs::path& path, MeshFormat format,
+                          double crease_angle_degrees, bool strict, std::size_t triangle_budget,
+                          const PathRule& paths) {
+  const std::string file = path.string();
   const fs::path directory = path.parent_path();
   const PathRule rule = paths.for_folder(directory);
   ReaderWarnings warnings(strict);
   GltfContents gltf;
   std::uint64_t declared_triangles = 0;  // as the file counts them; 0 when it does not
-  switch (*format) {
+  switch (format) {
     case MeshFormat::ply:
     {
       const PlyMesh ply = read_ply(bytes, file, warnings, triangle_budget);
@@ -436,9 +435,9 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
       break;
   }
 
-  SceneDesc scene = scene_through_assimp(bytes, file, *format, directory, rule, crease_angle_degrees,
+  SceneDesc scene = scene_through_assimp(bytes, file, format, directory, rule, crease_angle_degrees,
                                          triangle_budget, warnings);
-  if (*format == MeshFormat::stl) scene.model_up = kStlUp;
+  if (format == MeshFormat::stl) scene.model_up = kStlUp;
   scene.camera = gltf.camera;
   if (!gltf.unused_camera.empty()) {
     warnings.warn("gltf camera", {file, 0, 0}, "a perspective camera", gltf.unused_camera,
@@ -463,6 +462,30 @@ SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, 
     }
   }
   return scene;
+}
+
+}  // namespace
+
+
+bool is_imported_mesh_extension(std::string_view extension) { return format_of(extension).has_value(); }
+
+SceneDesc read_imported_mesh(const fs::path& path, double crease_angle_degrees, bool strict,
+                             std::size_t triangle_budget, const PathRule& paths) {
+  const MeshFormat format = checked_format(path, crease_angle_degrees);  // before the file is opened
+  return mesh_from_bytes(read_text_file(path, kMaxImportedMeshBytes, "a mesh"), path, format, crease_angle_degrees,
+                         strict, triangle_budget, paths);
+}
+
+SceneDesc read_mesh_bytes(std::string_view bytes, const fs::path& path, double crease_angle_degrees, bool strict,
+                          std::size_t triangle_budget) {
+  const MeshFormat format = checked_format(path, crease_angle_degrees);
+  if (format != MeshFormat::ply && format != MeshFormat::stl) {
+    throw std::invalid_argument("read_mesh_bytes: only PLY and STL are read from bytes alone");
+  }
+  if (bytes.size() > kMaxImportedMeshBytes) {
+    throw ParseError::whole_file(path.string(), "a mesh of at most " + std::to_string(kMaxImportedMeshBytes) + " bytes");
+  }
+  return mesh_from_bytes(bytes, path, format, crease_angle_degrees, strict, triangle_budget, {});
 }
 
 }  // namespace quiver

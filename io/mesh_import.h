@@ -45,4 +45,13 @@ SceneDesc read_imported_mesh(const std::filesystem::path& path,
                              double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
                              std::size_t triangle_budget = kMaxObjTriangles, const PathRule& paths = {});
 
+// A PLY or STL mesh from its bytes, as read_imported_mesh reads the file
+// `path` names when it holds them (path gives the format and the name in
+// messages; nothing is read from disk). At most kMaxImportedMeshBytes.
+// Throws as read_imported_mesh, and std::invalid_argument for glTF, whose
+// buffers and images lie in other files.
+SceneDesc read_mesh_bytes(std::string_view bytes, const std::filesystem::path& path,
+                          double crease_angle_degrees = kDefaultCreaseAngleDegrees, bool strict = false,
+                          std::size_t triangle_budget = kMaxObjTriangles);
+
 }  // namespace quiver

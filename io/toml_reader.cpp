@@ -121,14 +121,16 @@ class SourceText {
 class TomlSceneReader {
  public:
   TomlSceneReader(std::string_view text, std::string_view file, const fs::path& base_dir,
-                  std::optional<double> crease_angle_override, bool strict, const PathRule& paths)
+                  std::optional<double> crease_angle_override, bool strict, const PathRule& paths,
+                  const MeshBytes* held_meshes)
       : text_(text),
         source_(text),
         file_(file),
         base_dir_(base_dir),
         crease_angle_override_(crease_angle_override),
         strict_(strict),
-        paths_(paths.for_folder(base_dir)) {}
+        paths_(paths.for_folder(base_dir)),
+        held_meshes_(held_meshes) {}
 
   SceneDesc read() {
     const TomlPrescan prescan = prescan_toml(text_, kMaxTomlNodes);
@@ -743,6 +745,7 @@ class TomlSceneReader {
   // the material override and the crease angle.
   struct MeshSource {
     std::string path;
+    const std::string* bytes = nullptr;  // a held mesh's (MeshBytes), else read from path
     std::optional<std::size_t> material;
     double crease_angle = kDefaultCreaseAngleDegrees;
   };
@@ -750,7 +753,16 @@ class TomlSceneReader {
   MeshSource mesh_source(const toml::table& t, std::string_view s) {
     MeshSource m;
     const toml::node& file_node = required(t, "file", s);
-    m.path = existing_file(file_node, "file", s, "a mesh file");
+    const std::optional<std::string_view> written = file_node.value<std::string_view>();
+    const auto held = held_meshes_ && written ? held_meshes_->find(*written) : MeshBytes::const_iterator{};
+    if (held_meshes_ && written && held != held_meshes_->end()) {
+      m.path = (base_dir_ / fs::path(*written)).lexically_normal().string();
+      m.bytes = &held->second;
+      const std::string extension = lowercase_extension(m.path);
+      if (extension != ".ply" && extension != ".stl") fail(file_node, expected_for("a .ply or .stl", "file", s));
+    } else {
+      m.path = existing_file(file_node, "file", s, "a mesh file");
+    }
     if (!is_mesh_extension(lowercase_extension(m.path))) {
       fail(file_node, expected_for("a mesh file (.obj, .ply, .gltf, .glb or .stl)", "file", s));
     }
@@ -798,7 +810,11 @@ class TomlSceneReader {
   void append_mesh_of(const toml::table& t, const MeshSource& source, const std::array<float, 16>& columns,
                       std::string_view s) {
     try {
-      append_mesh(source.path, columns, source.material, scene_, source.crease_angle, strict_, paths_);
+      if (source.bytes) {
+        append_mesh_bytes(*source.bytes, source.path, columns, source.material, scene_, source.crease_angle, strict_);
+      } else {
+        append_mesh(source.path, columns, source.material, scene_, source.crease_angle, strict_, paths_);
+      }
     } catch (const std::invalid_argument&) {
       fail(t, joined({"a ", s, " transform that is not singular once rounded to float"}));
     } catch (const ParseError& error) {
@@ -859,6 +875,7 @@ class TomlSceneReader {
   std::optional<double> crease_angle_override_;
   bool strict_;  // the included meshes' readers (obj_reader.h)
   PathRule paths_;
+  const MeshBytes* held_meshes_;
   SceneDesc scene_;
   std::unordered_map<std::string, std::size_t> texture_names_;
   std::unordered_map<std::string, std::size_t> material_names_;
@@ -870,7 +887,8 @@ class TomlSceneReader {
 }  // namespace
 
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const fs::path& base_dir,
-                           std::optional<double> crease_angle_override, bool strict, const PathRule& paths) {
+                           std::optional<double> crease_angle_override, bool strict, const PathRule& paths,
+                           const MeshBytes* held_meshes) {
   if (crease_angle_override && !valid_crease_angle(*crease_angle_override)) {
     throw std::invalid_argument("TOML reader: the crease angle is not in [0, 180] degrees");
   }
@@ -878,7 +896,7 @@ SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, co
     throw ParseError::whole_file(file_name, joined({"larger than the TOML limit of ", std::to_string(kMaxTomlBytes),
                                                     " bytes (", kTomlBoundsHint, ")"}));
   }
-  return TomlSceneReader(text, file_name, base_dir, crease_angle_override, strict, paths).read();
+  return TomlSceneReader(text, file_name, base_dir, crease_angle_override, strict, paths, held_meshes).read();
 }
 
 SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override, bool strict,

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string_view>
 
+#include "io/mesh_append.h"
 #include "io/path_rule.h"
 #include "scene/scene_desc.h"
 
@@ -43,9 +44,12 @@ SceneDesc read_toml_scene(const std::filesystem::path& path,
                           const PathRule& paths = {});
 
 // Parses TOML scene text; file_name labels error messages and relative
-// paths are resolved against base_dir.
+// paths are resolved against base_dir. A mesh `file` named as written by a
+// key of held_meshes is read from its bytes (a .ply or .stl; no file is
+// looked for, so the path rule does not apply and source_files does not
+// list it): a Python scene's array meshes (python/scene_dict.h).
 SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, const std::filesystem::path& base_dir,
                            std::optional<double> crease_angle_override = std::nullopt, bool strict = false,
-                           const PathRule& paths = {});
+                           const PathRule& paths = {}, const MeshBytes* held_meshes = nullptr);
 
 }  // namespace quiver

@@ -155,7 +155,9 @@ scene : dict
     Top-level keys (background, ambient), tables (camera, render) as dicts and arrays of tables
     (lights, textures, materials, spheres, planes, triangles, polygons, cylinders, cones, meshes,
     instances) as lists of dicts; values bool, int, float, str, os.PathLike, lists, tuples or NumPy
-    arrays and scalars.
+    arrays and scalars. A meshes or instances entry may give its mesh as NumPy arrays instead of a
+    file: vertices (V, 3) and triangles (F, 3), with normals (V, 3) and uvs (V, 2) if wanted;
+    entries giving the same array objects share one mesh.
 base_dir : str or os.PathLike or None
     The folder relative file names (meshes, images) are resolved in; the current one without it.
     Unless allow_outside_paths, every file the scene names lies in it or below.
@@ -173,10 +175,16 @@ Raises
 ------
 TypeError
     A value with no TOML form (None, an object), named by its key ("spheres[2].radius").
+ValueError
+    A mesh's array of another shape or dtype, or an element not finite in float32 or not a vertex
+    index, named ("meshes[0].triangles[4, 2]").
 quiver.ParseError
     What the TOML reader refuses, with its message, at the dict's key ("<dict>: spheres[1].radius: expected ...").)";
 
 inline constexpr const char* kToToml = R"(Writes a scene made by from_dict as the TOML file the CLI reads to the same scene.
+
+Each mesh given as arrays is written beside it as <stem>_array_mesh_N.ply (binary PLY), which the
+TOML text names.
 
 Parameters
 ----------
@@ -193,7 +201,7 @@ ValueError
     A scene not made by from_dict, another extension, or another folder than base_dir for a scene
     naming files.
 OSError
-    Writing failed (the file is written to a temporary name and renamed over the target).)";
+    Writing failed (the files are written to temporary names and renamed over their targets).)";
 
 inline constexpr const char* kImage = R"(An image quiver.render made: its colour and AOVs as NumPy views.
 

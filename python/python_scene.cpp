@@ -12,7 +12,7 @@ PythonScene make_python_scene(std::string name, SceneDesc desc) {
   SceneDesc viewed = desc;
   if (!viewed.camera) add_default_view(viewed, kDefaultImageSide, kDefaultImageSide);
   Scene built = build_named_scene(viewed, {}, name);
-  PythonScene scene{std::move(name), std::move(desc), std::move(built), {}, {}, {}, {}};
+  PythonScene scene{std::move(name), std::move(desc), std::move(built), {}, {}, {}, {}, {}};
   const std::size_t ids = scene.built.material_of_id.size();
   scene.kind_of_id.resize(ids);
   scene.index_of_id.resize(ids);

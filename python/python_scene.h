@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/mesh_append.h"
 #include "scene/scene.h"
 #include "scene/scene_desc.h"
 
@@ -27,6 +28,7 @@ struct PythonScene {
   // its relative file names are resolved in.
   std::string toml_text;
   std::filesystem::path base_dir;
+  MeshBytes held_meshes;  // its meshes given as arrays, by the file names the text gives them
 };
 
 // Builds the scene for queries; throws as build_named_scene (app/scene_build.h).

@@ -156,7 +156,7 @@ SceneHandle load_file(const std::filesystem::path& path, const std::optional<dou
 SceneHandle scene_from_dict(const py::object& scene, const std::optional<std::filesystem::path>& base_dir,
                             const std::optional<double>& crease_angle, bool strict, bool allow_outside_paths) {
   check_crease_angle(crease_angle);
-  std::string text = toml_text_of_dict(scene);
+  DictSceneText text = toml_text_of_dict(scene);
   const std::filesystem::path folder = base_dir ? *base_dir : std::filesystem::current_path();
   py::gil_scoped_release release;
   return std::make_shared<PythonScene>(

@@ -9,7 +9,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 
+#include "io/ply_reader.h"
 #include "python/ray_arrays.h"
 #include "scene/scene_desc.h"
 
@@ -36,5 +38,14 @@ struct IndexRows {
 // without vertices (or the reverse), or no primitive at all.
 SceneDesc scene_from_arrays(const std::optional<FloatRows>& spheres, const std::optional<FloatRows>& vertices,
                             const std::optional<IndexRows>& triangles);
+
+// A dict scene's mesh from arrays (python/scene_dict.h) as the PLY mesh
+// written for it: vertices (V, 3) and triangles (F, 3) as above, normals
+// (V, 3) and uvs (V, 2) when given. Throws std::invalid_argument naming the
+// element ("<where>.vertices[3, 1]") for a value not finite in float32, an
+// index outside [0, V), rows of normals or uvs other than V, or more than
+// the PLY reader's kMaxObjVertices vertices or kMaxObjTriangles triangles.
+PlyMesh ply_of_arrays(const FloatRows& vertices, const IndexRows& triangles, const std::optional<FloatRows>& normals,
+                      const std::optional<FloatRows>& uvs, const std::string& where);
 
 }  // namespace quiver

@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <array>
 #include <cstdint>
 #include <fstream>
 #include <map>
@@ -13,7 +14,10 @@
 #include "io/output_file.h"
 #include "io/path_rule.h"
 #include "io/texture_image.h"
+#include "io/ply_writer.h"
 #include "io/toml_reader.h"
+#include "python/arguments.h"
+#include "python/scene_arrays.h"
 
 namespace py = pybind11;
 
@@ -28,17 +32,59 @@ class DictConverter {
       throw py::type_error(where + ": expected a dict, found " + type_name(value));
     }
     toml::table out;
-    for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+    const auto dict = py::reinterpret_borrow<py::dict>(value);
+    const bool array_mesh = names_mesh_entry(where) && dict.contains("vertices");
+    if (array_mesh) out.insert("file", held_mesh(dict, where));
+    for (const auto& [key, item] : dict) {
       if (!py::isinstance<py::str>(key)) throw py::type_error(where + ": keys must be str, found " + type_name(key));
       const std::string name = key.cast<std::string>();
+      if (array_mesh && is_array_mesh_key(name)) continue;
       const std::string path = where.empty() ? name : where + "." + name;
       insert(out, name, item, path, depth + 1);
     }
     return out;
   }
 
+  MeshBytes&& held_meshes() && { return std::move(held_); }
+
  private:
   std::size_t values_ = 0;
+  MeshBytes held_;
+  // An array mesh's name by the identities of its arrays: entries sharing them share one file.
+  std::map<std::array<PyObject*, 4>, std::string> held_names_;
+
+  // A [[meshes]] or [[instances]] entry: "meshes[3]", not a table below one.
+  static bool names_mesh_entry(const std::string& where) {
+    return (where.starts_with("meshes[") || where.starts_with("instances[")) && where.ends_with("]") &&
+           where.find('.') == std::string::npos;
+  }
+  static bool is_array_mesh_key(const std::string& key) {
+    return key == "vertices" || key == "triangles" || key == "normals" || key == "uvs" || key == "file";
+  }
+
+  // The file name an entry's arrays are held under (kArrayMeshPrefix and a
+  // number), encoded as binary PLY the first time these arrays are met.
+  std::string held_mesh(const py::dict& entry, const std::string& where) {
+    if (entry.contains("file")) {
+      throw py::value_error(where + ": give either file or vertices and triangles, not both");
+    }
+    if (!entry.contains("triangles")) throw py::value_error(where + ": vertices need triangles indexing them");
+    const auto item = [&](const char* key) { return entry.contains(key) ? entry[key].ptr() : nullptr; };
+    const std::array<PyObject*, 4> identity{item("vertices"), item("triangles"), item("normals"), item("uvs")};
+    if (const auto known = held_names_.find(identity); known != held_names_.end()) return known->second;
+    const auto rows = [&](const char* key, std::size_t columns) -> std::optional<CheckedRows<FloatRows>> {
+      if (!entry.contains(key)) return std::nullopt;
+      return float_rows(entry[key], (where + "." + key).c_str(), columns, false);
+    };
+    const auto vertices = rows("vertices", 3), normals = rows("normals", 3), uvs = rows("uvs", 2);
+    const CheckedRows<IndexRows> triangles = index_rows(entry["triangles"], (where + ".triangles").c_str());
+    const auto plain_rows = [](const auto& checked) { return checked ? std::optional(checked->rows) : std::nullopt; };
+    const PlyMesh mesh = ply_of_arrays(vertices->rows, triangles.rows, plain_rows(normals), plain_rows(uvs), where);
+    std::string name = std::string(kArrayMeshPrefix) + std::to_string(held_.size()) + ".ply";
+    held_.emplace(name, binary_ply(mesh));
+    held_names_.emplace(identity, name);
+    return name;
+  }
 
   static std::string type_name(const py::handle& value) { return py::str(py::type::of(value).attr("__name__")); }
 
@@ -128,26 +174,44 @@ std::string key_at_line(std::string_view text, std::size_t line) {
   return key.empty() ? table : table + "." + key;
 }
 
-}  // namespace
-
-std::string toml_text_of_dict(const py::handle& scene) {
-  const toml::table table = DictConverter{}.table(scene, "", 0);
+// A string as toml++ writes it as a value (quoted and escaped).
+std::string toml_string(const std::string& value) {
   std::ostringstream text;
-  text << table << "\n";
+  text << toml::value<std::string>(value);
   return text.str();
 }
 
-PythonScene read_dict_scene(std::string text, const std::filesystem::path& folder, const SceneLoadOptions& options) {
+// Every TOML string value `from` in text becomes `to`: an array mesh's name
+// as its file beside the TOML.
+void replace_string_value(std::string& text, const std::string& from, const std::string& to) {
+  const std::string quoted = toml_string(from), replacement = toml_string(to);
+  for (std::size_t at = text.find(quoted); at != std::string::npos; at = text.find(quoted, at + replacement.size())) {
+    text.replace(at, quoted.size(), replacement);
+  }
+}
+
+}  // namespace
+
+DictSceneText toml_text_of_dict(const py::handle& scene) {
+  DictConverter converter;
+  const toml::table table = converter.table(scene, "", 0);
+  std::ostringstream text;
+  text << table << "\n";
+  return {text.str(), std::move(converter).held_meshes()};
+}
+
+PythonScene read_dict_scene(DictSceneText text, const std::filesystem::path& folder, const SceneLoadOptions& options) {
   SceneDesc desc;
   try {
-    desc = parse_toml_scene(text, kDictSceneName, folder, options.crease_angle_degrees, options.strict,
-                            PathRule{options.allow_outside_paths, {}}.for_folder(folder));
+    desc = parse_toml_scene(text.toml, kDictSceneName, folder, options.crease_angle_degrees, options.strict,
+                            PathRule{options.allow_outside_paths, {}}.for_folder(folder), &text.held_meshes);
     read_texture_images(desc);
   } catch (const ParseError& error) {
-    throw dict_error(error, text);
+    throw dict_error(error, text.toml);
   }
   PythonScene scene = make_python_scene(std::string(kDictSceneName), std::move(desc));
-  scene.toml_text = std::move(text);
+  scene.toml_text = std::move(text.toml);
+  scene.held_meshes = std::move(text.held_meshes);
   scene.base_dir = folder;
   return scene;
 }
@@ -165,12 +229,21 @@ void write_dict_scene(const PythonScene& scene, const std::filesystem::path& pat
   try {
     check_output_directory(path);
     StagedOutputs outputs;
-    outputs.stage(path, [&](const std::filesystem::path& temporary) {
-      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      out.write(scene.toml_text.data(), std::streamsize(scene.toml_text.size()));
-      out.close();
-      if (!out) throw std::runtime_error(path.string() + ": cannot write '" + temporary.string() + "'");
-    });
+    const auto stage = [&](const std::filesystem::path& target, const std::string& bytes) {
+      outputs.stage(target, [&](const std::filesystem::path& temporary) {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+        out.close();
+        if (!out) throw std::runtime_error(target.string() + ": cannot write '" + temporary.string() + "'");
+      });
+    };
+    std::string text = scene.toml_text;
+    for (const auto& [name, bytes] : scene.held_meshes) {
+      const std::string file = path.stem().string() + "_" + name;
+      replace_string_value(text, name, file);
+      stage(folder / file, bytes);
+    }
+    stage(path, text);
     outputs.commit();
   } catch (const std::runtime_error& error) {
     PyErr_SetString(PyExc_OSError, error.what());

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "io/parse_error.h"
+#include "io/ply_writer.h"
 #include "io/toml_reader.h"
 #include "tests/support/temporary_directory.h"
 
@@ -642,6 +643,42 @@ TEST(TomlReader, SharedSpotMeshTexturedThroughAnInclude) {
     ASSERT_EQ(t.material, 0u);
     ASSERT_TRUE(t.triangle.uvs.has_value());
   }
+}
+
+}  // namespace
+}  // namespace quiver
+
+namespace quiver {
+namespace {
+
+// A mesh `file` that names held bytes is read from them (no file looked
+// for, none listed as read), placed and shared as a file's would be; other
+// names still name files, and a held name must be a PLY or STL.
+TEST(TomlReader, HeldMeshBytesStandInForTheFilesTheyName) {
+  PlyMesh triangle;
+  triangle.positions = {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f};
+  triangle.triangles = {0, 1, 2};
+  const MeshBytes held{{"made.ply", binary_ply(triangle)}, {"made.obj", "v 0 0 0\n"}};
+  const std::string text =
+      "[[meshes]]\nfile = \"made.ply\"\ntranslate = [0, 0, 5]\n"
+      "[[instances]]\nfile = \"made.ply\"\n[[instances]]\nfile = \"made.ply\"\nscale = 2\n"
+      "[[meshes]]\nfile = \"../obj/roof.obj\"\n";
+  const SceneDesc scene = parse_toml_scene(text, "test.toml", kTestData, std::nullopt, false, kDataFolder, &held);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.instances.size(), 2u);
+  EXPECT_EQ(scene.triangles.size(), 1u + 2u);
+  EXPECT_EQ(scene.triangles[0].triangle.p[1].z, 5.f);
+  ASSERT_EQ(scene.source_files.size(), 1u);
+  EXPECT_EQ(fs::path(scene.source_files[0]).filename(), "roof.obj");
+  try {
+    parse_toml_scene("[[meshes]]\nfile = \"made.obj\"\n", "test.toml", kTestData, std::nullopt, false, kDataFolder,
+                     &held);
+    ADD_FAILURE() << "a held .obj was read";
+  } catch (const ParseError& error) {
+    EXPECT_NE(std::string(error.what()).find("expected a .ply or .stl"), std::string::npos) << error.what();
+    EXPECT_EQ(error.line(), 2u);
+  }
+  EXPECT_TRUE(error_at("[[meshes]]\nfile = \"made.ply\"\n", 2, 8, "that exists"));  // nothing held: a file
 }
 
 }  // namespace

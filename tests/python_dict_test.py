@@ -121,3 +121,75 @@ def test_to_toml_writes_only_where_the_files_it_names_resolve(tmp_path):
     assert not (tmp_path / "elsewhere.toml").exists()
     with pytest.raises(OSError):
         spheres.to_toml(tmp_path / "missing-folder" / "x.toml")
+
+
+def wavy_grid(n=6):
+    """A bumpy n x n grid of quads as vertices, triangles, normals and uvs (float64, int64)."""
+    u, v = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
+    vertices = np.stack([u.ravel() * 2 - 1, 0.15 * np.sin(6 * u.ravel()) * np.cos(5 * v.ravel()), v.ravel() - 1], 1)
+    normals = np.tile([0.0, 1.0, 0.0], (n * n, 1))
+    uvs = np.stack([u.ravel(), v.ravel()], 1)
+    quads = [(r * n + c, r * n + c + 1, (r + 1) * n + c + 1, (r + 1) * n + c) for r in range(n - 1) for c in range(n - 1)]
+    triangles = np.array([t for a, b, c, d in quads for t in ((a, d, b), (b, d, c))], dtype=np.int64)
+    return vertices, triangles, normals, uvs
+
+
+def array_mesh_scene():
+    vertices, triangles, normals, uvs = wavy_grid()
+    return {
+        "camera": {"from": [0, 2.5, 2.5], "at": [0, 0, -0.5], "up": [0, 1, 0], "fov": 50, "width": 40, "height": 30},
+        "lights": [{"position": [2, 4, 3], "color": [0.8, 0.8, 0.8]}],
+        "textures": [{"name": "checks", "type": "checker2d", "colors": [[0.9, 0.9, 0.9], [0.2, 0.3, 0.6]],
+                      "scale": 4}],
+        "materials": [{"name": "checked", "texture": "checks"}, {"name": "red", "color": [0.9, 0.2, 0.1]}],
+        "meshes": [{"vertices": vertices, "triangles": triangles, "uvs": uvs, "material": "checked"},
+                   {"vertices": vertices.astype(np.float32), "triangles": triangles.astype(np.int32),
+                    "normals": normals, "translate": [0, 0.5, 0], "scale": 0.3, "material": "red"}],
+        "instances": [{"vertices": vertices, "triangles": triangles, "uvs": uvs, "scale": 0.2,
+                       "translate": [0.5 * k - 0.5, 0.8, 0]} for k in range(3)],
+    }
+
+
+def test_meshes_from_arrays_render_as_the_files_to_toml_writes_beside_it(tmp_path):
+    scene = quiver.from_dict(array_mesh_scene())
+    vertices, triangles, _, _ = wavy_grid()
+    assert scene.primitive_count == 2 * len(triangles) + len(triangles)  # two meshes, one instanced mesh
+    image = quiver.render(scene)
+    assert image.color.any()
+    image.save(tmp_path / "python.png")
+    scene.to_toml(tmp_path / "it's here.toml")
+    written = sorted(p.name for p in tmp_path.iterdir())
+    # The instances give the first mesh's array objects: two files for the five entries.
+    assert written == ["it's here.toml", "it's here_array_mesh_0.ply", "it's here_array_mesh_1.ply", "python.png"]
+    code, _, err = run_cli("render", tmp_path / "it's here.toml", "-o", tmp_path / "cli.png", "-q")
+    assert code == 0, err
+    assert (tmp_path / "python.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+    # The file form reads back to the same arrays: float32 positions and the same indices.
+    reread = quiver.from_dict({"meshes": [{"file": "it's here_array_mesh_0.ply"}]}, base_dir=tmp_path)
+    hits = reread.intersect(np.array([[0.0, 5.0, -0.5]]), np.array([[0.0, -1.0, 0.0]]))
+    direct = quiver.from_dict({"meshes": [{"vertices": vertices, "triangles": triangles}]})
+    assert hits["t"][0] == direct.intersect(np.array([[0.0, 5.0, -0.5]]), np.array([[0.0, -1.0, 0.0]]))["t"][0]
+
+
+def test_array_meshes_are_checked_and_their_errors_name_the_element():
+    vertices, triangles, normals, _ = wavy_grid()
+    bad = triangles.copy()
+    bad[4, 2] = len(vertices)
+    cases = [
+        ({"vertices": vertices, "triangles": bad}, ValueError, r"meshes\[0\]\.triangles\[4, 2\] = 36: expected a vertex"),
+        ({"vertices": np.where(np.arange(108).reshape(36, 3) == 7, 1e39, vertices), "triangles": triangles},
+         ValueError, r"meshes\[0\]\.vertices\[2, 1\] = .* not finite in float32"),
+        ({"vertices": vertices, "triangles": triangles, "normals": normals[:5]}, ValueError,
+         r"meshes\[0\]\.normals: expected one row per vertex \(36\), found 5"),
+        ({"vertices": vertices, "triangles": triangles, "uvs": vertices}, ValueError, r"meshes\[0\]\.uvs"),
+        ({"vertices": vertices}, ValueError, r"meshes\[0\]: vertices need triangles"),
+        ({"vertices": vertices, "triangles": triangles, "file": "x.ply"}, ValueError, "not both"),
+        ({"vertices": vertices.tolist(), "triangles": triangles}, ValueError, r"meshes\[0\]\.vertices"),
+        ({"vertices": vertices, "triangles": triangles.astype(np.float64)}, ValueError, r"meshes\[0\]\.triangles"),
+        ({"vertices": vertices, "triangles": triangles, "colour": 1}, quiver.ParseError, r"meshes\[0\]\.colour"),
+    ]
+    for entry, error, message in cases:
+        with pytest.raises(error, match=message):
+            quiver.from_dict({"meshes": [entry]})
+    with pytest.raises(quiver.ParseError, match=r"vertices"):  # arrays only where a mesh file could be named
+        quiver.from_dict({"spheres": [{"center": [0, 0, 0], "radius": 1, "vertices": vertices}]})

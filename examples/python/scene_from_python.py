@@ -1,14 +1,15 @@
 #!/usr/bin/python3
-"""A whole scene built in Python: a mesh written from NumPy arrays, placed
-100 times in a loop with materials of its own, on a checkered floor under a
+"""A whole scene built in Python: a mesh given as NumPy arrays, placed 96
+times in a loop with materials of its own, on a checkered floor under a
 spot light and a soft rectangle light, seen by a camera; rendered, saved,
-written out as TOML, and (given the quiver program) rendered by the CLI from
-that file, which must give the same bytes.
+written out as TOML (with the mesh as a PLY file beside it), and (given the
+quiver program) rendered by the CLI from that file, which must give the
+same bytes.
 
 Usage: scene_from_python.py [--folder DIR] [--width W] [--height H] [--quiver PATH]
-Writes DIR/octahedron.obj, DIR/scene.png and DIR/scene.toml (DIR defaults to
-a new temporary folder); with --quiver (or $QUIVER_CLI), also DIR/cli.png,
-and exits 1 if it differs from scene.png. Run from the checkout after building:
+Writes DIR/scene.png, DIR/scene.toml and DIR/scene_array_mesh_0.ply (DIR
+defaults to a new temporary folder); with --quiver (or $QUIVER_CLI), also
+DIR/cli.png, and exits 1 if it differs from scene.png. Run from the checkout after building:
     PYTHONPATH=build/python /usr/bin/python3 examples/python/scene_from_python.py --quiver build/bin/quiver
 """
 import argparse
@@ -23,21 +24,17 @@ import numpy as np
 import quiver
 
 
-def write_obj(path, vertices, faces):
-    """A mesh as OBJ text: one `v` per vertex row, one `f` per face row (1-based)."""
-    with open(path, "w") as f:
-        f.writelines("v %r %r %r\n" % tuple(v) for v in vertices.tolist())
-        f.writelines("f %d %d %d\n" % tuple(t) for t in (faces + 1).tolist())
-
-
 def octahedron():
     vertices = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
-    faces = np.array([[0, 2, 4], [4, 2, 1], [1, 2, 5], [5, 2, 0], [4, 3, 0], [1, 3, 4], [5, 3, 1], [0, 3, 5]])
+    faces = np.array([[0, 2, 4], [4, 2, 1], [1, 2, 5], [5, 2, 0], [4, 3, 0], [1, 3, 4], [5, 3, 1], [0, 3, 5]],
+                     dtype=np.int32)
     return vertices, faces
 
 
 def scene_dict(width, height):
-    """The scene as the TOML format's tables, built with loops."""
+    """The scene as the TOML format's tables, built with loops; every instance gives the same two
+    arrays, so the scene holds one mesh."""
+    vertices, faces = octahedron()
     scene = {
         "background": [0.05, 0.06, 0.08],
         "ambient": [0.08, 0.08, 0.08],
@@ -67,7 +64,8 @@ def scene_dict(width, height):
         if math.hypot(x, z) < 1.8:
             continue  # room for the sphere
         scene["instances"].append({
-            "file": "octahedron.obj",
+            "vertices": vertices,
+            "triangles": faces,
             "material": "hue %d" % ((row + column) % 10),
             "scale": 0.45,
             "rotate": [0, (17 * k) % 90, 0],
@@ -86,9 +84,8 @@ def main():
     folder = args.folder or tempfile.mkdtemp(prefix="quiver-scene-")
     os.makedirs(folder, exist_ok=True)
 
-    write_obj(os.path.join(folder, "octahedron.obj"), *octahedron())
     description = scene_dict(args.width, args.height)
-    scene = quiver.from_dict(description, base_dir=folder)
+    scene = quiver.from_dict(description)
     print("%s: %d instances of one mesh" % (scene, len(description["instances"])))
     image = quiver.render(scene)
     image.save(os.path.join(folder, "scene.png"))

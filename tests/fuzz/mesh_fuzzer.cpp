@@ -10,7 +10,8 @@
 //
 // Invariants on success: a PLY's vertices and triangles are within the OBJ
 // bounds (kMaxObjVertices, kMaxObjTriangles), its normals and texture
-// coordinates are per vertex, and every index names a vertex; a binary
+// coordinates are per vertex, every index names a vertex, and
+// io/ply_writer.h writes it as bytes that read back to the same bits; a binary
 // STL's triangle count is what its size says; a glTF's placed triangles and
 // nodes are within the budget and kMaxGltfNodePlacements.
 // Invariants on ParseError: file() is the input's name; an error with a
@@ -19,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -26,6 +28,7 @@
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "io/ply_reader.h"
+#include "io/ply_writer.h"
 #include "tests/fuzz/scene_invariants.h"
 
 namespace {
@@ -59,6 +62,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check(mesh.normals.empty() || mesh.normals.size() == 3 * vertices);
         check(mesh.uvs.empty() || mesh.uvs.size() == 2 * vertices);
         for (std::uint32_t index : mesh.triangles) check(index < vertices);
+        // What io/ply_writer.h writes of it reads back to the same bits.
+        const quiver::PlyMesh back = quiver::read_ply(quiver::binary_ply(mesh), name, warnings);
+        const auto same_bits = [](const std::vector<float>& a, const std::vector<float>& b) {
+          return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+        };
+        check(same_bits(back.positions, mesh.positions) && same_bits(back.normals, mesh.normals) &&
+              same_bits(back.uvs, mesh.uvs) && back.triangles == mesh.triangles);
         break;
       }
       case 1: {
