@@ -244,8 +244,11 @@ int run_trace(const TraceArgs& args) {
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, args.scene, build_ms);
     const quiver::PrimaryTraceResult result =
-        quiver::trace_primary(scene, width, height, isa, args.options.threads, args.options.repeat);
-    std::cout << quiver::trace_json_line(result, scene, width, height, build_ms) << "\n";
+        quiver::trace_primary(scene, width, height, isa, args.options.threads, args.options.repeat,
+                              {args.options.occluded, args.options.shuffled});
+    std::cout << quiver::trace_json_line(result, scene, width, height, build_ms,
+                                         {args.options.occluded, args.options.shuffled})
+              << "\n";
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);
     return 0;
@@ -293,6 +296,12 @@ void add_trace_flags(CLI::App& trace, TraceArgs& args, RawTraceFlags& raw) {
   quiver::cli::add_strict_flag(trace, args.options.strict);
   quiver::cli::add_allow_outside_paths_flag(trace, args.options.allow_outside_paths);
   quiver::cli::add_camera_flags(trace, raw.camera);
+  trace.add_flag("--occluded", args.options.occluded,
+                 "Time any-hit (occlusion) queries instead of closest hits: hits counts the occluded rays, t_sum is 0");
+  trace.add_flag("--shuffle", args.options.shuffled,
+                 "Trace the same rays in a random order (one fixed permutation), in batches of 256 as the tiles: "
+                 "incoherent rays. t_sum may differ from the tile order's in its last bits (another order of "
+                 "additions)");
 }
 
 // The render flags that were given, into args.options, then run(args); a
@@ -434,8 +443,8 @@ int main(int argc, char** argv) {
       "secondary rays) and print one JSON line: mrays_per_s (median over the repeats), hits (rays that hit), t_sum "
       "(their hit distances added in double), rays, ms_median, threads, simd, lanes, build_ms, width, height, "
       "repeat, primitives (an instanced mesh counted once), acceleration_bytes (the BVHs'), memory_bytes (the "
-      "stored primitives and their tables), instances, instance_table_bytes (with the top-level BVH). Rays are "
-      "generated before timing; hits and t_sum are "
+      "stored primitives and their tables), instances, instance_table_bytes (with the top-level BVH), query "
+      "(closest or occluded) and order (tiles or shuffled). Rays are generated before timing; hits and t_sum are "
       "the same for every --threads and --simd");
   add_trace_flags(*trace, trace_args, raw_trace);
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <random>
+#include <tuple>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -65,52 +67,89 @@ double median(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa isa, int threads, int repeat) {
-  if (repeat < 1) throw std::invalid_argument("repeat must be at least 1");
-  const Camera camera(scene.camera, width, height);
+std::vector<RaySoA> primary_batches(const Camera& camera, int width, int height, ThreadArena& arena, bool shuffled) {
   const std::vector<PixelTile> tiles = pixel_tiles(width, height, kTraceTileSide);
-  PrimaryTraceResult result;
-  result.isa = isa;
-  ThreadArena arena(threads);
-  result.threads = arena.threads();
-
-  // Rays before timing; per tile, the hit count and t sum of the last repeat.
   std::vector<RaySoA> tile_rays(tiles.size());
-  std::vector<std::uint64_t> tile_hits(tiles.size(), 0);
-  std::vector<double> tile_t_sum(tiles.size(), 0.0);
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), tiles.size(),
                       [&](std::size_t t) { tile_primary_rays(camera, tiles[t], tile_rays[t]); });
   });
+  if (!shuffled) return tile_rays;
+  std::vector<Ray<float>> rays;
+  for (const RaySoA& tile : tile_rays) {
+    for (std::size_t i = 0; i < tile.count; ++i) rays.push_back(tile.get(i));
+  }
+  std::mt19937_64 random(kTraceShuffleSeed);
+  std::shuffle(rays.begin(), rays.end(), random);
+  constexpr std::size_t kBatch = std::size_t(kTraceTileSide) * kTraceTileSide;
+  std::vector<RaySoA> batches((rays.size() + kBatch - 1) / kBatch);
+  for (std::size_t b = 0; b < batches.size(); ++b) {
+    for (std::size_t i = b * kBatch; i < std::min(rays.size(), (b + 1) * kBatch); ++i) batches[b].push(rays[i]);
+    batches[b].pad();
+  }
+  return batches;
+}
 
+namespace {
+
+// Times `repeat` passes of Answers queries over the batches; count(answers,
+// rays) gives a batch's hits and t sum.
+template <class Answers, class Count>
+void time_queries(const Scene& scene, const std::vector<RaySoA>& batches, ThreadArena& arena, Isa isa, int repeat,
+                  const Count& count, PrimaryTraceResult& result) {
+  std::vector<std::uint64_t> batch_hits(batches.size(), 0);
+  std::vector<double> batch_t_sum(batches.size(), 0.0);
   const SceneIntersector intersector(kernel_unit_for(isa));
   for (int r = 0; r < repeat; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    query_batches<HitSoA>(
-        arena, intersector, scene, tiles.size(), [&](std::size_t t) -> const RaySoA& { return tile_rays[t]; },
-        [&](std::size_t t, const RaySoA& rays, const HitSoA& hits) {
-          std::uint64_t count = 0;
-          double sum = 0.0;
-          for (std::size_t i = 0; i < rays.count; ++i) {
-            if (hits.id[i] == kNoHit) continue;
-            ++count;
-            sum += double(hits.t[i]);
-          }
-          tile_hits[t] = count;
-          tile_t_sum[t] = sum;
+    query_batches<Answers>(
+        arena, intersector, scene, batches.size(), [&](std::size_t b) -> const RaySoA& { return batches[b]; },
+        [&](std::size_t b, const RaySoA& rays, const Answers& answers) {
+          std::tie(batch_hits[b], batch_t_sum[b]) = count(rays, answers);
         });
     result.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    result.rays += tile_rays[t].count;
-    result.hits += tile_hits[t];
-    result.t_sum += tile_t_sum[t];
+  for (std::size_t b = 0; b < batches.size(); ++b) {
+    result.rays += batches[b].count;
+    result.hits += batch_hits[b];
+    result.t_sum += batch_t_sum[b];
+  }
+}
+
+}  // namespace
+
+PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa isa, int threads, int repeat,
+                                 TraceQuery query) {
+  if (repeat < 1) throw std::invalid_argument("repeat must be at least 1");
+  PrimaryTraceResult result;
+  result.isa = isa;
+  ThreadArena arena(threads);
+  result.threads = arena.threads();
+  const std::vector<RaySoA> batches = primary_batches(Camera(scene.camera, width, height), width, height, arena,
+                                                      query.shuffled);
+  if (query.occluded) {
+    time_queries<OcclusionSoA>(scene, batches, arena, isa, repeat, [](const RaySoA& rays, const OcclusionSoA& answers) {
+      std::uint64_t count = 0;
+      for (std::size_t i = 0; i < rays.count; ++i) count += answers.occluded[i] != 0 ? 1 : 0;
+      return std::pair(count, 0.0);
+    }, result);
+  } else {
+    time_queries<HitSoA>(scene, batches, arena, isa, repeat, [](const RaySoA& rays, const HitSoA& hits) {
+      std::uint64_t count = 0;
+      double sum = 0.0;
+      for (std::size_t i = 0; i < rays.count; ++i) {
+        if (hits.id[i] == kNoHit) continue;
+        ++count;
+        sum += double(hits.t[i]);
+      }
+      return std::pair(count, sum);
+    }, result);
   }
   return result;
 }
 
 std::string trace_json_line(const PrimaryTraceResult& result, const Scene& scene, int width, int height,
-                            double build_ms) {
+                            double build_ms, TraceQuery query) {
   std::vector<double> mrays;
   for (double ms : result.ms) mrays.push_back(ms > 0.0 ? double(result.rays) / (ms * 1e3) : 0.0);
   nlohmann::ordered_json line;
@@ -131,6 +170,8 @@ std::string trace_json_line(const PrimaryTraceResult& result, const Scene& scene
   line["memory_bytes"] = scene.memory_bytes();
   line["instances"] = scene.instances.size();
   line["instance_table_bytes"] = scene.instances.memory_bytes() + scene.instance_bvh.memory_bytes();
+  line["query"] = query.occluded ? "occluded" : "closest";
+  line["order"] = query.shuffled ? "shuffled" : "tiles";
   return line.dump();
 }
 

@@ -5,7 +5,10 @@
 // queries (SceneIntersector::closest on one RaySoA per tile, tiles spread over
 // oneTBB threads). hits counts the rays that hit; t_sum adds their hit
 // distances in double, tile by tile in a fixed order, so both are the same
-// for every thread count and SIMD width. No CLI11 here (app/main.cpp
+// for every thread count and SIMD width. --occluded times any-hit queries
+// instead (hits counts the occluded rays, t_sum is 0); --shuffle traces the
+// same rays in a fixed random order, in batches of a tile's size
+// (incoherent rays: the other end of the coherence scale). No CLI11 here (app/main.cpp
 // parses the flags into TraceOptions).
 #pragma once
 
@@ -19,6 +22,7 @@
 #include "geometry/soa.h"
 #include "integrator/camera.h"
 #include "integrator/render.h"
+#include "integrator/thread_arena.h"
 #include "scene/scene.h"
 #include "app/render_options.h"
 #include "simd/isa.h"
@@ -42,7 +46,12 @@ struct TraceOptions {
   bool strict = false;                 // SceneLoadOptions::strict
   bool allow_outside_paths = false;    // SceneLoadOptions::allow_outside_paths
   CameraFlags camera;
+  bool occluded = false;  // any-hit queries instead of closest hits
+  bool shuffled = false;  // the rays in kTraceShuffleSeed's permutation
 };
+
+// The permutation --shuffle applies: std::shuffle with std::mt19937_64 of this seed.
+inline constexpr std::uint64_t kTraceShuffleSeed = 1;
 
 // Checks every flag alone, before the scene is read; throws UsageError.
 void check_trace_options(const TraceOptions& options);
@@ -67,16 +76,28 @@ struct PrimaryTraceResult {
   Isa isa = Isa::scalar;
 };
 
+// What trace_primary asks of the rays: closest hits or occlusion, in tile or shuffled order.
+struct TraceQuery {
+  bool occluded = false;
+  bool shuffled = false;
+};
+
+// The primary rays in batches: one per tile (tile_primary_rays), or
+// (shuffled) the same rays in kTraceShuffleSeed's permutation, cut into
+// batches of a tile's size (256 rays). The tiles are made on arena's threads.
+std::vector<RaySoA> primary_batches(const Camera& camera, int width, int height, ThreadArena& arena, bool shuffled);
+
 // Traces the primary rays of a width x height image `repeat` times (>= 1)
 // with `threads` threads (0: every core) at the given SIMD width.
-PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa isa, int threads, int repeat);
+PrimaryTraceResult trace_primary(const Scene& scene, int width, int height, Isa isa, int threads, int repeat,
+                                 TraceQuery query = {});
 
 // The one-line JSON report: mrays_per_s (median over the repeats of
 // rays / repeat time), hits, t_sum, rays, ms_median, threads, simd, lanes,
 // build_ms, plus width, height, repeat, primitives and acceleration_bytes
-// (the BVH's; 0 when every ray scans every primitive). No newline.
+// (the BVH's; 0 when every ray scans every primitive), query and order. No newline.
 std::string trace_json_line(const PrimaryTraceResult& result, const Scene& scene, int width, int height,
-                            double build_ms);
+                            double build_ms, TraceQuery query = {});
 
 double median(std::vector<double> values);
 

@@ -244,6 +244,58 @@ TEST(TraceCommand, EveryWidthAndThreadCountGivesTheSameHitsBitForBit) {
   }
 }
 
+// Primary rays have no tmax: a ray is occluded exactly when it hits. The
+// shuffled order traces the same rays: the same hits, t_sum added in
+// another order, and the same for every width and thread count.
+TEST(TraceCommand, OccludedAndShuffledQueriesFindTheSameHits) {
+  const int width = 53, height = 35;
+  const Scene scene = build_scene(small_scene(width, height), {});
+  const PrimaryTraceResult tiles = trace_primary(scene, width, height, Isa::scalar, 1, 1);
+  const PrimaryTraceResult shuffled_reference = trace_primary(scene, width, height, Isa::scalar, 1, 1, {false, true});
+  ASSERT_GT(tiles.hits, 0u);
+  ASSERT_LT(tiles.hits, tiles.rays);
+  EXPECT_NEAR(shuffled_reference.t_sum, tiles.t_sum, 1e-12 * tiles.t_sum);
+  for (Isa isa : supported_isas()) {
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE(std::string(isa_name(isa)) + " threads " + std::to_string(threads));
+      for (const bool shuffled : {false, true}) {
+        const PrimaryTraceResult occluded = trace_primary(scene, width, height, isa, threads, 1, {true, shuffled});
+        EXPECT_EQ(occluded.rays, tiles.rays);
+        EXPECT_EQ(occluded.hits, tiles.hits);
+        EXPECT_EQ(occluded.t_sum, 0.0);
+      }
+      const PrimaryTraceResult shuffled = trace_primary(scene, width, height, isa, threads, 1, {false, true});
+      EXPECT_EQ(shuffled.hits, tiles.hits);
+      EXPECT_EQ(shuffled.t_sum, shuffled_reference.t_sum);  // one permutation for every width and thread count
+    }
+  }
+  // The shuffled batches hold the tiles' rays, each once, in another order.
+  ThreadArena arena(1);
+  const Camera camera(scene.camera, width, height);
+  const auto flat = [](const std::vector<RaySoA>& batches) {
+    std::vector<std::array<float, 6>> rays;
+    for (const RaySoA& batch : batches) {
+      EXPECT_LE(batch.count, 256u);
+      for (std::size_t i = 0; i < batch.count; ++i) {
+        const Ray<float> r = batch.get(i);
+        rays.push_back({r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z});
+      }
+    }
+    return rays;
+  };
+  std::vector<std::array<float, 6>> in_tiles = flat(primary_batches(camera, width, height, arena, false));
+  std::vector<std::array<float, 6>> in_shuffle = flat(primary_batches(camera, width, height, arena, true));
+  ASSERT_EQ(in_tiles.size(), std::size_t(width * height));
+  EXPECT_NE(in_tiles, in_shuffle);
+  std::sort(in_tiles.begin(), in_tiles.end());
+  std::sort(in_shuffle.begin(), in_shuffle.end());
+  EXPECT_EQ(in_tiles, in_shuffle);
+  const std::string line = trace_json_line(tiles, scene, width, height, 1.0, {true, true});
+  EXPECT_NE(line.find("\"query\":\"occluded\",\"order\":\"shuffled\""), std::string::npos) << line;
+  EXPECT_NE(trace_json_line(tiles, scene, width, height, 1.0).find("\"query\":\"closest\",\"order\":\"tiles\""),
+            std::string::npos);
+}
+
 TEST(TraceCommand, TheJsonLineHasTheKeysAndTheMedians) {
   const Scene scene = build_scene(small_scene(8, 6), {});
   PrimaryTraceResult r;
