@@ -138,7 +138,8 @@ inline void add_image_flags(CLI::App& render, RawRenderFlags& raw) {
                                     "side while its mean's standard error exceeds THRESHOLD or, after the first "
                                     "pass, a neighbour's mean differs by more than 4 THRESHOLD or its first rays, or "
                                     "its and a neighbour's, met different surfaces (material, nothing, or a 5% depth "
-                                    "jump); up to NxN, N 2, 4, 8 or 16). "
+                                    "jump); up to NxN, N 2, 4, 8 or 16; refine:THRESHOLD:N:grid puts the rays at "
+                                    "the strata's centres, as grid:N, a refined pixel sampled afresh). "
                                     "Default: the scene file's setting, else " +
                                         std::string(quiver::kDefaultAntiAliasing) +
                                         " (the best quality for its cost in bench/ACCURACY.md's study)")

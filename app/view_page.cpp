@@ -56,7 +56,7 @@ const std::string_view kViewPage = R"page(<!doctype html>
   <label>width <input id="width" type="number" min="1" step="1"></label>
   <label>height <input id="height" type="number" min="1" step="1"></label>
   <label>aa <input id="aa" type="text" spellcheck="false"
-                   title="none, grid:N, jitter:N, adaptive:T:D, corners, refine:T:N"></label>
+                   title="none, grid:N, jitter:N, adaptive:T:D, corners, refine:T:N[:grid]"></label>
   <label>max depth <input id="max_depth" type="number" min="0" step="1"></label>
   <label>fov <input id="fov" type="number" min="0" max="180" step="any" title="degrees, across the longer side"></label>
   <div class="dim" id="locked" hidden>aa and max depth: set by --preset spd</div>

@@ -69,8 +69,12 @@ class RefineTile {
     return std::uint64_t(y) * std::uint64_t(target_.image.width) + std::uint64_t(x);
   }
 
-  // Stratum (i, j) at `side` of the pixel, its sample hashed (header).
+  // Stratum (i, j) at `side` of the pixel and its sample (header; the
+  // strata rule of anti_aliasing.h).
   StratumSample stratum(std::uint64_t pixel, int side, int i, int j) const {
+    if (target_.settings.aa.strata == AntiAliasing::Strata::grid) {
+      return StratumSample{i, j, (i + 0.5) / side, (j + 0.5) / side};
+    }
     std::uint64_t number = 0;  // strata of sides 2, 4, ... before this side
     for (int s = 2; s < side; s *= 2) number += std::uint64_t(s) * std::uint64_t(s);
     number += std::uint64_t(j) * std::uint64_t(side) + std::uint64_t(i);
@@ -190,9 +194,16 @@ class RefineTile {
   }
 
   // The pixel's strata split into `child` per side, appended to next_strata;
-  // the new ones' samples to the batch.
-  void split_strata(int x, int y, const RefinedPixel& px, int child) {
+  // the new ones' samples to the batch. Centred strata keep no coarser ray:
+  // the pixel starts again from the finer centres.
+  void split_strata(int x, int y, RefinedPixel& px, int child) {
     const int count = px.side * px.side;
+    const bool afresh = target_.settings.aa.strata == AntiAliasing::Strata::grid;
+    if (afresh) {
+      px.sum = Vec3<float>(0.f, 0.f, 0.f);
+      px.clamped_sum = px.clamped_squares = Vec3<double>(0.0, 0.0, 0.0);
+      px.count = 0;
+    }
     for (int k = 0; k < count; ++k) {
       const StratumSample& st = b_.strata[px.first + k];
       // The sub-stratum holding this stratum's sample (clamped against rounding).
@@ -201,7 +212,7 @@ class RefineTile {
       for (int b = 0; b < 2; ++b) {
         for (int a = 0; a < 2; ++a) {
           const int i = 2 * st.i + a, j = 2 * st.j + b;
-          if (i == ci && j == cj) {
+          if (i == ci && j == cj && !afresh) {
             b_.next_strata.push_back({i, j, st.x, st.y});
             continue;
           }

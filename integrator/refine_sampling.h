@@ -5,7 +5,8 @@
 // side, up to N x N. A stratum (i, j) at side s of pixel p has its sample
 // at ((i + u) / s, (j + v) / s), u and v hashed from the seed, p and the
 // stratum's number (strata of smaller sides first), so a pixel's rays
-// depend on it alone, not on the tile or the thread.
+// depend on it alone, not on the tile or the thread; with grid strata u and
+// v are 1/2, and a refined pixel's coarser rays are dropped.
 #pragma once
 
 #include <cstdint>

@@ -10,7 +10,7 @@ namespace quiver {
 namespace {
 
 const char* const kExpected =
-    "expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH, corners or refine:THRESHOLD:N";
+    "expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH, corners or refine:THRESHOLD:N[:jitter|grid]";
 
 std::vector<std::string_view> split(std::string_view text) {
   std::vector<std::string_view> parts;
@@ -43,6 +43,15 @@ float parse_threshold(std::string_view text) {
   return value;
 }
 
+constexpr std::string_view kStrataNames[] = {"jitter", "grid"};
+
+AntiAliasing::Strata parse_strata(std::string_view text) {
+  for (std::size_t k = 0; k < std::size(kStrataNames); ++k) {
+    if (text == kStrataNames[k]) return static_cast<AntiAliasing::Strata>(k);
+  }
+  throw std::invalid_argument("anti-aliasing strata: expected jitter or grid, found '" + std::string(text) + "'");
+}
+
 }  // namespace
 
 AntiAliasing parse_anti_aliasing(std::string_view text) {
@@ -64,7 +73,7 @@ AntiAliasing parse_anti_aliasing(std::string_view text) {
     aa.depth = parse_int(parts[2], 0, AntiAliasing::kMaxDepth, "depth");
     return aa;
   }
-  if (mode == "refine" && parts.size() == 3) {
+  if (mode == "refine" && (parts.size() == 3 || parts.size() == 4)) {
     aa.mode = AntiAliasing::Mode::refine;
     aa.threshold = parse_threshold(parts[1]);
     aa.n = parse_int(parts[2], 2, AntiAliasing::kMaxRefineSide, "rays per side");
@@ -72,6 +81,7 @@ AntiAliasing parse_anti_aliasing(std::string_view text) {
       throw std::invalid_argument("anti-aliasing rays per side: expected a power of two (2, 4, 8 or 16), found '" +
                                   std::string(parts[2]) + "'");
     }
+    if (parts.size() == 4) aa.strata = parse_strata(parts[3]);
     return aa;
   }
   throw std::invalid_argument(std::string("anti-aliasing: ") + kExpected + ", found '" + std::string(text) + "'");
@@ -88,7 +98,14 @@ std::string to_string(const AntiAliasing& aa) {
   }
   char threshold[32];
   const auto end = std::to_chars(threshold, threshold + sizeof threshold, aa.threshold).ptr;
-  if (aa.mode == AntiAliasing::Mode::refine) return "refine:" + std::string(threshold, end) + ":" + std::to_string(aa.n);
+  if (aa.mode == AntiAliasing::Mode::refine) {
+    std::string text = "refine:";
+    text.append(threshold, end).append(":").append(std::to_string(aa.n));
+    if (aa.strata != AntiAliasing::Strata::jitter) {
+      text.append(":").append(kStrataNames[static_cast<std::size_t>(aa.strata)]);
+    }
+    return text;
+  }
   return "adaptive:" + std::string(threshold, end) + ":" + std::to_string(aa.depth);
 }
 

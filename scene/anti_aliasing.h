@@ -20,6 +20,11 @@
 //                        three sibling sub-strata sampled), up to N x N (N a
 //                        power of two, 2..16); later passes go on where the
 //                        error still exceeds T.
+//   refine:T:N:STRATA    where a pixel's rays lie in its strata: jitter (the
+//                        default: anywhere in each, hashed per stratum) or
+//                        grid (at the strata's centres, as grid:N; a refined
+//                        pixel is sampled afresh at the finer centres, its
+//                        coarser rays dropped, as the finer centres miss them).
 #pragma once
 
 #include <string>
@@ -29,7 +34,9 @@ namespace quiver {
 
 struct AntiAliasing {
   enum class Mode { none, grid, jitter, adaptive, corners, refine };
+  enum class Strata { jitter, grid };
   Mode mode = Mode::none;
+  Strata strata = Strata::jitter;  // refine
   int n = 1;               // grid, jitter: rays per side; refine: at most
   float threshold = 0.1f;  // adaptive, refine
   int depth = 2;           // adaptive: levels of subdivision

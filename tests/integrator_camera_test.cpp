@@ -94,12 +94,18 @@ TEST(AntiAliasing, ParsesEveryModeAndRejectsTheRest) {
   EXPECT_EQ(r.mode, AntiAliasing::Mode::refine);
   EXPECT_EQ(r.threshold, 0.02f);
   EXPECT_EQ(r.n, 8);
+  EXPECT_EQ(r.strata, AntiAliasing::Strata::jitter);
+  EXPECT_EQ(parse_anti_aliasing("refine:0.02:8:grid").strata, AntiAliasing::Strata::grid);
+  EXPECT_EQ(parse_anti_aliasing("refine:0.02:8:jitter").strata, AntiAliasing::Strata::jitter);
+  EXPECT_EQ(to_string(parse_anti_aliasing("refine:0.02:8:jitter")), "refine:0.02:8");
   for (const char* bad : {"", "grid", "grid:0", "grid:65", "jitter:x", "adaptive:0.1", "adaptive:-1:2",
                           "adaptive:nan:2", "adaptive:0.1:7", "corners:2", "none:1", "super", "refine",
-                          "refine:0.1", "refine:0.1:1", "refine:0.1:6", "refine:0.1:32", "refine:-0.1:4"}) {
+                          "refine:0.1", "refine:0.1:1", "refine:0.1:6", "refine:0.1:32", "refine:-0.1:4", "refine:0.1:4:", "refine:0.1:4:shift",
+                          "refine:0.1:4:grid:2", "grid:4:grid"}) {
     EXPECT_THROW(parse_anti_aliasing(bad), std::invalid_argument) << bad;
   }
-  for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3", "refine:0.02:8"}) {
+  for (const char* text : {"none", "corners", "grid:3", "jitter:2", "adaptive:0.05:3", "refine:0.02:8",
+                           "refine:0.5:16:grid"}) {
     EXPECT_EQ(to_string(parse_anti_aliasing(text)), text);
   }
   // Each range's ends are accepted (the values just past them are among the refusals above).

@@ -745,7 +745,7 @@ TEST(Golden, ScenesAgreeWithPixelsComputedIndependently) {
       {"instances", {0, 1, 0, 0, 0, 0, 0}},           {"glass_tir", {1, 0, 0, 0, 1, 0, 0}},
       {"textures", {1, 0, 0, 0, 1, 0, 1}},            {"adaptive_aa", {1, 0, 0, 0, 1, 0, 0}},
       {"shadows_soft", {0, 0, 1, 0, 0, 1, 1}},        {"default", {1, 0, 0, 1, 1, 0, 1}},
-      {"visible_light", {1, 0, 0, 0, 1, 0, 0}},
+      {"visible_light", {1, 0, 0, 0, 1, 0, 0}},       {"mirror_checker", {1, 0, 1, 1, 1, 0, 1}},
   };
   for (const auto& [name, want] : wanted) {
     SCOPED_TRACE(name);

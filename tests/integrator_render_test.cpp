@@ -325,7 +325,8 @@ TEST(Render, ThreadCountAndTileSizeDoNotChangeTheImage) {
 // them within a tile, refine reads a one-pixel apron around it.
 TEST(Render, TilesSplitBetweenRenderersGiveTheWholeImage) {
   const Scene scene = build_scene(every_kind_scene(), {});
-  for (const char* aa : {"none", "grid:2", "jitter:2", "corners", "adaptive:0.05:2", "refine:0.02:8"}) {
+  for (const char* aa :
+       {"none", "grid:2", "jitter:2", "corners", "adaptive:0.05:2", "refine:0.02:8", "refine:0.02:8:grid"}) {
     RenderSettings settings = small_settings(45, 37, aa);  // partial tiles at the right and bottom
     settings.isa = best_supported_isa();
     settings.tile_size = 8;
@@ -391,6 +392,36 @@ TEST(Render, UnpackingATileOfTheWrongSizeThrows) {
   const std::vector<std::byte> bytes(renderer.tile_bytes(0) - 1);
   EXPECT_THROW(renderer.unpack_tile(film, 0, bytes), std::invalid_argument);
   EXPECT_THROW(renderer.tile_bytes(renderer.tiles().size()), std::out_of_range);
+}
+
+// refine with grid strata samples a pixel at the centres of its strata, and a
+// refined pixel afresh at the finer ones: with a threshold of 0 every pixel
+// whose first four rays differ at all is refined, and refine:0:4:grid is
+// grid:4's image (a refined pixel's 16 rays added in another order, its 4
+// first ones dropped; the others flat at both sizes).
+TEST(Render, RefineWithGridStrataEveryPixelRefinedIsGridsImage) {
+  const Scene scene = build_scene(every_kind_scene(), {});
+  for (const bool filter : {false, true}) {
+    RenderSettings settings = small_settings(24, 18, "grid:4");
+    settings.isa = best_supported_isa();
+    settings.tile_size = 64;  // one tile: no apron outside the image
+    settings.trace.filter_textures = filter;
+    const RenderResult grid = render(scene, settings);
+    settings.aa = parse_anti_aliasing("refine:0:4:grid");
+    const RenderResult refined = render(scene, settings);
+    const std::uint64_t pixels = 24u * 18u, refined_rays = refined.stats.rays.primary - 4u * pixels;
+    EXPECT_EQ(refined_rays % 16u, 0u) << filter;  // 16 fresh rays per refined pixel
+    EXPECT_GT(refined_rays, 16u * pixels / 2) << filter;  // most pixels of this scene vary
+    ASSERT_EQ(refined.image.rgb.size(), grid.image.rgb.size());
+    float worst = 0.f;
+    for (std::size_t k = 0; k < grid.image.rgb.size(); ++k) {
+      worst = std::max(worst, std::fabs(refined.image.rgb[k] - grid.image.rgb[k]));
+    }
+    EXPECT_LT(worst, 1e-5f) << filter;  // float sums of 16 values in another order
+    // With jittered strata the same rays count, other positions: another image.
+    settings.aa = parse_anti_aliasing("refine:0:4");
+    EXPECT_FALSE(same_bits(render(scene, settings).image.rgb, grid.image.rgb)) << filter;
+  }
 }
 
 // refine: 2 x 2 rays in every pixel; more only where a pixel's own samples

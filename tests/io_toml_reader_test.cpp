@@ -386,7 +386,7 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
 TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
   EXPECT_TRUE(error_at("[render]\naa = \"bogus\"\n", 2, 6,
                        "an anti-aliasing mode (expected none, grid:N, jitter:N, adaptive:THRESHOLD:DEPTH, corners or "
-                       "refine:THRESHOLD:N, "
+                       "refine:THRESHOLD:N[:jitter|grid], "
                        "found 'bogus') (aa in [render])",
                        "found '\"bogus\"'"));
   EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));

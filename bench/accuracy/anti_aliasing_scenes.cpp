@@ -53,6 +53,9 @@ std::vector<SceneCase> anti_aliasing_scenes(const StudyOptions& options) {
   scenes.push_back({"default_scene", default_scene(), int(160 * shrink), int(120 * shrink)});
   scenes.push_back({"adaptive_aa", load_scene(std::filesystem::path(QUIVER_SOURCE_DIR) / "io/examples/adaptive_aa.toml"),
                     int(640 * shrink), int(360 * shrink)});
+  scenes.push_back({"mirror_checker",
+                    load_scene(std::filesystem::path(QUIVER_SOURCE_DIR) / "io/examples/mirror_checker.toml"),
+                    int(400 * shrink), int(300 * shrink)});
   const std::filesystem::path shared = shared_dir();
   const std::pair<const char*, std::optional<SceneDesc>> extra[] = {
       {"balls-s2", shared_scene(shared / "scenes/spd/balls-s2.nff")},

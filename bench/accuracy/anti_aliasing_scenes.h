@@ -1,7 +1,8 @@
 // The scenes and settings of the anti-aliasing studies (anti_aliasing.csv,
 // aa_oracle.csv): the built-in scene at 160x120 (a quarter of its size),
 // io/examples/adaptive_aa.toml (thin wires, a fine checkerboard) at its own
-// 640x360, and from the shared data ($QUIVER_SHARED_DIR, else ../shared;
+// 640x360, io/examples/mirror_checker.toml (a checkered floor to the horizon
+// in a mirror sphere, thin rods, hard shadows) at its own 400x300, and from the shared data ($QUIVER_SHARED_DIR, else ../shared;
 // each skipped with a note when absent) SPD balls-s2 and gears-s1 and the
 // spot mesh with its texture at 320x240; --quick shrinks each side 4x.
 // Images compare by RMSE over linear RGB clamped to [0, 1] (what an 8-bit

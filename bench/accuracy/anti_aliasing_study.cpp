@@ -19,7 +19,9 @@ void anti_aliasing_study(const StudyOptions& options) {
                          "jitter:2",      "jitter:3",       "jitter:4",        "adaptive:0.3:3",
                          "adaptive:0.1:3", "adaptive:0.03:3", "adaptive:0.01:3", "corners",
                          "refine:0.1:4",   "refine:0.05:4",   "refine:0.03:4",   "refine:0.02:4",
-                         "refine:0.08:8",  "refine:0.04:8",   "refine:0.02:8",   "refine:0.01:8"};
+                         "refine:0.08:8",  "refine:0.04:8",   "refine:0.02:8",   "refine:0.01:8",
+                         "refine:0.05:4:grid", "refine:0.02:4:grid", "refine:0.01:4:grid",
+                         "refine:0.04:8:grid", "refine:0.02:8:grid", "refine:0.01:8:grid"};
   const std::vector<std::string>& modes = options.aa_modes.empty() ? default_modes : options.aa_modes;
   std::FILE* f = open_csv(options.out / "anti_aliasing.csv",
                           "scene,width,height,mode,texture_filter,render_ms,camera_rays,rmse,reference_mode,reference_ms");

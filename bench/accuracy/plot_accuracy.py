@@ -233,13 +233,19 @@ def anti_aliasing_chart(rows):
     for ax in axes[len(scenes):]:
         ax.set_visible(False)
     families = {"none": "k", "grid": "tab:blue", "jitter": "tab:orange", "adaptive": "tab:green", "corners": "tab:red",
-                "refine": "tab:purple"}
+                "refine": "tab:purple", "refine:grid": "tab:brown"}
+
+    def family_of(mode):
+        """A mode's family: its name, with refine's grid strata apart (refine:T:N:grid)."""
+        parts = mode.split(":")
+        return parts[0] + (":" + parts[3] if parts[0] == "refine" and len(parts) == 4 else "")
+
     # Point-sampled textures solid, box-filtered ones dashed (scenes with textures only).
     filters = {"none": ("-o", ""), "box": ("--s", " (box-filtered textures)")}
     for ax, scene in zip(axes, scenes):
         for family, color in families.items():
             for texture_filter, (style, suffix) in filters.items():
-                pts = [r for r in rows if r["scene"] == scene and r["mode"].split(":")[0] == family
+                pts = [r for r in rows if r["scene"] == scene and family_of(r["mode"]) == family
                        and r.get("texture_filter", "none") == texture_filter]
                 if not pts:
                     continue
