@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -71,6 +73,31 @@ TEST(RenderCommandLine, EveryOptionReadsBackToTheSameValues) {
   EXPECT_EQ(read.threads, 3);
   EXPECT_EQ(read.simd, options.simd);
   EXPECT_FALSE(read.preset_spd);
+}
+
+// Numbers are written to the digits that read back to them: a small minimum
+// weight does not become 0, nor a long one lose its tail.
+TEST(RenderCommandLine, SmallAndLongNumbersReadBackToTheSameBits) {
+  RenderOptions options;
+  for (const double weight : {1e-7, 0.0012345678901234, 2.5e-300}) {
+    options.min_weight = weight;
+    options.crease_angle = 180.0 / 7.0;
+    const RenderOptions read = parse_render_command(render_command_words("", options, "x.png")).options;
+    EXPECT_EQ(read.min_weight, weight);
+    EXPECT_EQ(read.crease_angle, options.crease_angle);
+  }
+}
+
+// Seed 0 is the default and left out; every other seed, 1 among them, is said.
+TEST(RenderCommandLine, EverySeedButTheDefaultIsSaid) {
+  RenderOptions options;
+  for (const std::uint64_t seed : {1ull, 2ull, 18446744073709551615ull}) {
+    options.seed = seed;
+    EXPECT_EQ(parse_render_command(render_command_words("", options, "x.png")).options.seed, seed);
+  }
+  options.seed = 0;
+  const std::vector<std::string> words = render_command_words("", options, "x.png");
+  EXPECT_EQ(std::find(words.begin(), words.end(), "--seed"), words.end());
 }
 
 TEST(RenderCommandLine, LeavesOutWhatIsNotSet) {

@@ -157,6 +157,15 @@ TEST(ViewServer, BadParametersGet400WithTheReason) {
   bad.height = 4096;
   expect_400("/api/frame" + query(bad, "&stage=coarse"), "at most 16777216 pixels");
   expect_400("/api/png" + query(bad), "at most 16777216 pixels");
+  // The bound itself is served (its coarse stage, 512x512, is quick), one row more is not.
+  bad.width = 4096;
+  bad.height = 4097;
+  expect_400("/api/frame" + query(bad, "&stage=coarse"), "at most 16777216 pixels");
+  bad.height = 4096;
+  const httplib::Result largest = client.Get("/api/frame" + query(bad, "&stage=coarse"));
+  ASSERT_TRUE(largest);
+  EXPECT_EQ(largest->status, 200) << largest->body;
+  EXPECT_EQ(largest->get_header_value("X-Quiver-Width"), "512");
   bad = view;
   bad.fov = 200.0;
   expect_400("/api/command" + query(bad), "--fov");
