@@ -48,7 +48,7 @@ class DictConverter {
   MeshBytes&& held_meshes() && { return std::move(held_); }
 
  private:
-  std::size_t values_ = 0;
+  std::size_t values_ = 1;  // the document's root table, which the TOML reader counts too
   MeshBytes held_;
   // An array mesh's name by the identities of its arrays: entries sharing them share one file.
   std::map<std::array<PyObject*, 4>, std::string> held_names_;
@@ -165,8 +165,9 @@ std::string key_at_line(std::string_view text, std::size_t line) {
     } else if (row.starts_with("[") && row.ends_with("]")) {
       table = std::string(row.substr(1, row.size() - 2));
       key.clear();
-    } else if (number == line) {
-      key = std::string(row.substr(0, row.find(" = ")));
+    } else if (const std::size_t equals = row.find(" = ");
+               equals != std::string_view::npos && !row.starts_with(' ')) {
+      key = std::string(row.substr(0, equals));  // a key's line; rows of a long array below it keep it
     }
     start = end + 1;
   }

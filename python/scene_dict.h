@@ -30,12 +30,13 @@ inline constexpr std::string_view kArrayMeshPrefix = "array_mesh_";
 // The scene's TOML text. Values: dict (str keys), list and tuple, bool,
 // int (64-bit), float, str, os.PathLike, NumPy arrays and scalars (through
 // tolist()); anything else, None among them, has no TOML form (TypeError
-// naming the key, "spheres[2].radius"). At most kMaxTomlNodes values and
-// kMaxDictDepth levels (ValueError), counted before the text is made. A
-// meshes or instances entry may give its mesh as NumPy arrays instead of a
-// file: vertices (V, 3) and triangles (F, 3), with normals (V, 3) and uvs
-// (V, 2) if wanted (python/scene_arrays.h's ply_of_arrays checks them);
-// entries giving the same array objects share one mesh.
+// naming the key, "spheres[2].radius"). At most kMaxTomlNodes values (the
+// root table, tables, arrays and values, as the TOML reader counts its
+// nodes) and kMaxDictDepth levels (ValueError), counted before the text is
+// made. A meshes or instances entry may give its mesh as NumPy arrays
+// instead of a file: vertices (V, 3) and triangles (F, 3), with normals
+// (V, 3) and uvs (V, 2) if wanted (python/scene_arrays.h's ply_of_arrays
+// checks them); entries giving the same array objects share one mesh.
 DictSceneText toml_text_of_dict(const pybind11::handle& scene);
 inline constexpr int kMaxDictDepth = 32;
 

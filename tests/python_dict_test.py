@@ -107,6 +107,32 @@ def test_sizes_are_bounded_before_anything_is_built():
         quiver.from_dict({"polygons": [{"vertices": np.zeros((400000, 3))}]})
 
 
+def test_the_value_bound_is_the_toml_readers_and_the_bound_itself_passes():
+    # Values counted as the TOML reader counts its nodes: the root table, the
+    # key polygons, its one table, the key vertices, each vertex's list and
+    # its three numbers: 4 + 4 n.
+    bound = 1 << 19  # io/toml_reader.h's kMaxTomlNodes
+    n = (bound - 4) // 4
+    assert 4 + 4 * n == bound
+
+    def error_of(rows):
+        try:
+            quiver.from_dict({"polygons": [{"vertices": np.zeros((rows, 3))}]})
+        except ValueError as error:  # quiver.ParseError is one too
+            return str(error)
+        return ""
+
+    assert error_of(n + 1).startswith("polygons[0].vertices[%d]: a scene holds at most %d values" % (n, bound))
+    assert error_of(n) == ""  # the bound itself: converted, and read by the TOML reader
+
+
+def test_an_error_in_a_row_of_a_long_array_names_the_arrays_key():
+    vertices = np.random.default_rng(0).random((100, 3))  # toml++ writes it one row per line
+    vertices[57, 1] = np.inf
+    with pytest.raises(quiver.ParseError, match=r"^<dict>: polygons\[0\]\.vertices: expected a finite number"):
+        quiver.from_dict({"polygons": [{"vertices": vertices}]})
+
+
 def test_to_toml_writes_only_where_the_files_it_names_resolve(tmp_path):
     with pytest.raises(ValueError, match="from_dict"):
         quiver.load(TINY).to_toml(tmp_path / "tiny.toml")
