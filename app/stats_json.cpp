@@ -3,7 +3,6 @@
 #include "io/output_file.h"
 
 #include <charconv>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -137,14 +136,7 @@ void check_stats_path(const fs::path& path) {
 
 void stage_json_file(StagedOutputs& outputs, const fs::path& path, const json& value) {
   check_stats_path(path);
-  const std::string text = value.dump(2) + "\n";
-  outputs.stage(path, [&](const fs::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail(path, "cannot create '" + temporary.string() + "'");
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) fail(path, "cannot write '" + temporary.string() + "'");
-  });
+  outputs.stage_bytes(path, value.dump(2) + "\n");
 }
 
 double json_float(float value) {

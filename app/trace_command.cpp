@@ -92,8 +92,8 @@ std::vector<RaySoA> primary_batches(const Camera& camera, int width, int height,
 
 namespace {
 
-// Times `repeat` passes of Answers queries over the batches; count(answers,
-// rays) gives a batch's hits and t sum.
+// Times `repeat` passes of Answers queries over the batches; count(rays,
+// answers) gives a batch's hits and t sum.
 template <class Answers, class Count>
 void time_queries(const Scene& scene, const std::vector<RaySoA>& batches, ThreadArena& arena, Isa isa, int repeat,
                   const Count& count, PrimaryTraceResult& result) {

@@ -76,6 +76,7 @@ void place_mesh(SceneDesc mesh, const std::string& name, const Placement& placem
       if (t.triangle.uvs) std::swap((*t.triangle.uvs)[1], (*t.triangle.uvs)[2]);
     }
   }
+  // Nothing below throws except on allocation: the scene changes only here.
   const std::size_t material_base = scene.materials.size();
   const std::size_t texture_base = scene.textures.size();
   for (std::string& file : mesh.source_files) {
@@ -91,6 +92,8 @@ void place_mesh(SceneDesc mesh, const std::string& name, const Placement& placem
   }
   scene.warnings.insert(scene.warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
   scene.face_tallies.insert(scene.face_tallies.end(), mesh.face_tallies.begin(), mesh.face_tallies.end());
+  // Room grown geometrically: an exact reserve per mesh copied every earlier
+  // mesh's triangles again (quadratic in a scene's [[meshes]] entries).
   const std::size_t needed = scene.triangles.size() + mesh.triangles.size();
   if (needed > scene.triangles.capacity()) {
     scene.triangles.reserve(std::max(needed, 2 * scene.triangles.capacity()));

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -75,6 +76,16 @@ void StagedOutputs::stage(const fs::path& target, const Writer& write) {
     throw;
   }
   staged_.push_back({target, temporary});
+}
+
+void StagedOutputs::stage_bytes(const fs::path& target, std::string_view bytes) {
+  stage(target, [&](const fs::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) fail(target, "cannot create '" + temporary.string() + "'");
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    out.close();
+    if (!out) fail(target, "cannot write '" + temporary.string() + "'");
+  });
 }
 
 void StagedOutputs::commit() {

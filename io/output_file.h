@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string_view>
 #include <vector>
 
 namespace quiver {
@@ -34,6 +35,9 @@ class StagedOutputs {
   // Calls write(temporary). If it throws, that temporary is removed and the
   // error propagates; what was staged before stays staged.
   void stage(const std::filesystem::path& target, const Writer& write);
+  // stage() of a file holding `bytes`; std::runtime_error("<target>: cannot
+  // create ..." or "cannot write ...") when that fails.
+  void stage_bytes(const std::filesystem::path& target, std::string_view bytes);
 
   // Renames every staged temporary over its target. A target that exists
   // and is neither a regular file nor a symlink (a device, a FIFO, a

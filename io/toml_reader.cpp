@@ -750,14 +750,20 @@ class TomlSceneReader {
     double crease_angle = kDefaultCreaseAngleDegrees;
   };
 
+  // The file name a mesh's `file` key gives and, when held_meshes holds it, its bytes (else null).
+  std::pair<std::string_view, const std::string*> held_mesh(const toml::node& file_node) const {
+    const std::optional<std::string_view> written = file_node.value<std::string_view>();
+    if (held_meshes_ == nullptr || !written) return {};
+    const auto held = held_meshes_->find(*written);
+    return {*written, held == held_meshes_->end() ? nullptr : &held->second};
+  }
+
   MeshSource mesh_source(const toml::table& t, std::string_view s) {
     MeshSource m;
     const toml::node& file_node = required(t, "file", s);
-    const std::optional<std::string_view> written = file_node.value<std::string_view>();
-    const auto held = held_meshes_ && written ? held_meshes_->find(*written) : MeshBytes::const_iterator{};
-    if (held_meshes_ && written && held != held_meshes_->end()) {
-      m.path = (base_dir_ / fs::path(*written)).lexically_normal().string();
-      m.bytes = &held->second;
+    if (const auto [written, bytes] = held_mesh(file_node); bytes != nullptr) {
+      m.path = (base_dir_ / fs::path(written)).lexically_normal().string();
+      m.bytes = bytes;
       const std::string extension = lowercase_extension(m.path);
       if (extension != ".ply" && extension != ".stl") fail(file_node, expected_for("a .ply or .stl", "file", s));
     } else {

@@ -40,6 +40,12 @@ CheckedRows<FloatRows> float_rows(const pybind11::handle& object, const char* na
 // A (F, 3) array of int32 or int64 (F may be 0).
 CheckedRows<IndexRows> index_rows(const pybind11::handle& object, const char* name);
 
+// The rows of an optional checked array (nothing without one).
+template <class Rows>
+std::optional<Rows> rows_of(const std::optional<CheckedRows<Rows>>& checked) {
+  return checked ? std::optional(checked->rows) : std::nullopt;
+}
+
 // Origins and directions: (N, 3) float rows of one dtype and one N >= 1.
 // The caller's arguments keep the arrays alive while the rays are read.
 RayArrays ray_arrays(const pybind11::handle& origins, const pybind11::handle& directions);

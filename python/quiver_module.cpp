@@ -169,8 +169,7 @@ SceneHandle scene_from_python_arrays(const py::object& spheres, const py::object
   if (!spheres.is_none()) sphere_rows = float_rows(spheres, "spheres", 4, true);
   if (!vertices.is_none()) vertex_rows = float_rows(vertices, "vertices", 3, true);
   if (!triangles.is_none()) triangle_rows = index_rows(triangles, "triangles");
-  const auto rows = [](const auto& checked) { return checked ? std::optional(checked->rows) : std::nullopt; };
-  SceneDesc desc = scene_from_arrays(rows(sphere_rows), rows(vertex_rows), rows(triangle_rows));
+  SceneDesc desc = scene_from_arrays(rows_of(sphere_rows), rows_of(vertex_rows), rows_of(triangle_rows));
   py::gil_scoped_release release;
   return std::make_shared<PythonScene>(make_python_scene("<arrays>", std::move(desc)));
 }

@@ -4,7 +4,6 @@
 
 #include <array>
 #include <cstdint>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -78,8 +77,7 @@ class DictConverter {
     };
     const auto vertices = rows("vertices", 3), normals = rows("normals", 3), uvs = rows("uvs", 2);
     const CheckedRows<IndexRows> triangles = index_rows(entry["triangles"], (where + ".triangles").c_str());
-    const auto plain_rows = [](const auto& checked) { return checked ? std::optional(checked->rows) : std::nullopt; };
-    const PlyMesh mesh = ply_of_arrays(vertices->rows, triangles.rows, plain_rows(normals), plain_rows(uvs), where);
+    const PlyMesh mesh = ply_of_arrays(vertices->rows, triangles.rows, rows_of(normals), rows_of(uvs), where);
     std::string name = std::string(kArrayMeshPrefix) + std::to_string(held_.size()) + ".ply";
     held_.emplace(name, binary_ply(mesh));
     held_names_.emplace(identity, name);
@@ -230,21 +228,13 @@ void write_dict_scene(const PythonScene& scene, const std::filesystem::path& pat
   try {
     check_output_directory(path);
     StagedOutputs outputs;
-    const auto stage = [&](const std::filesystem::path& target, const std::string& bytes) {
-      outputs.stage(target, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        out.close();
-        if (!out) throw std::runtime_error(target.string() + ": cannot write '" + temporary.string() + "'");
-      });
-    };
     std::string text = scene.toml_text;
     for (const auto& [name, bytes] : scene.held_meshes) {
       const std::string file = path.stem().string() + "_" + name;
       replace_string_value(text, name, file);
-      stage(folder / file, bytes);
+      outputs.stage_bytes(folder / file, bytes);
     }
-    stage(path, text);
+    outputs.stage_bytes(path, text);
     outputs.commit();
   } catch (const std::runtime_error& error) {
     PyErr_SetString(PyExc_OSError, error.what());

@@ -42,6 +42,13 @@ class Staged : public ::testing::Test {
     return found;
   }
   fs::path at(const char* name) const { return dir_.path() / name; }
+  // a.png existing ("OLD") and staged ("NEW"), new.exr and c.json staged, none existing.
+  void stage_replaced_new_and_json(StagedOutputs& outputs) const {
+    std::ofstream(at("a.png")) << "OLD";
+    outputs.stage(at("a.png"), writing("NEW"));
+    outputs.stage(at("new.exr"), writing("NEW"));
+    outputs.stage(at("c.json"), writing("{}"));
+  }
 
   testing::TemporaryDirectory dir_{"quiver_output_file_test"};
 };
@@ -91,6 +98,23 @@ TEST_F(Staged, AFailedWriteLeavesEveryTargetAndNoTemporary) {
   EXPECT_EQ(names(), std::vector<std::string>{"a.png"});
 }
 
+// stage_bytes writes exactly its bytes; a temporary it cannot create is an error naming the target.
+TEST_F(Staged, StagedBytesAreTheFileAndAFailureNamesTheTarget) {
+  const std::string bytes("ply\0binary\xff", 11);
+  StagedOutputs outputs;
+  outputs.stage_bytes(at("mesh.ply"), bytes);
+  outputs.commit();
+  EXPECT_EQ(read_text(at("mesh.ply")), bytes);
+  const fs::path missing = at("no-such-folder") / "x.toml";
+  try {
+    outputs.stage_bytes(missing, bytes);
+    ADD_FAILURE() << "staged into a missing folder";
+  } catch (const std::runtime_error& error) {
+    EXPECT_EQ(std::string(error.what()).rfind(missing.string() + ": cannot create '", 0), 0u) << error.what();
+  }
+  EXPECT_EQ(names(), std::vector<std::string>{"mesh.ply"});
+}
+
 TEST_F(Staged, DiscardRemovesTheTemporaries) {
   StagedOutputs outputs;
   outputs.stage(at("a.png"), writing("NEW"));
@@ -103,11 +127,8 @@ TEST_F(Staged, DiscardRemovesTheTemporaries) {
 // A target that no file can replace (a directory) fails the commit before
 // any rename: every target as it was, no temporary left.
 TEST_F(Staged, AnUnreplaceableTargetFailsTheCommitBeforeAnyRename) {
-  std::ofstream(at("a.png")) << "OLD";
   StagedOutputs outputs;
-  outputs.stage(at("a.png"), writing("NEW"));
-  outputs.stage(at("new.exr"), writing("NEW"));
-  outputs.stage(at("c.json"), writing("{}"));
+  stage_replaced_new_and_json(outputs);
   fs::create_directories(at("c.json") / "inside");
   EXPECT_THROW(outputs.commit(), std::runtime_error);
   EXPECT_EQ(read_text(at("a.png")), "OLD");
@@ -117,11 +138,8 @@ TEST_F(Staged, AnUnreplaceableTargetFailsTheCommitBeforeAnyRename) {
 // A rename that fails after others succeeded (here, its temporary vanished):
 // the replaced target gets its old file back, the new one is removed.
 TEST_F(Staged, ARenameFailingMidwayUndoesTheOnesBefore) {
-  std::ofstream(at("a.png")) << "OLD";
   StagedOutputs outputs;
-  outputs.stage(at("a.png"), writing("NEW"));
-  outputs.stage(at("new.exr"), writing("NEW"));
-  outputs.stage(at("c.json"), writing("{}"));
+  stage_replaced_new_and_json(outputs);
   std::size_t removed = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir_.path())) {
     const bool temporary_of_c = entry.path().extension() == ".json" && entry.path().filename() != "c.json";
