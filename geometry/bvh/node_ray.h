@@ -185,7 +185,8 @@ struct NodeFrustum {
 };
 
 // The node's children a NodeRay or a NodeFrustum enters within [its tmin,
-// tmax] (widened_interval): bit c of the result, near[c] their keys.
+// tmax] (widened_interval): bit c of the result, near[c] their keys (near
+// is stored to in whole lane groups: alignas(64) at its declaration).
 template <int N, bool kBits = false, class R>
 [[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmax,
                                                       std::array<float, N>& near) {
