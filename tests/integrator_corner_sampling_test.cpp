@@ -1,7 +1,9 @@
 // Corner sampling (integrator/corner_sampling.h): when an adaptive square
 // splits, and what an adaptive pixel is made of.
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -32,6 +34,38 @@ TEST(CornerSampling, ASquareSplitsWhenAnyTwoCornersDifferByMoreThanTheThreshold)
   EXPECT_FALSE(corners_differ({grey, grey, grey, grey}, 0.f));
 }
 
+// The SPD rule: each pixel the mean of its own four corners. Every corner
+// of a 3 x 2 image's 4 x 3 lattice holds a distinct power of two in one
+// channel (and its index in the others), so a pixel that took a wrong or
+// repeated corner shows it exactly.
+TEST(CornerSampling, EachPixelIsTheMeanOfItsFourCorners) {
+  Framebuffer image;
+  image.width = 3;
+  image.height = 2;
+  image.rgb.assign(3 * 3 * 2, -1.f);
+  const std::size_t cw = 4, ch = 3;
+  std::vector<Vec3<float>> corners(cw * ch);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    corners[i] = {float(1u << i), float(i), -float(i)};
+  }
+  average_corners(corners, image);
+  for (std::size_t y = 0; y < 2; ++y) {
+    for (std::size_t x = 0; x < 3; ++x) {
+      const std::size_t i = y * cw + x;
+      const std::array<std::size_t, 4> own{i, i + 1, i + cw, i + cw + 1};
+      float bits = 0.f, index = 0.f;
+      for (std::size_t c : own) {
+        bits += float(1u << c);
+        index += float(c);
+      }
+      const float* p = &image.rgb[(y * 3 + x) * 3];
+      EXPECT_EQ(p[0], bits * 0.25f) << "pixel " << x << ", " << y;
+      EXPECT_EQ(p[1], index * 0.25f) << "pixel " << x << ", " << y;
+      EXPECT_EQ(p[2], -index * 0.25f) << "pixel " << x << ", " << y;
+    }
+  }
+}
+
 // A white background behind a black sphere (no light, no ambient): the
 // split pixels along its outline are area-weighted means of their samples,
 // so each lies between black and white, and a pixel of one colour stays it.
@@ -58,6 +92,12 @@ TEST(CornerSampling, AnAdaptivePixelIsAWeightedMeanOfItsSamples) {
     between += value > 0.f && value < 1.f ? 1 : 0;
   }
   EXPECT_GT(between, 0u);
+  // Squares split down to the finest level, 1/8 of a pixel's side at depth
+  // 3: its corner means come in 1/256ths of a pixel (weights are powers of
+  // two, so the sums are exact), which a level coarser (1/64ths) never gives.
+  std::size_t finest = 0;
+  for (float value : result.image.rgb) finest += std::fmod(value * 64.f, 1.f) != 0.f ? 1 : 0;
+  EXPECT_GT(finest, 0u);
   EXPECT_EQ(result.image.rgb[0], 1.f);                      // a corner of the image: background
   EXPECT_EQ(result.image.rgb[(12 * 24 + 12) * 3], 0.f);  // the sphere's middle
 }

@@ -19,6 +19,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrator/framebuffer.h"
@@ -216,10 +217,21 @@ TEST(ImageOutput, JpegIsReadableAtTheRightSize) {
   EXPECT_EQ(image.height, 8);
   ASSERT_EQ(image.bytes.size(), 16u * 8u * 3u);
   for (std::uint8_t byte : image.bytes) EXPECT_NEAR(int(byte), 188, 2);
-  // Beyond libjpeg's 65500-pixel side: an error, not the end of the process.
+  // Beyond libjpeg's 65500-pixel side: an error, not the end of the process;
+  // a side of exactly 65500 is written, on either axis.
   const fs::path wide = directory.path() / "wide.jpg";
   EXPECT_NE(runtime_error_of(wide, [&] { write_image(wide, Framebuffer(65'501, 1)); }).find("65500"),
             std::string::npos);
+  const fs::path tall = directory.path() / "tall.jpg";
+  EXPECT_NE(runtime_error_of(tall, [&] { write_image(tall, Framebuffer(1, 65'501)); }).find("65500"),
+            std::string::npos);
+  for (const auto& [width, height] : {std::pair{65'500, 1}, std::pair{1, 65'500}}) {
+    const fs::path widest = directory.path() / ("widest_" + std::to_string(width) + ".jpg");
+    write_image(widest, Framebuffer(width, height));
+    const ReadBack read = read_back(widest);
+    EXPECT_EQ(read.width, width);
+    EXPECT_EQ(read.height, height);
+  }
 }
 
 TEST(ImageOutput, ExrIsExactFloatWithAovChannels) {

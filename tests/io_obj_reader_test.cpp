@@ -700,6 +700,8 @@ TEST(ObjReader, AppendedMeshIsTransformedAndMirroringKeepsTheFacing) {
   huge[0] = 3e38f;
   huge[12] = 3e38f;
   EXPECT_THROW(append_mesh(kTestData / "quad.obj", huge, std::nullopt, scene), ParseError);
+  // An override must index scene.materials: its size is one past the last.
+  EXPECT_THROW(append_mesh(kTestData / "quad.obj", m, scene.materials.size(), scene), std::invalid_argument);
   EXPECT_EQ(scene.triangles.size(), 3u);  // unchanged by the failures
 }
 

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/image_signature.h"
@@ -168,6 +169,26 @@ TEST(TextureFile, HugeClaimedSizeFailsBeforeAllocating) {
   scene.textures.back().path = path.string();
   EXPECT_THROW(read_texture_images(scene), ParseError);
   EXPECT_TRUE(scene.textures.back().rgb.empty());
+}
+
+// A side of exactly kMaxTextureSide texels is read, one more is refused, on either axis.
+TEST(TextureFile, SidesUpToTheBoundAreRead) {
+  TemporaryDirectory directory;
+  const auto write_ppm = [&](std::int64_t width, std::int64_t height) {
+    const fs::path path = directory.path() / ("strip_" + std::to_string(width) + "x" + std::to_string(height) + ".ppm");
+    std::ofstream file(path, std::ios::binary);
+    file << "P6\n" << width << " " << height << "\n255\n" << std::string(std::size_t(3 * width * height), '\x40');
+    return path;
+  };
+  const TextureImage wide = read_texture_image(write_ppm(kMaxTextureSide, 1));
+  EXPECT_EQ(wide.width, kMaxTextureSide);
+  const TextureImage tall = read_texture_image(write_ppm(1, kMaxTextureSide));
+  EXPECT_EQ(tall.height, kMaxTextureSide);
+  for (const auto& [width, height] :
+       {std::pair{kMaxTextureSide + 1, std::int64_t{1}}, std::pair{std::int64_t{1}, kMaxTextureSide + 1}}) {
+    const std::string what = read_error(write_ppm(width, height));
+    EXPECT_NE(what.find("exceeds the limit of 32768 texels per side"), std::string::npos) << what;
+  }
 }
 
 TEST(TextureFile, MissingDirectoryAndNonImageFilesFailWithThePath) {

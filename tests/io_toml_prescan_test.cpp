@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "io/toml_prescan.h"
@@ -49,6 +50,19 @@ TEST(TomlPrescan, StopsAtTheFirstNodePastTheBound) {
   const TomlPrescan misread = prescan_toml("a = 1\xD0\x91\nb = [1, 2]\n", 3);
   EXPECT_EQ(misread.misread, std::optional<std::size_t>(5));
   EXPECT_FALSE(misread.past_node_bound);
+}
+
+// The lexer follows nesting 300 levels deep, past toml++'s 256 (which
+// refuses the document), and stops at the 301st opening bracket, so its
+// memory is bounded: a misread character at depth 300 is found, one after
+// the 301st bracket is left to toml++'s nesting error.
+TEST(TomlPrescan, FollowsNestingToItsDepthBoundAndNoDeeper) {
+  const std::string at_bound = "a = " + std::string(300, '[') + "\xD0\x91";
+  EXPECT_EQ(prescan_toml(at_bound, 1000).misread, std::optional<std::size_t>(304));
+  const std::string past_bound = "a = " + std::string(301, '[') + "\xD0\x91";
+  const TomlPrescan stopped = prescan_toml(past_bound, 1000);
+  EXPECT_FALSE(stopped.misread);
+  EXPECT_FALSE(stopped.past_node_bound);
 }
 
 }  // namespace
