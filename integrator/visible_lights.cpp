@@ -1,6 +1,9 @@
 #include "integrator/visible_lights.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "geometry/kinds/sphere.h"
 
@@ -8,16 +11,29 @@ namespace quiver {
 
 namespace {
 
-// The parallelogram's plane at t = ((p - o).n) / (d.n), n = u x v; the hit
-// q - p = a u + b v gives a = ((q - p) x v).n / n.n and b = (u x (q - p)).n / n.n.
-std::optional<float> rectangle_distance(const LightDesc& light, const Ray<float>& ray) {
+// A rectangle light's plane normal n = u x v and n.n, found once per light
+// rather than once per ray.
+struct RectangleFrame {
+  Vec3<float> n;
+  float nn;
+};
+
+RectangleFrame rectangle_frame(const LightDesc& light) {
   const Vec3<float> n = cross(light.edge_u, light.edge_v);
-  const float facing = dot(ray.direction, n);
+  return {n, dot(n, n)};
+}
+
+// The parallelogram's plane at t = ((p - o).n) / (d.n); a t outside
+// (tmin, t_limit) ends the test before the hit q - p = a u + b v is solved:
+// a = ((q - p) x v).n / n.n and b = (u x (q - p)).n / n.n.
+std::optional<float> rectangle_distance(const LightDesc& light, const RectangleFrame& frame, const Ray<float>& ray,
+                                        float t_limit) {
+  const float facing = dot(ray.direction, frame.n);
   if (facing == 0.f) return std::nullopt;
-  const float t = dot(light.position - ray.origin, n) / facing;
+  const float t = dot(light.position - ray.origin, frame.n) / facing;
+  if (!(t > ray.tmin && t < t_limit)) return std::nullopt;
   const Vec3<float> w = ray.origin + ray.direction * t - light.position;
-  const float nn = dot(n, n);
-  const float a = dot(cross(w, light.edge_v), n) / nn, b = dot(cross(light.edge_u, w), n) / nn;
+  const float a = dot(cross(w, light.edge_v), frame.n) / frame.nn, b = dot(cross(light.edge_u, w), frame.n) / frame.nn;
   if (!(a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f)) return std::nullopt;
   return t;
 }
@@ -31,32 +47,43 @@ std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& r
   return hit.t;
 }
 
-}  // namespace
-
-std::optional<float> area_light_distance(const LightDesc& light, const Ray<float>& ray, float t_limit) {
+// The light's distance along ray in (tmin, t_limit), its rectangle frame found beforehand.
+std::optional<float> light_distance(const LightDesc& light, const RectangleFrame& frame, const Ray<float>& ray,
+                                    float t_limit) {
   std::optional<float> t;
-  if (light.kind == LightDesc::Kind::rectangle) t = rectangle_distance(light, ray);
+  if (light.kind == LightDesc::Kind::rectangle) t = rectangle_distance(light, frame, ray, t_limit);
   if (light.kind == LightDesc::Kind::sphere) t = sphere_distance(light, ray, t_limit);
   if (!t || !(*t > ray.tmin && *t < t_limit)) return std::nullopt;
   return t;
 }
 
+bool is_area_light(const LightDesc& light) {
+  return light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
+}
+
+}  // namespace
+
+std::optional<float> area_light_distance(const LightDesc& light, const Ray<float>& ray, float t_limit) {
+  return light_distance(light, rectangle_frame(light), ray, t_limit);
+}
+
 bool has_area_lights(const Scene& scene) {
-  for (const LightDesc& light : scene.lights) {
-    if (light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere) return true;
-  }
-  return false;
+  return std::any_of(scene.lights.begin(), scene.lights.end(), is_area_light);
 }
 
 void see_area_lights(const Scene& scene, const RaySoA& rays, HitSoA& hits, Vec3Columns& seen) {
+  std::vector<std::pair<const LightDesc*, RectangleFrame>> area_lights;
+  for (const LightDesc& light : scene.lights) {
+    if (is_area_light(light)) area_lights.emplace_back(&light, rectangle_frame(light));
+  }
   for (std::size_t i = 0; i < rays.count; ++i) {
     const Ray<float> ray = rays.get(i);
-    for (const LightDesc& light : scene.lights) {
-      const std::optional<float> t = area_light_distance(light, ray, hits.t[i]);
+    for (const auto& [light, frame] : area_lights) {
+      const std::optional<float> t = light_distance(*light, frame, ray, hits.t[i]);
       if (!t) continue;
       hits.t[i] = *t;
       hits.id[i] = kNoHit;
-      seen.set(i, light.color);
+      seen.set(i, light->color);
     }
   }
 }
