@@ -4,8 +4,10 @@
 #include "app/render_job.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <new>
 #include <stdexcept>
@@ -76,6 +78,19 @@ TEST(DefaultOutput, TheScenesStemAsPngInTheWorkingDirectory) {
   EXPECT_EQ(default_output(""), "quiver.png");
   EXPECT_EQ(default_output("scenes/balls.nff"), "balls.png");
   EXPECT_EQ(default_output("/data/model.v2.obj"), "model.v2.png");
+}
+
+// The stats JSON names the built scene's stores and its acceleration
+// structure apart, each as the scene counts it.
+TEST(RenderStats, MemoryIsTheBuiltScenesStoresAndAcceleration) {
+  RenderArgs args;
+  args.output = (std::filesystem::temp_directory_path() / "quiver_render_stats_test.png").string();
+  const CheckedRenderArgs checked = check_render_args(args, nullptr);
+  const PreparedRender prepared = prepare_render(args, checked);
+  ASSERT_NE(prepared.scene.memory_bytes(), prepared.scene.acceleration_bytes());
+  const nlohmann::json stats = render_stats(args, checked, prepared, RenderResult{});
+  EXPECT_EQ(stats.at("memory_bytes").at("scene"), prepared.scene.memory_bytes());
+  EXPECT_EQ(stats.at("memory_bytes").at("acceleration"), prepared.scene.acceleration_bytes());
 }
 
 }  // namespace

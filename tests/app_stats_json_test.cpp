@@ -1,6 +1,7 @@
 // The render statistics JSON (app/stats_json.h): every key present, values
 // consistent with a hand-made RenderResult (total = sum of kinds,
 // utilisation = active / issued), and the atomic file write.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -173,13 +174,18 @@ TEST(StatsJson, LaneUtilizationIsActiveOverIssued) {
 }
 
 TEST(StatsJson, MemoryBytes) {
-  const Example e = example();
+  Example e = example();
+  // Every AOV, so that each buffer's bytes are counted.
+  Framebuffer& f = e.result.image;
+  f.normal.assign(36, 0.f);
+  f.kind.assign(12, 0);
+  f.id.assign(12, 0);
   const json memory = render_stats_json(e.result, e.settings, e.context).at("memory_bytes");
   EXPECT_EQ(memory.at("scene"), 4242u);
   EXPECT_EQ(memory.at("acceleration"), 1717u);
-  const Framebuffer& f = e.result.image;
-  const std::size_t expected = f.rgb.capacity() * sizeof(float) + f.depth.capacity() * sizeof(float);
-  EXPECT_GE(expected, (12u * 3u + 12u) * sizeof(float));
+  const std::size_t expected = (f.rgb.capacity() + f.depth.capacity() + f.normal.capacity()) * sizeof(float) +
+                               (f.kind.capacity() + f.id.capacity()) * sizeof(std::int32_t);
+  EXPECT_GE(expected, (12u * 3u + 12u + 36u) * sizeof(float) + 24u * sizeof(std::int32_t));
   EXPECT_EQ(memory.at("framebuffer"), expected);
 }
 
