@@ -331,6 +331,10 @@ TEST(TraceCommand, OptionChecks) {
   bad = ok;
   bad.repeat = kMaxTraceRepeat + 1;
   EXPECT_THROW(check_trace_options(bad), UsageError);
+  bad.repeat = kMaxTraceRepeat;  // the bound itself
+  EXPECT_NO_THROW(check_trace_options(bad));
+  bad.repeat = 1;
+  EXPECT_NO_THROW(check_trace_options(bad));
   bad = ok;
   bad.threads = -1;
   EXPECT_THROW(check_trace_options(bad), UsageError);

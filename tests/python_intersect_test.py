@@ -162,6 +162,20 @@ def test_hit_points_are_the_origin_plus_t_times_the_direction():
         scene.intersect(origins, directions, 0.0, np.inf, 0, None, True)  # points is keyword-only
 
 
+def test_hit_points_of_float64_rays_come_from_the_float32_rays_traced():
+    scene = quiver.from_arrays(spheres=np.array([[0.0, 0.0, 0.0, 1.0]]))
+    k = np.arange(200, dtype=np.float64)
+    origins = np.stack([0.3 + k * 1e-9, np.zeros_like(k), np.full_like(k, -4.0)], axis=1)
+    directions = np.tile([0.01, 0.0, 1.0], (len(k), 1))
+    result = scene.intersect(origins, directions, points=True)
+    t = result["t"].astype(np.float64)[:, None]
+    as_traced = lambda a: a.astype(np.float32).astype(np.float64)
+    traced = (as_traced(origins) + t * as_traced(directions)).astype(np.float32)
+    unrounded = (origins + t * directions).astype(np.float32)
+    assert (traced != unrounded).any()  # rays whose float64 values would give other points
+    np.testing.assert_array_equal(result["points"], traced)
+
+
 def test_occluded_agrees_with_intersect():
     scene = quiver.load(TINY)
     rays = quiver.camera_rays(scene, width=32, height=24)

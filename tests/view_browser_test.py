@@ -19,6 +19,7 @@ Usage: /usr/bin/python3 tests/view_browser_test.py --quiver QUIVER [--scene SCEN
 import argparse
 import base64
 import json
+import math
 import os
 import re
 import shlex
@@ -482,6 +483,18 @@ def run_checks(se, driver, server, args):
     print(f"the new final frame differs from the first in {changed} of {WIDTH * HEIGHT} pixels")
     image = check_command_image(se, driver, dragged, after, args, "after the drag", "dragged.png")
     check_png_endpoint(driver, image, "after the drag")
+
+    # A wheel turned away from the user (deltaY < 0) dollies in: nearer the look-at point, along the same line.
+    driver.execute_script(
+        "document.getElementById('frame').dispatchEvent("
+        "new WheelEvent('wheel', {deltaY: -100, deltaMode: 0, bubbles: true, cancelable: true}))")
+    wheeled = driver.execute_script("return window.quiverView.state()")
+    distance = lambda view: math.dist(view["from"], view["at"])
+    if not distance(wheeled) < distance(dragged):
+        fail(f"a wheel step toward the scene did not dolly in: {distance(dragged)} -> {distance(wheeled)}")
+    if wheeled["at"] != dragged["at"]:
+        fail(f"dollying moved the look-at point: {dragged['at']} -> {wheeled['at']}")
+    print(f"wheeled in: distance {distance(dragged):.4g} -> {distance(wheeled):.4g}")
 
     check_http_errors(base, token, dragged)
     errors = browser_errors(driver)
