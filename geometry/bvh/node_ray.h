@@ -184,12 +184,16 @@ struct NodeFrustum {
   G widened_exit(int a, const G& plane) const { return (plane - origin_at_exit[a]) * inv_dir_at_exit[a]; }
 };
 
+// A node's children's entry keys, as enter_children writes them: a lane
+// group at a time, with aligned stores, so the type carries the alignment.
+template <int N>
+struct alignas(64) ChildKeys : std::array<float, N> {};
+
 // The node's children a NodeRay or a NodeFrustum enters within [its tmin,
-// tmax] (widened_interval): bit c of the result, near[c] their keys (near
-// is stored to in whole lane groups: alignas(64) at its declaration).
+// tmax] (widened_interval): bit c of the result, near[c] their keys.
 template <int N, bool kBits = false, class R>
 [[gnu::always_inline]] inline unsigned enter_children(const float* block, const R& ray, float tmax,
-                                                      std::array<float, N>& near) {
+                                                      ChildKeys<N>& near) {
   using G = typename R::G;
   constexpr int kG = lane_count<G>;
   unsigned bits = 0;

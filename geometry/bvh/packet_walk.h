@@ -93,7 +93,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
       stack_near[at] = lane_near;
     };
     if constexpr (kCulls) {
-      alignas(64) std::array<float, N> unused;
+      ChildKeys<N> unused;
       const unsigned candidates = enter_children<N>(block, frustum, frustum_tmax, unused);
       for_each_child<N, true, false>(candidates, [&](int c) __attribute__((always_inline)) {
         const std::int32_t child = BvhNodes<N>::child(block, c);
@@ -158,7 +158,7 @@ template <bool kCulls, KernelUnit U, class Method, int N, class S, int K, class 
     const float* block = nodes.block(entry_node);
     unsigned candidates = 0;
     if constexpr (kCulls) {
-      alignas(64) std::array<float, N> unused;
+      ChildKeys<N> unused;
       candidates = enter_children<N>(block, frustum, frustum.tmax, unused);
     }
     for_each_child<N, kCulls, true>(candidates, [&](int c) __attribute__((always_inline)) {

@@ -155,7 +155,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
         closest_one_by_one<float>(leaf_ray, prims, first, end, true, hit);
       }
     } else {
-      alignas(64) std::array<float, N> near;
+      ChildKeys<N> near;
       const float* block = nodes.block(current);
       unsigned bits = enter_children<N, kBits>(block, node_ray, hit.t, near);
       // Empty slots have empty boxes, which no ray enters (and hold no primitive).
@@ -235,7 +235,7 @@ template <KernelUnit U, int N, bool kBits, class S, int K, class Leaf>
       }
       continue;
     }
-    alignas(64) std::array<float, N> near;
+    ChildKeys<N> near;
     const float* block = nodes.block(entry);
     for (unsigned bits = enter_children<N, kBits>(block, node_ray, tmax, near); bits != 0;
          bits &= bits - 1) {
