@@ -39,7 +39,7 @@ std::optional<float> rectangle_distance(const LightDesc& light, const RectangleF
 }
 
 // The robust sphere kernel (geometry/kinds/sphere.h) in one lane: the
-// nearer root past tmin, the farther one from inside.
+// nearer root past tmin, the farther one from inside, within (tmin, t_limit).
 std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& ray, float t_limit) {
   const SphereLanes<float> sphere{light.position, light.radius * light.radius, 1.f / light.radius};
   Candidate<float> hit;
@@ -47,14 +47,13 @@ std::optional<float> sphere_distance(const LightDesc& light, const Ray<float>& r
   return hit.t;
 }
 
-// The light's distance along ray in (tmin, t_limit), its rectangle frame found beforehand.
+// The light's distance along ray in (tmin, t_limit), its rectangle frame
+// found beforehand: each test keeps that range itself.
 std::optional<float> light_distance(const LightDesc& light, const RectangleFrame& frame, const Ray<float>& ray,
                                     float t_limit) {
-  std::optional<float> t;
-  if (light.kind == LightDesc::Kind::rectangle) t = rectangle_distance(light, frame, ray, t_limit);
-  if (light.kind == LightDesc::Kind::sphere) t = sphere_distance(light, ray, t_limit);
-  if (!t || !(*t > ray.tmin && *t < t_limit)) return std::nullopt;
-  return t;
+  if (light.kind == LightDesc::Kind::rectangle) return rectangle_distance(light, frame, ray, t_limit);
+  if (light.kind == LightDesc::Kind::sphere) return sphere_distance(light, ray, t_limit);
+  return std::nullopt;
 }
 
 bool is_area_light(const LightDesc& light) {
