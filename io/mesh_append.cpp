@@ -46,10 +46,6 @@ Placement checked_placement(const std::array<float, 16>& transform, std::optiona
   return {m, glm::inverseTranspose(linear), determinant < 0.0};
 }
 
-std::size_t triangle_budget(const SceneDesc& scene) {
-  return kMaxObjTriangles - std::min(scene.triangles.size(), kMaxObjTriangles);
-}
-
 // Moves the mesh read (named `name`) into scene under the placement.
 void place_mesh(SceneDesc mesh, const std::string& name, const Placement& placement,
                 std::optional<std::size_t> material_override, SceneDesc& scene) {
@@ -106,13 +102,15 @@ void place_mesh(SceneDesc mesh, const std::string& name, const Placement& placem
 
 }  // namespace
 
+std::size_t triangles_left(std::size_t stored) { return kMaxObjTriangles - std::min(stored, kMaxObjTriangles); }
+
 void append_mesh(const fs::path& path, const std::array<float, 16>& transform,
                  std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees,
                  bool strict, const PathRule& paths) {
   const std::string extension = lowercase_extension(path);
   if (!is_mesh_extension(extension)) throw std::invalid_argument("append_mesh: not a mesh file name");
   const Placement placement = checked_placement(transform, material_override, scene);
-  const std::size_t budget = triangle_budget(scene);
+  const std::size_t budget = triangles_left(scene.triangles.size());
   SceneDesc mesh = extension == ".obj" ? read_obj_scene(path, crease_angle_degrees, strict, budget, paths)
                                        : read_imported_mesh(path, crease_angle_degrees, strict, budget, paths);
   mesh.source_files.insert(mesh.source_files.begin(), path.string());
@@ -123,7 +121,7 @@ void append_mesh_bytes(std::string_view bytes, const fs::path& name, const std::
                        std::optional<std::size_t> material_override, SceneDesc& scene, double crease_angle_degrees,
                        bool strict) {
   const Placement placement = checked_placement(transform, material_override, scene);
-  SceneDesc mesh = read_mesh_bytes(bytes, name, crease_angle_degrees, strict, triangle_budget(scene));
+  SceneDesc mesh = read_mesh_bytes(bytes, name, crease_angle_degrees, strict, triangles_left(scene.triangles.size()));
   place_mesh(std::move(mesh), name.string(), placement, material_override, scene);
 }
 

@@ -21,6 +21,9 @@ namespace quiver {
 // ".glb", ".stl"; lower case, with the dot).
 bool is_mesh_extension(std::string_view extension);
 
+// Triangles a scene holding `stored` can still take (kMaxObjTriangles in all).
+std::size_t triangles_left(std::size_t stored);
+
 // Reads the mesh file at `path` (read_obj_scene or read_imported_mesh) and
 // appends its triangles to `scene`, transformed by `transform` (a 4x4
 // matrix, column-major: element (row r, column c) at [4 * c + r]) for

@@ -145,6 +145,16 @@ TEST(RenderOptions, OneSideKeepsTheCameraAspect) {
   options.height = 90;  // both given: as given
   EXPECT_EQ(image_size(options, cam), std::make_pair(10, 90));
   EXPECT_EQ(image_size({}, cam), std::make_pair(640, 480));
+  // A scaled side up to the side bound is kept; past it, refused, not clamped.
+  options = {};
+  options.width = 4096;
+  EXPECT_EQ(image_size(options, camera(4096, kMaxImageSide)), std::make_pair(4096, kMaxImageSide));
+  EXPECT_TRUE(throws_usage_error([&] { image_size(options, camera(4096, kMaxImageSide + 1)); }));
+  EXPECT_TRUE(throws_usage_error([&] { image_size(options, camera(4096, 2 * kMaxImageSide)); }));
+  options = {};
+  options.height = 4096;
+  EXPECT_EQ(image_size(options, camera(kMaxImageSide, 4096)), std::make_pair(kMaxImageSide, 4096));
+  EXPECT_TRUE(throws_usage_error([&] { image_size(options, camera(kMaxImageSide + 1, 4096)); }));
 }
 
 TEST(RenderOptions, WithoutACameraTheDefaultIsSquare) {

@@ -181,6 +181,22 @@ TEST(ViewServer, BadParametersGet400WithTheReason) {
   expect_400(garbled, "from");
 }
 
+// The server answers GETs only (httplib reads no GET body); a body sent with
+// another method is read up to the bound, and one byte more is refused
+// before anything else is looked at.
+TEST(ViewServer, ARequestBodyOfTheBoundIsReadAndOneByteMoreIsRefused) {
+  RunningServer running(built_in_scene(16, 16));
+  const auto status_of_post = [&](std::size_t bytes) {
+    const httplib::Result result =
+        running.client().Post(std::string("/api/scene?token=") + kToken, std::string(bytes, 'x'), "text/plain");
+    return result ? result->status : -1;
+  };
+  EXPECT_EQ(status_of_post(1025), 413);
+  const int at_bound = status_of_post(1024);
+  EXPECT_NE(at_bound, 413);
+  EXPECT_GE(at_bound, 400);  // no POST handler: refused, but not for its size
+}
+
 TEST(ViewServer, ANewerFrameCancelsTheOneInFlight) {
   RunningServer running(built_in_scene(16, 16));
   ViewRequest big = running.session.initial_view();

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "io/gltf_check.h"
 #include "io/mesh_import.h"
 #include "io/parse_error.h"
@@ -322,6 +324,88 @@ fs::path textured_with_files(const fs::path& dir, const std::string& image_bytes
   move_out("data:image/png;base64,", "square.png", &image_bytes);
   write_file(dir / "square.gltf", json);
   return dir / "square.gltf";
+}
+
+// A glTF document of one buffer and one bufferView of `bytes` (declared
+// only: check_gltf_contents takes the buffers as checked against their
+// data) and these accessors, meshes, nodes and scene roots (JSON arrays).
+nlohmann::json declared_document(std::uint64_t bytes, const std::string& accessors, const std::string& meshes,
+                                 const std::string& nodes, const std::string& roots) {
+  const std::string size = std::to_string(bytes);
+  return nlohmann::json::parse(R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": )" + size +
+                               R"(}], "bufferViews": [{"buffer": 0, "byteLength": )" + size + R"(}], "accessors": )" +
+                               accessors + R"(, "meshes": )" + meshes + R"(, "nodes": )" + nodes +
+                               R"(, "scenes": [{"nodes": )" + roots + R"(}], "scene": 0})");
+}
+
+// A float accessor of `count` elements of `type` in bufferView 0.
+std::string float_accessor(std::uint64_t count, const std::string& type) {
+  return R"({"bufferView": 0, "componentType": 5126, "count": )" + std::to_string(count) + R"(, "type": ")" + type +
+         R"("})";
+}
+
+// What check_gltf_contents says of `document`: "ok" or its error.
+std::string contents_outcome(const nlohmann::json& document) {
+  try {
+    check_gltf_contents(document, "declared.gltf", ".", PathRule{}, kMaxObjTriangles);
+  } catch (const ParseError& error) {
+    return error.what();
+  }
+  return "ok";
+}
+
+// The bounds on what Assimp would make are each met exactly and passed by
+// one: bytes decoded, vertices copied per placement, nodes placed.
+TEST(GltfContents, EachBoundIsMetExactlyAndPassedByOne) {
+  // Decoded bytes: 8 primitives of one triangle (36 bytes each), two of them
+  // also with COLOR_0's VEC4 floats, 16 bytes an element: 288 + 32 n.
+  const auto decoded = [](std::uint64_t colors) {
+    std::string primitives = "[";
+    for (int p = 0; p < 8; ++p) {
+      primitives += std::string(p > 0 ? ", " : "") + R"({"attributes": {"POSITION": 0)" +
+                    (p < 2 ? R"(, "COLOR_0": 1)" : "") + "}}";
+    }
+    return declared_document(std::uint64_t{1} << 30,
+                             "[" + float_accessor(3, "VEC3") + ", " + float_accessor(colors, "VEC4") + "]",
+                             R"([{"primitives": )" + primitives + "]}]", R"([{"mesh": 0}])", "[0]");
+  };
+  const std::uint64_t colors_at_bound = (kMaxGltfDecodedBytes - 288) / 32;
+  EXPECT_EQ(contents_outcome(decoded(colors_at_bound)), "ok");
+  EXPECT_NE(contents_outcome(decoded(colors_at_bound + 1)).find("at most 1073741824 bytes, found"), std::string::npos)
+      << contents_outcome(decoded(colors_at_bound + 1));
+
+  // Placed vertices: one triangle indexing n positions, placed by two nodes.
+  const auto placed = [](std::uint64_t positions) {
+    return declared_document(std::uint64_t{1} << 30,
+                             "[" + float_accessor(positions, "VEC3") +
+                                 R"(, {"bufferView": 0, "componentType": 5125, "count": 3, "type": "SCALAR"}])",
+                             R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}])",
+                             R"([{"mesh": 0}, {"mesh": 0}])", "[0, 1]");
+  };
+  EXPECT_EQ(contents_outcome(placed(kMaxGltfPlacedVertices / 2)), "ok");
+  EXPECT_NE(contents_outcome(placed(kMaxGltfPlacedVertices / 2 + 1)).find("expected at most 50331648"),
+            std::string::npos)
+      << contents_outcome(placed(kMaxGltfPlacedVertices / 2 + 1));
+
+  // Node placements: 16 levels, each listing its child twice, place
+  // 2^16 - 1 nodes; each further root without children one more.
+  const auto doubling = [](int extra_roots) {
+    std::string nodes = "[";
+    for (int i = 0; i < 15; ++i) nodes += R"({"children": [)" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}, ";
+    nodes += R"({"mesh": 0})";
+    std::string roots = "[0";
+    for (int k = 0; k < extra_roots; ++k) {
+      nodes += ", {}";
+      roots += ", " + std::to_string(16 + k);
+    }
+    return declared_document(36, "[" + float_accessor(3, "VEC3") + "]",
+                             R"([{"primitives": [{"attributes": {"POSITION": 0}}]}])", nodes + "]", roots + "]");
+  };
+  EXPECT_EQ(contents_outcome(doubling(1)), "ok");
+  EXPECT_NE(contents_outcome(doubling(2)).find("expected at most 65536 nodes once each is placed under every parent, "
+                                               "found 65537"),
+            std::string::npos)
+      << contents_outcome(doubling(2));
 }
 
 // A glTF's buffer and image files are inputs of the scene (no output may

@@ -716,6 +716,32 @@ TEST(MeshFileCheck, AnStlOfAsManyTrianglesAsTheBoundPassesAndOneMoreDoesNot) {
   }
 }
 
+// A glTF's JSON of exactly the value bound is parsed (and then found to be
+// no glTF document); one value more is refused before parsing.
+TEST(MeshFileCheck, GltfJsonOfTheValueBoundIsParsedAndOneMoreIsRefused) {
+  // An array of n zeros: n + 1 values.
+  const auto zeros = [](std::size_t n) {
+    std::string text = "[0";
+    text.reserve(2 * n + 1);
+    for (std::size_t i = 1; i < n; ++i) text += ",0";
+    return text + "]";
+  };
+  const auto error_of = [](const std::string& json) {
+    try {
+      check_gltf(json, "values.gltf", ".", PathRule{}, false, kMaxObjBytes, kMaxObjTriangles);
+    } catch (const ParseError& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  const std::string bound_error = "JSON of at most 4194304 values";
+  const std::string at_bound = error_of(zeros(kMaxGltfJsonValues - 1));
+  EXPECT_EQ(at_bound.find(bound_error), std::string::npos) << at_bound;
+  EXPECT_NE(at_bound, "no error");
+  const std::string past = error_of(zeros(kMaxGltfJsonValues));
+  EXPECT_NE(past.find(bound_error), std::string::npos) << past;
+}
+
 TEST(MeshImport, AssimpsOwnErrorsNameTheFileAndAnEmptyMeshIsAnError) {
   const testing::TemporaryDirectory temporary("quiver_mesh_test");
   const fs::path empty = temporary.path() / "empty.ply";
@@ -726,6 +752,14 @@ TEST(MeshImport, AssimpsOwnErrorsNameTheFileAndAnEmptyMeshIsAnError) {
   const fs::path gltf = temporary.path() / "wrong.gltf";
   write_file(gltf, "{\"asset\": {\"version\": \"1.0\"}}\n");
   EXPECT_EQ(import_error(gltf).rfind(gltf.string() + ": Assimp: ", 0), 0u) << import_error(gltf);
+}
+
+TEST(MeshAppend, TrianglesLeftCountDownToZeroAtTheBound) {
+  EXPECT_EQ(triangles_left(0), kMaxObjTriangles);
+  EXPECT_EQ(triangles_left(1), kMaxObjTriangles - 1);
+  EXPECT_EQ(triangles_left(kMaxObjTriangles - 1), 1u);
+  EXPECT_EQ(triangles_left(kMaxObjTriangles), 0u);
+  EXPECT_EQ(triangles_left(kMaxObjTriangles + 1), 0u);
 }
 
 TEST(MeshAppend, APlyMeshIsPlacedAndCountedLikeAnObj) {

@@ -286,6 +286,26 @@ TEST(ObjReader, TextureWrapFollowsTheLastClampAndTexturesAreShared) {
   for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(scene.materials[i].texture, expected_texture[i]) << i;
 }
 
+// As many MTL libraries as the bound are read (each defining its own
+// material), on one line or several; one more is refused where it is named.
+TEST(ObjReader, MtlLibrariesUpToTheBoundAreReadAndOneMoreIsRefused) {
+  std::map<std::string, std::string> libraries;
+  std::string names, uses;
+  for (std::size_t i = 0; i <= kMaxMtlLibraries; ++i) {
+    const std::string id = std::to_string(i);
+    libraries["l" + id + ".mtl"] = "newmtl m" + id + "\n";
+    if (i < kMaxMtlLibraries) {
+      names += " l" + id + ".mtl";
+      uses += "usemtl m" + id + "\nf 1 2 3\n";
+    }
+  }
+  const SceneDesc scene = parse(std::string(kTriangle) + "mtllib" + names + "\n" + uses, libraries);
+  EXPECT_EQ(scene.materials.size(), kMaxMtlLibraries);
+  // The one past the bound, on a line of its own after the triangle's 3.
+  const std::string past = std::string(kTriangle) + "mtllib" + names + "\nmtllib l64.mtl\nf 1 2 3\n";
+  EXPECT_TRUE(error_at(past, libraries, "test.obj", 5, 8, "at most 64 MTL libraries"));
+}
+
 TEST(ObjReader, FirstDefinitionOfAMaterialNameWinsAcrossLibraries) {
   const std::string obj = std::string(kTriangle) + "mtllib a.mtl b.mtl\nusemtl m\nf 1 2 3\nusemtl n\nf 1 2 3\n";
   const SceneDesc scene = parse(obj, {{"a.mtl", "newmtl m\nKd 0.25 0.25 0.25\nnewmtl m\nKd 1 1 1\n"},

@@ -313,6 +313,26 @@ TEST(PlyReader, PolygonsOfFiveOrMoreCornersAreClippedIntoEarsCoveringThem) {
   }
 }
 
+TEST(PlyReader, FacesOfUpToTheCornerBoundAreReadAndOneMoreIsRefused) {
+  // A convex polygon of n corners on the unit circle, its length a ushort.
+  const auto polygon = [](std::size_t n) {
+    std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
+                       "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                       "property list ushort int vertex_indices\nend_header\n";
+    for (std::size_t k = 0; k < n; ++k) {
+      const double a = 2.0 * std::acos(-1.0) * double(k) / double(n);
+      text += std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    text += std::to_string(n);
+    for (std::size_t k = 0; k < n; ++k) text.append(" ").append(std::to_string(k));
+    return text + "\n";
+  };
+  EXPECT_EQ(triangles_of(read(polygon(kMaxObjFaceVertices))).size(), kMaxObjFaceVertices - 2);
+  EXPECT_NE(error_of(polygon(kMaxObjFaceVertices + 1)).find("expected a face of at most 255 vertices"),
+            std::string::npos)
+      << error_of(polygon(kMaxObjFaceVertices + 1));
+}
+
 TEST(PlyReader, QuadsFanFromTheirConcaveCornerAndNormalsAndUvsAreRead) {
   const std::string text =
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -78,6 +79,34 @@ TEST(PlyWriter, MalformedMeshesAreRefused) {
   mesh = quad();
   mesh.triangles.pop_back();
   EXPECT_THROW(binary_ply(mesh), std::invalid_argument);
+}
+
+// The error binary_ply gives `mesh` ("" when it writes it).
+std::string write_error(const PlyMesh& mesh) {
+  try {
+    binary_ply(mesh);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// At the reader's bounds a mesh passes them (and is refused only for an
+// index past its vertices); one vertex or triangle more, for its counts.
+TEST(PlyWriter, CountsAtTheReadersBoundsPassThemAndOneMoreDoesNot) {
+  const std::string past_bounds = "more vertices or triangles than the PLY reader accepts";
+  PlyMesh mesh;
+  mesh.positions.assign(3 * kMaxObjVertices, 0.f);
+  mesh.triangles = {0, 1, std::uint32_t(kMaxObjVertices)};
+  EXPECT_NE(write_error(mesh).find("an index names no vertex"), std::string::npos) << write_error(mesh);
+  mesh.positions.resize(3 * (kMaxObjVertices + 1));
+  EXPECT_NE(write_error(mesh).find(past_bounds), std::string::npos) << write_error(mesh);
+  mesh.positions.assign(3 * 3, 0.f);
+  mesh.triangles.assign(3 * kMaxObjTriangles, 0);
+  mesh.triangles.back() = 3;
+  EXPECT_NE(write_error(mesh).find("an index names no vertex"), std::string::npos) << write_error(mesh);
+  mesh.triangles.resize(3 * (kMaxObjTriangles + 1));
+  EXPECT_NE(write_error(mesh).find(past_bounds), std::string::npos) << write_error(mesh);
 }
 
 TEST(MeshBytes, APlyFromBytesIsTheSceneOfItsFileAndGltfIsRefused) {

@@ -191,6 +191,24 @@ TEST(TextureFile, SidesUpToTheBoundAreRead) {
   }
 }
 
+// 2^26 texels pass the bound (this file then fails for its missing pixels);
+// one row more is refused for its size before anything is allocated.
+TEST(TextureFile, TheTexelBoundIsMetExactlyAndPassedByOneRow) {
+  TemporaryDirectory directory;
+  const auto header_only = [&](std::int64_t width, std::int64_t height) {
+    const fs::path path = directory.path() / ("header_" + std::to_string(width) + "x" + std::to_string(height) + ".ppm");
+    std::ofstream(path, std::ios::binary) << "P6\n" << width << " " << height << "\n255\n";
+    return path;
+  };
+  const std::int64_t full_height = kMaxTexturePixels / kMaxTextureSide;
+  const std::string at_bound = read_error(header_only(kMaxTextureSide, full_height));
+  EXPECT_EQ(at_bound.find("exceeds the limit"), std::string::npos) << at_bound;
+  EXPECT_NE(at_bound.find("cannot read the pixels"), std::string::npos) << at_bound;
+  const std::string past = read_error(header_only(kMaxTextureSide, full_height + 1));
+  EXPECT_NE(past.find("exceeds the limit of 32768 texels per side and 67108864 texels in total"), std::string::npos)
+      << past;
+}
+
 TEST(TextureFile, MissingDirectoryAndNonImageFilesFailWithThePath) {
   TemporaryDirectory directory;
   EXPECT_NE(read_error(directory.path() / "missing.png").find("cannot open"), std::string::npos);

@@ -2,7 +2,9 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <cstdlib>
 #include <filesystem>
@@ -361,6 +363,12 @@ TEST(TomlReader, NonFiniteAndOutOfRangeValues) {
       parse(camera + "width = 65536\nheight = 4096\n[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n");
   ASSERT_TRUE(widest.camera.has_value());
   EXPECT_EQ(std::int64_t{widest.camera->width} * widest.camera->height, kMaxImagePixels);
+  // And the tallest: the side bound holds for the height as for the width.
+  EXPECT_TRUE(error_at(camera + "height = 65537\n", 4, 10, "an integer from 1 to 65536"));
+  const SceneDesc tallest =
+      parse(camera + "width = 4096\nheight = 65536\n[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n");
+  ASSERT_TRUE(tallest.camera.has_value());
+  EXPECT_EQ(tallest.camera->height, kMaxImageSide);
   EXPECT_TRUE(error_at("[camera]\nfrom = [0, 0, 5]\nat = [0, 0, 5]\n", 3, 6, "a point different from 'from'"));
   EXPECT_TRUE(error_at(camera + "up = [0, 0, 2]\n", 4, 6, "not parallel to at - from"));
   EXPECT_TRUE(error_at("[camera]\nfrom = [0, 5, 0]\nat = [0, 0, 0]\n", 1, 1, "an 'up' key in [camera]"));
@@ -403,14 +411,43 @@ TEST(TomlReader, CountsAndArrayLengthsAreBounded) {
                        "an array of 3 vectors (one per vertex)"));
   EXPECT_TRUE(error_at("[[triangles]]\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\nuvs = [[0, 0], [1, 0], [0]]\n", 3,
                        24, "an array of 2 numbers [u, v]"));
-  std::string lights;
-  for (std::size_t i = 0; i <= kMaxTomlLights; ++i) lights += "[[lights]]\nposition = [0, 0, 0]\n";
-  // The entry past the bound starts on line 2 * 1024 + 1.
-  EXPECT_TRUE(error_at(lights, 2 * kMaxTomlLights + 1, 1, "at most 1024 [[lights]] entries"));
-  // The bound itself: 1024 lights read.
-  std::string most = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
-  for (std::size_t i = 0; i < kMaxTomlLights; ++i) most += "[[lights]]\nposition = [0, 0, 0]\n";
-  EXPECT_EQ(parse(most).lights.size(), kMaxTomlLights);
+}
+
+// Each array of tables is read up to its bound and refused one entry past it,
+// at the first entry past it.
+TEST(TomlReader, EachSectionIsReadUpToItsBoundAndRefusedOnePast) {
+  struct Section {
+    std::string_view name;
+    std::size_t bound;
+    std::function<std::string(std::size_t)> entry;  // entry i, of the same line count for every i
+    std::function<std::size_t(const SceneDesc&)> read;
+  };
+  const std::vector<Section> sections{
+      {"lights", kMaxTomlLights, [](std::size_t) { return "[[lights]]\nposition = [0, 0, 0]\n"; },
+       [](const SceneDesc& s) { return s.lights.size(); }},
+      {"textures", kMaxTomlTextures,
+       [](std::size_t i) { return "[[textures]]\nname = \"t" + std::to_string(i) + "\"\ntype = \"checker2d\"\n"; },
+       [](const SceneDesc& s) { return s.textures.size(); }},
+      {"materials", kMaxTomlMaterials,
+       [](std::size_t i) { return "[[materials]]\nname = \"m" + std::to_string(i) + "\"\n"; },
+       [](const SceneDesc& s) { return s.materials.size(); }},
+      {"meshes", kMaxTomlMeshes, [](std::size_t) { return "[[meshes]]\nfile = \"triangle.obj\"\n"; },
+       [](const SceneDesc& s) { return s.triangles.size(); }},
+  };
+  const std::string sphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\n";
+  for (const Section& section : sections) {
+    const std::size_t before = section.read(parse(sphere));
+    const std::size_t each = section.read(parse(sphere + section.entry(0))) - before;
+    std::string text = sphere;
+    for (std::size_t i = 0; i < section.bound; ++i) text += section.entry(i);
+    EXPECT_EQ(section.read(parse(text)), before + each * section.bound) << section.name;
+    // The entry past the bound starts after the sphere's 3 lines and the bound's entries.
+    const auto lines = static_cast<std::size_t>(std::ranges::count(section.entry(0), '\n'));
+    text += section.entry(section.bound);
+    EXPECT_TRUE(error_at(text, 4 + lines * section.bound, 1,
+                         "at most " + std::to_string(section.bound) + " [[" + std::string(section.name) + "]] entries"))
+        << section.name;
+  }
 }
 
 // A scene without objects renders a blank image (issue 28): an error at the

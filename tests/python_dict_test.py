@@ -107,6 +107,24 @@ def test_sizes_are_bounded_before_anything_is_built():
         quiver.from_dict({"polygons": [{"vertices": np.zeros((400000, 3))}]})
 
 
+def test_the_depth_bound_itself_passes_and_one_level_more_does_not():
+    # A sphere's centre coordinate lies L + 4 levels down under L wrapping
+    # dicts (then the spheres list, the sphere, its centre list): 32 levels
+    # pass the depth bound (and the scene is refused for its key 'x'), 33 do not.
+    def wrapped(levels):
+        scene = {"spheres": [{"center": [0, 0, 0], "radius": 1}]}
+        for _ in range(levels):
+            scene = {"x": scene}
+        return scene
+
+    with pytest.raises(ValueError) as at_bound:
+        quiver.from_dict(wrapped(28))
+    assert "nested deeper" not in str(at_bound.value)
+    assert "found 'x'" in str(at_bound.value)
+    with pytest.raises(ValueError, match=r"spheres\[0\]\.center\[0\]: nested deeper than 32 levels"):
+        quiver.from_dict(wrapped(29))
+
+
 def test_the_value_bound_is_the_toml_readers_and_the_bound_itself_passes():
     # Values counted as the TOML reader counts its nodes: the root table, the
     # key polygons, its one table, the key vertices, each vertex's list and

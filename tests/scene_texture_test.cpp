@@ -2,7 +2,10 @@
 // in-memory images, and refuses an image texture whose file was not read.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <limits>
+#include <string>
+#include <utility>
 #include <stdexcept>
 
 #include "scene/texture.h"
@@ -53,6 +56,39 @@ TEST(TextureBuild, RejectsBadCheckerScaleAndInMemoryImages) {
   image.width = int(kMaxTextureSide);
   image.height = int(kMaxTexturePixels / kMaxTextureSide) + 1;
   EXPECT_THROW(build_texture(image), std::invalid_argument);
+}
+
+// The error of build_texture(desc), or "" when it builds.
+std::string build_error(const TextureDesc& desc) {
+  try {
+    build_texture(desc);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// At the bounds (a side of 32768, 2^26 texels) an image passes the bound
+// and is refused only for the floats it lacks; one texel past, for its size.
+TEST(TextureBuild, InMemoryImagesAtTheBoundsPassThemAndOnePastDoesNot) {
+  TextureDesc image;
+  image.kind = TextureDesc::Kind::image;
+  image.rgb = {1.f, 1.f, 1.f};
+  const std::int64_t full_height = kMaxTexturePixels / kMaxTextureSide;
+  for (const auto& [width, height] : {std::pair{kMaxTextureSide, std::int64_t{1}}, std::pair{std::int64_t{1}, kMaxTextureSide},
+                                      std::pair{kMaxTextureSide, full_height}}) {
+    image.width = int(width);
+    image.height = int(height);
+    EXPECT_NE(build_error(image).find("in-memory image needs"), std::string::npos) << width << " x " << height;
+  }
+  for (const auto& [width, height] :
+       {std::pair{kMaxTextureSide + 1, std::int64_t{1}}, std::pair{std::int64_t{1}, kMaxTextureSide + 1},
+        std::pair{kMaxTextureSide, full_height + 1}}) {
+    image.width = int(width);
+    image.height = int(height);
+    EXPECT_NE(build_error(image).find("exceeds the limit of 32768 texels per side"), std::string::npos)
+        << width << " x " << height;
+  }
 }
 
 TEST(TextureBuild, AnImageFileNotYetReadIsRefused) {
