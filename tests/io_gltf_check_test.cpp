@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -344,6 +345,13 @@ std::string float_accessor(std::uint64_t count, const std::string& type) {
          R"("})";
 }
 
+// The JSON array of these elements.
+std::string json_array(std::initializer_list<std::string> elements) {
+  std::string out = "[";
+  for (const std::string& e : elements) out.append(out.size() > 1 ? ", " : "").append(e);
+  return out + "]";
+}
+
 // What check_gltf_contents says of `document`: "ok" or its error.
 std::string contents_outcome(const nlohmann::json& document) {
   try {
@@ -366,7 +374,7 @@ TEST(GltfContents, EachBoundIsMetExactlyAndPassedByOne) {
                     (p < 2 ? R"(, "COLOR_0": 1)" : "") + "}}";
     }
     return declared_document(std::uint64_t{1} << 30,
-                             "[" + float_accessor(3, "VEC3") + ", " + float_accessor(colors, "VEC4") + "]",
+                             json_array({float_accessor(3, "VEC3"), float_accessor(colors, "VEC4")}),
                              R"([{"primitives": )" + primitives + "]}]", R"([{"mesh": 0}])", "[0]");
   };
   const std::uint64_t colors_at_bound = (kMaxGltfDecodedBytes - 288) / 32;
@@ -377,8 +385,8 @@ TEST(GltfContents, EachBoundIsMetExactlyAndPassedByOne) {
   // Placed vertices: one triangle indexing n positions, placed by two nodes.
   const auto placed = [](std::uint64_t positions) {
     return declared_document(std::uint64_t{1} << 30,
-                             "[" + float_accessor(positions, "VEC3") +
-                                 R"(, {"bufferView": 0, "componentType": 5125, "count": 3, "type": "SCALAR"}])",
+                             json_array({float_accessor(positions, "VEC3"),
+                                         R"({"bufferView": 0, "componentType": 5125, "count": 3, "type": "SCALAR"})"}),
                              R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}])",
                              R"([{"mesh": 0}, {"mesh": 0}])", "[0, 1]");
   };
@@ -398,7 +406,7 @@ TEST(GltfContents, EachBoundIsMetExactlyAndPassedByOne) {
       nodes += ", {}";
       roots += ", " + std::to_string(16 + k);
     }
-    return declared_document(36, "[" + float_accessor(3, "VEC3") + "]",
+    return declared_document(36, json_array({float_accessor(3, "VEC3")}),
                              R"([{"primitives": [{"attributes": {"POSITION": 0}}]}])", nodes + "]", roots + "]");
   };
   EXPECT_EQ(contents_outcome(doubling(1)), "ok");
