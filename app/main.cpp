@@ -199,20 +199,30 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
   }
   try {
     double load_ms = 0.0;
-    const quiver::SceneDesc as_read = quiver::load_scene_timed(scene_path, load_options, load_ms);
-    quiver::print_scene_warnings(as_read);
-    quiver::SceneDesc desc = as_read;
+    quiver::SceneDesc desc = quiver::load_scene_timed(scene_path, load_options, load_ms);
+    quiver::print_scene_warnings(desc);
+    // set_view sets only the camera, lights, ambient and background: the
+    // report's are the file's, kept aside rather than in a copy of the whole
+    // scene (its meshes may be large).
+    const auto camera_as_read = desc.camera;
+    const auto lights_as_read = desc.lights;
+    const auto ambient_as_read = desc.ambient;
+    const auto background_as_read = desc.background;
     const std::optional<quiver::DefaultView> default_view =
         quiver::set_view(desc, camera_flags, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
+    desc.camera = camera_as_read;
+    desc.lights = lights_as_read;
+    desc.ambient = ambient_as_read;
+    desc.background = background_as_read;
     quiver::SceneInfoContext context;
     context.scene = scene_path;
     context.load_ms = load_ms;
     context.build_ms = build_ms;
     context.default_view = default_view;
     context.peak_resident_bytes = quiver::peak_resident_bytes();
-    quiver::write_scene_info(std::cout, as_read, scene, context);
+    quiver::write_scene_info(std::cout, desc, scene, context);
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);
     return 0;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/bvh.h"
 #include "geometry/primitive_bounds.h"
 #include "geometry/soa.h"
@@ -25,41 +26,40 @@ namespace quiver {
 template <class Store>
 concept ColumnsHoldEveryField = Store::kColumnsHoldEveryField;
 
-// The store's primitives at `positions` (indices into it), in that order,
-// columns padded as a builder pads them; source gathered alike.
+// Puts the store's primitives at `positions` (indices into it) in that
+// order, columns padded as a builder pads them; source gathered alike. One
+// column at a time, so the store is not held twice.
 template <ColumnsHoldEveryField Store>
-Store gathered(const Store& store, std::span<const std::uint32_t> positions) {
-  Store out;
-  const auto from = store.columns();
-  const auto to = out.columns();
-  for (std::size_t c = 0; c < from.size(); ++c) {
-    if (from[c]->empty()) continue;  // an optional column left out
-    to[c]->reserve(padded_size(positions.size()));  // exactly: padding grows no further
-    to[c]->resize(positions.size());
-    for (std::size_t k = 0; k < positions.size(); ++k) (*to[c])[k] = (*from[c])[positions[k]];
-    pad_column(*to[c], positions.size());
+void gather(Store& store, std::span<const std::uint32_t> positions) {
+  for (AlignedFloats* column : store.columns()) {
+    if (column->empty()) continue;  // an optional column left out
+    AlignedFloats out;
+    out.reserve(padded_size(positions.size()));  // exactly: padding grows no further
+    out.resize(positions.size());
+    for (std::size_t k = 0; k < positions.size(); ++k) out[k] = (*column)[positions[k]];
+    pad_column(out, positions.size());
+    *column = std::move(out);
   }
-  out.count = positions.size();
-  out.source.resize(positions.size());
-  for (std::size_t k = 0; k < positions.size(); ++k) out.source[k] = store.source[positions[k]];
-  out.id_base = store.id_base;
-  return out;
+  std::vector<std::uint32_t> source(positions.size());
+  for (std::size_t k = 0; k < positions.size(); ++k) source[k] = store.source[positions[k]];
+  store.source = std::move(source);
+  store.count = positions.size();
 }
 
 // The store's primitives at `positions`, in that order, built again by
 // builder from their descriptions (for stores whose columns are not all
 // per primitive, as polygons' vertex lists).
 template <class Store, class Desc, class Builder>
-Store rebuilt(const Store& store, std::span<const Desc> descs, std::span<const std::uint32_t> positions,
+Store rebuilt(const Store& store, const DescRefs<Desc>& descs, std::span<const std::uint32_t> positions,
               Builder builder) {
   std::vector<std::uint32_t> source;  // input indices in leaf order
   source.reserve(positions.size());
   for (std::uint32_t p : positions) source.push_back(store.source[p]);
-  std::vector<Desc> in_leaf_order;
+  DescRefs<Desc> in_leaf_order;
   in_leaf_order.reserve(source.size());
   for (std::uint32_t i : source) in_leaf_order.push_back(descs[i]);
   BuildReport again;
-  Store reordered = builder(std::span<const Desc>(in_leaf_order), again);
+  Store reordered = builder(in_leaf_order, again);
   if (reordered.count != store.count) throw std::logic_error("a store kept different primitives when reordered");
   reordered.source = std::move(source);
   reordered.id_base = store.id_base;
@@ -69,16 +69,16 @@ Store rebuilt(const Store& store, std::span<const Desc> descs, std::span<const s
 // Rebuilds `store` (built by builder from descs) in the leaf order of a new
 // BVH, which it returns.
 template <class Store, class Desc, class Builder>
-Bvh reorder_for_bvh(std::span<const Desc> descs, Builder builder, const BvhBuildOptions& options, Store& store) {
+Bvh reorder_for_bvh(const DescRefs<Desc>& descs, Builder builder, const BvhBuildOptions& options, Store& store) {
   Store none;
-  return reorder_for_bvh(descs, store, std::span<const Desc>(), none, builder, options);
+  return reorder_for_bvh(descs, store, DescRefs<Desc>(), none, builder, options);
 }
 
 // Rebuilds two stores of one kind (each built by builder from its descs) in
 // the leaf order of one new BVH over both, which it returns: its leaves
 // index store `first` as store 0 and `second` as store 1.
 template <class Store, class Desc, class Builder>
-Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<const Desc> second_descs,
+Bvh reorder_for_bvh(const DescRefs<Desc>& first_descs, Store& first, const DescRefs<Desc>& second_descs,
                     Store& second, Builder builder, const BvhBuildOptions& options) {
   std::vector<Box> boxes = primitive_boxes(first);
   const std::vector<Box> second_boxes = primitive_boxes(second);
@@ -91,7 +91,7 @@ Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<c
   std::vector<std::uint32_t> order;
   Bvh bvh = build_bvh(boxes, options, order, store_of);
   const std::array<Store*, 2> stores{&first, &second};
-  const std::array<std::span<const Desc>, 2> descs{first_descs, second_descs};
+  const std::array<const DescRefs<Desc>*, 2> descs{&first_descs, &second_descs};
   for (std::size_t s = 0; s < 2; ++s) {
     Store& store = *stores[s];
     if (store.count == 0) continue;
@@ -102,9 +102,9 @@ Bvh reorder_for_bvh(std::span<const Desc> first_descs, Store& first, std::span<c
       if (k >= base && k - base < store.count) positions.push_back(k - base);
     }
     if constexpr (ColumnsHoldEveryField<Store>) {
-      store = gathered(store, positions);
+      gather(store, positions);
     } else {
-      store = rebuilt(store, descs[s], positions, builder);
+      store = rebuilt(store, *descs[s], positions, builder);
     }
   }
   return bvh;

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <deque>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -15,7 +16,7 @@ namespace {
 // Input primitives of one kind for one layer, with their origins.
 template <class Desc>
 struct LayerInput {
-  std::vector<Desc> descs;
+  DescRefs<Desc> descs;
   std::vector<PrimitiveOrigin> origins;
 };
 
@@ -76,7 +77,7 @@ void layer_bounds(const GeometryLayer& g, Box& bounds) {
 template <class K>
 void build_store(const LayerInput<typename K::Desc>& input, BuildReport& report, typename K::Store& store,
                  std::vector<PrimitiveOrigin>& origins) {
-  store = K::build(std::span<const typename K::Desc>(input.descs), report);
+  store = K::build(input.descs, report);
   origins = kept_origins(store.source, input.origins);
 }
 
@@ -90,9 +91,7 @@ void index_stores(const KindInput<K>& input, const SceneBuildOptions& options, t
   if (options.acceleration != Acceleration::bvh || opaque.count + transmissive.count < options.bvh_min_primitives) {
     return;
   }
-  using Desc = typename K::Desc;
-  bvh = reorder_for_bvh(std::span<const Desc>(input.opaque.descs), opaque,
-                        std::span<const Desc>(input.transmissive.descs), transmissive, K::build, options.bvh);
+  bvh = reorder_for_bvh(input.opaque.descs, opaque, input.transmissive.descs, transmissive, K::build, options.bvh);
   opaque_origins = kept_origins(opaque.source, input.opaque.origins);
   transmissive_origins = kept_origins(transmissive.source, input.transmissive.origins);
 }
@@ -242,8 +241,12 @@ std::size_t Scene::memory_bytes() const {
 namespace {
 
 // The scene's primitives of every kind, split by layer (patches with
-// normals become triangles), with their origins.
-using SceneInputs = PerKind<KindInput>;
+// normals become triangles), with their origins: references to the scene's
+// own descriptions, and to the triangles made here for polygons.
+struct SceneInputs {
+  PerKind<KindInput> kinds;
+  std::deque<TriangleDesc> polygon_triangles;  // a deque: references stay valid as it grows
+};
 
 // Appends each entry's description to its material's layer of input.
 template <class K, class OriginOf, class IsTransmissive>
@@ -254,7 +257,7 @@ void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is
     std::size_t transmissive = 0;
     for (const auto& entry : entries) transmissive += is_transmissive(entry.material) ? 1 : 0;
     for (bool t : {false, true}) {
-      auto& in = inputs.of<K>().layer(t);
+      auto& in = inputs.kinds.of<K>().layer(t);
       const std::size_t count = in.descs.size() + (t ? transmissive : entries.size() - transmissive);
       in.descs.reserve(count);
       in.origins.reserve(count);
@@ -267,15 +270,15 @@ void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is
       // An NFF patch or a three-vertex polygon: triangles that keep kind polygon.
       std::vector<TriangleDesc> triangles = polygon_triangles(entry, desc.materials[entry.material].texture.has_value());
       if (!triangles.empty()) {
-        auto& in = inputs.of<TriangleKind>().layer(is_transmissive(entry.material));
+        auto& in = inputs.kinds.of<TriangleKind>().layer(is_transmissive(entry.material));
         for (TriangleDesc& t : triangles) {
-          in.descs.push_back(std::move(t));
+          in.descs.push_back(inputs.polygon_triangles.emplace_back(std::move(t)));
           in.origins.push_back(o);
         }
         continue;
       }
     }
-    auto& in = inputs.of<K>().layer(is_transmissive(entry.material));
+    auto& in = inputs.kinds.of<K>().layer(is_transmissive(entry.material));
     in.descs.push_back(entry.*SceneEntries<K>::desc);
     in.origins.push_back(o);
   }
@@ -293,7 +296,7 @@ SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissi
 // next free id.
 std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene) {
   for_each_kind([&]<class K>(K) {
-    const KindInput<K>& input = inputs.of<K>();
+    const KindInput<K>& input = inputs.kinds.of<K>();
     KindStore<K>& o = scene.opaque.kinds.of<K>();
     KindStore<K>& t = scene.transmissive.kinds.of<K>();
     BuildReport& report = scene.counts.kinds[kind_index(kind_tag<K>)];

@@ -297,7 +297,7 @@ void expect_gather_equals_rebuild(const std::vector<Desc>& descs, Builder builde
   auto store = builder(std::span<const Desc>(descs), report);
   ASSERT_LT(store.count, descs.size());  // some dropped: positions and input indices differ
   BvhBuildOptions options;
-  const Bvh bvh = reorder_for_bvh(std::span<const Desc>(descs), builder, options, store);
+  const Bvh bvh = reorder_for_bvh(DescRefs<Desc>(descs), builder, options, store);
   ASSERT_FALSE(bvh.empty());
   std::vector<Desc> in_leaf_order;
   for (std::uint32_t i : store.source) in_leaf_order.push_back(descs[i]);
@@ -501,13 +501,13 @@ void check_kind(const std::vector<Desc>& descs, Builder builder, const Scan& sca
     BvhBuildOptions options;
     options.width = width;
     options.max_leaf_size = width == 2 ? 3 : 8;
-    const Bvh bvh = reorder_for_bvh(std::span<const Desc>(descs), builder, options, store);
+    const Bvh bvh = reorder_for_bvh(DescRefs<Desc>(descs), builder, options, store);
     ASSERT_FALSE(bvh.empty());
     expect_bvh_matches_scan(scan, tree, store, bvh, rays);
 
     auto first = builder(std::span<const Desc>(halves[0]), report);
     auto second = builder(std::span<const Desc>(halves[1]), report);
-    const Bvh shared = reorder_for_bvh(std::span<const Desc>(halves[0]), first, std::span<const Desc>(halves[1]),
+    const Bvh shared = reorder_for_bvh(DescRefs<Desc>(halves[0]), first, DescRefs<Desc>(halves[1]),
                                        second, builder, options);
     second.id_base = static_cast<std::int32_t>(first.count);
     expect_two_store_bvh_matches_scan(scan, tree, first, second, shared, rays);

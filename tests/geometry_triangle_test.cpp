@@ -605,7 +605,7 @@ TEST(TriangleStability, WatertightNeverLeaksThroughTheBvh) {
         BvhBuildOptions options;
         options.width = width;
         options.max_leaf_size = 2;  // a deep tree: many boxes share each edge
-        const Bvh bvh = reorder_for_bvh(std::span<const TriangleDesc>(descs), build_triangles, options, store);
+        const Bvh bvh = reorder_for_bvh(DescRefs<TriangleDesc>(descs), build_triangles, options, store);
         tree.any_hits(r, store, bvh, occlusion, traversal);
       };
       const LeakCount n = count_leaks(through_bvh, mesh, {0, 0, 0}, 0.5f, 150, 150, 7);

@@ -16,10 +16,11 @@ bool square_safe(float x) {
 }
 }  // namespace
 
-ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
+ConeSoA build_cones(const DescRefs<ConeDesc>& cones, BuildReport& report) {
   ConeSoA soa;
   for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(cones.size()));
-  for (const ConeDesc& c : cones) {
+  for (std::size_t i = 0; i < cones.size(); ++i) {
+    const ConeDesc& c = cones[i];
     if (!all_finite(c.base) || !all_finite(c.apex) || !std::isfinite(c.base_radius) || !std::isfinite(c.apex_radius)) {
       ++report.dropped_non_finite;
       continue;
@@ -43,7 +44,7 @@ ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report) {
       ++report.dropped_degenerate;
       continue;
     }
-    soa.source.push_back(static_cast<std::uint32_t>(&c - cones.data()));
+    soa.source.push_back(static_cast<std::uint32_t>(i));
     soa.bx.push_back(c.base.x);
     soa.by.push_back(c.base.y);
     soa.bz.push_back(c.base.z);

@@ -48,6 +48,7 @@
 
 #include "geometry/box.h"
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
 #include "geometry/surface_mapping.h"
@@ -214,7 +215,7 @@ struct ConeSoA {
 // length) as non-finite; a zero (or subnormal) axis, both radii zero, radii of
 // mixed sign, or a radius, slope or squared radius/slope that over- or
 // underflows as degenerate.
-ConeSoA build_cones(std::span<const ConeDesc> cones, BuildReport& report);
+ConeSoA build_cones(const DescRefs<ConeDesc>& cones, BuildReport& report);
 
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const ConeSoA& store, std::size_t i);
@@ -230,7 +231,7 @@ struct ConeKind {
   static constexpr ConeMethod product_method = ConeMethod::quadric;
   using Desc = ConeDesc;
   using Store = ConeSoA;
-  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_cones(descs, report); }
+  static Store build(const DescRefs<Desc>& descs, BuildReport& report) { return build_cones(descs, report); }
   // add(point, margin) for points and margins whose boxes hold the described surface.
   template <class Add>
   static void extent(const Desc& d, Add add) {

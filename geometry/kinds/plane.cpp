@@ -4,10 +4,11 @@
 
 namespace quiver {
 
-PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
+PlaneSoA build_planes(const DescRefs<PlaneDesc>& planes, BuildReport& report) {
   PlaneSoA soa;
   for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(planes.size()));
-  for (const PlaneDesc& p : planes) {
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    const PlaneDesc& p = planes[i];
     if (!all_finite(p.point) || !all_finite(p.normal)) {
       ++report.dropped_non_finite;
       continue;
@@ -23,7 +24,7 @@ PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report) {
       ++report.dropped_non_finite;
       continue;
     }
-    soa.source.push_back(static_cast<std::uint32_t>(&p - planes.data()));
+    soa.source.push_back(static_cast<std::uint32_t>(i));
     soa.nx.push_back(n.x);
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);

@@ -29,6 +29,7 @@
 
 #include "geometry/box.h"
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
 #include "geometry/surface_mapping.h"
@@ -141,7 +142,7 @@ struct PlaneSoA {
 };
 
 // Drops planes with a non-finite number or a zero (or underflowing) normal.
-PlaneSoA build_planes(std::span<const PlaneDesc> planes, BuildReport& report);
+PlaneSoA build_planes(const DescRefs<PlaneDesc>& planes, BuildReport& report);
 
 // Its surface at a hit (geometry/surface_mapping.h).
 void map_surface(const PlaneSoA& store, const MappingQuery& query, SurfaceMapping& out);
@@ -155,7 +156,7 @@ struct PlaneKind {
   static constexpr PlaneMethod product_method = PlaneMethod::anchored;
   using Desc = PlaneDesc;
   using Store = PlaneSoA;
-  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_planes(descs, report); }
+  static Store build(const DescRefs<Desc>& descs, BuildReport& report) { return build_planes(descs, report); }
   // add(point, margin) for points and margins whose boxes hold the described
   // surface: the plane's point (the plane itself has no box).
   template <class Add>

@@ -205,9 +205,10 @@ Vec3<double> newell_normal(std::span<const Vec3<float>> vertices) {
   return normal;
 }
 
-PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report) {
+PolygonSoA build_polygons(const DescRefs<PolygonDesc>& polygons, BuildReport& report) {
   PolygonSoA soa;
-  for (const PolygonDesc& desc : polygons) {
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    const PolygonDesc& desc = polygons[i];
     CleanPolygon poly;
     const Verdict verdict = clean(desc, poly);
     if (verdict == Verdict::non_finite) {
@@ -249,7 +250,7 @@ PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& re
       ++report.dropped_degenerate;
       continue;
     }
-    soa.source.push_back(static_cast<std::uint32_t>(&desc - polygons.data()));
+    soa.source.push_back(static_cast<std::uint32_t>(i));
     soa.nx.push_back(n.x);
     soa.ny.push_back(n.y);
     soa.nz.push_back(n.z);

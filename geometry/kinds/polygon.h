@@ -80,6 +80,7 @@
 
 #include "geometry/box.h"
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/hit.h"
 #include "geometry/kinds/plane.h"
 #include "geometry/kinds/triangle.h"
@@ -459,7 +460,7 @@ struct PolygonSoA {
 // origin); the counter-clockwise winding's side.
 Vec3<double> newell_normal(std::span<const Vec3<float>> vertices);
 
-PolygonSoA build_polygons(std::span<const PolygonDesc> polygons, BuildReport& report);
+PolygonSoA build_polygons(const DescRefs<PolygonDesc>& polygons, BuildReport& report);
 
 // Ear-clipping triangulation of a simple (possibly concave) polygon, in its
 // dominant projection, keeping the vertex winding. Consecutive duplicates are
@@ -494,7 +495,7 @@ struct PolygonKind {
   static constexpr PolygonMethod product_method = PolygonMethod::crossing;
   using Desc = PolygonDesc;
   using Store = PolygonSoA;
-  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_polygons(descs, report); }
+  static Store build(const DescRefs<Desc>& descs, BuildReport& report) { return build_polygons(descs, report); }
   // add(point, margin) for points and margins whose boxes hold the described surface.
   template <class Add>
   static void extent(const Desc& d, Add add) {

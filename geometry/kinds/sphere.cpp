@@ -8,10 +8,11 @@
 
 namespace quiver {
 
-SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report) {
+SphereSoA build_spheres(const DescRefs<SphereDesc>& spheres, BuildReport& report) {
   SphereSoA soa;
   for (AlignedFloats* c : soa.columns()) c->reserve(padded_size(spheres.size()));
-  for (const SphereDesc& s : spheres) {
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const SphereDesc& s = spheres[i];
     const Vec3<float>& c = s.center;
     if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(s.radius)) {
       ++report.dropped_non_finite;
@@ -26,7 +27,7 @@ SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report
       ++report.dropped_degenerate;
       continue;
     }
-    soa.source.push_back(static_cast<std::uint32_t>(&s - spheres.data()));
+    soa.source.push_back(static_cast<std::uint32_t>(i));
     soa.cx.push_back(c.x);
     soa.cy.push_back(c.y);
     soa.cz.push_back(c.z);

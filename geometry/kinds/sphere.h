@@ -56,6 +56,7 @@
 
 #include "geometry/box.h"
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
 #include "geometry/surface_mapping.h"
@@ -272,7 +273,7 @@ struct SphereSoA {
 // Drops spheres with a non-finite center or radius, or whose r^2 overflows
 // (non-finite); and spheres with a radius <= 0 or whose r^2 is below the
 // smallest normal float (degenerate). Negative radii are not mirrored.
-SphereSoA build_spheres(std::span<const SphereDesc> spheres, BuildReport& report);
+SphereSoA build_spheres(const DescRefs<SphereDesc>& spheres, BuildReport& report);
 
 // A conservative axis-aligned box of primitive i as stored (geometry/primitive_bounds.h).
 Box primitive_box(const SphereSoA& store, std::size_t i);
@@ -290,7 +291,7 @@ struct SphereKind {
   static constexpr SphereMethod product_method = SphereMethod::robust;
   using Desc = SphereDesc;
   using Store = SphereSoA;
-  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_spheres(descs, report); }
+  static Store build(const DescRefs<Desc>& descs, BuildReport& report) { return build_spheres(descs, report); }
   // add(point, margin) for points and margins whose boxes hold the described surface.
   template <class Add>
   static void extent(const Desc& d, Add add) {

@@ -80,16 +80,17 @@ std::array<float, 2> TriangleSoA::uv(std::size_t i, int k) const {
   }
 }
 
-TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport& report) {
-  std::vector<const TriangleDesc*> kept;
+TriangleSoA build_triangles(const DescRefs<TriangleDesc>& triangles, BuildReport& report) {
+  std::vector<std::uint32_t> kept;
   kept.reserve(triangles.size());
   bool any_normals = false, any_uvs = false;
-  for (const TriangleDesc& t : triangles) {
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const TriangleDesc& t = triangles[i];
     switch (classify(t)) {
       case Shape::non_finite: ++report.dropped_non_finite; break;
       case Shape::degenerate: ++report.dropped_degenerate; break;
       case Shape::ok:
-        kept.push_back(&t);
+        kept.push_back(static_cast<std::uint32_t>(i));
         any_normals = any_normals || t.normals.has_value();
         any_uvs = any_uvs || t.uvs.has_value();
         break;
@@ -98,8 +99,7 @@ TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport
 
   TriangleSoA soa;
   soa.count = kept.size();
-  soa.source.reserve(kept.size());
-  for (const TriangleDesc* t : kept) soa.source.push_back(static_cast<std::uint32_t>(t - triangles.data()));
+  soa.source = kept;
   const std::size_t padded = padded_size(soa.count);
   AlignedFloats* vertex_columns[3][3] = {{&soa.v0x, &soa.v0y, &soa.v0z},
                                          {&soa.v1x, &soa.v1y, &soa.v1z},
@@ -120,7 +120,7 @@ TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport
 
   constexpr float kDefaultUv[3][2] = {{0.f, 0.f}, {1.f, 0.f}, {0.f, 1.f}};
   for (std::size_t i = 0; i < kept.size(); ++i) {
-    const TriangleDesc& t = *kept[i];
+    const TriangleDesc& t = triangles[kept[i]];
     const Vec3<float> geometric = unit_or(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), {0.f, 0.f, 1.f});
     for (int k = 0; k < 3; ++k) {
       for (int axis = 0; axis < 3; ++axis) (*vertex_columns[k][axis])[i] = t.p[k][axis];

@@ -57,6 +57,7 @@
 
 #include "geometry/box.h"
 #include "geometry/build_report.h"
+#include "geometry/desc_refs.h"
 #include "geometry/hit.h"
 #include "geometry/method_error.h"
 #include "geometry/surface_mapping.h"
@@ -481,7 +482,7 @@ inline constexpr double kMinTriangleRelativeHeight = 0x1p-24;
 // exactly zero. When some triangles have normals (uvs) and others do not,
 // the others get the unit geometric normal (uvs (0,0), (1,0), (0,1)); a zero
 // shading normal is replaced by the geometric one; normals are normalised.
-TriangleSoA build_triangles(std::span<const TriangleDesc> triangles, BuildReport& report);
+TriangleSoA build_triangles(const DescRefs<TriangleDesc>& triangles, BuildReport& report);
 
 // Triangles of an indexed mesh, in index order, without normals or uvs.
 // Throws std::out_of_range for an index past positions.
@@ -502,7 +503,7 @@ struct TriangleKind {
   static constexpr TriangleMethod product_method = TriangleMethod::watertight;
   using Desc = TriangleDesc;
   using Store = TriangleSoA;
-  static Store build(std::span<const Desc> descs, BuildReport& report) { return build_triangles(descs, report); }
+  static Store build(const DescRefs<Desc>& descs, BuildReport& report) { return build_triangles(descs, report); }
   // add(point, margin) for points and margins whose boxes hold the described surface.
   template <class Add>
   static void extent(const Desc& d, Add add) {
