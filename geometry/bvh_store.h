@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "geometry/build_report.h"
-#include "geometry/desc_refs.h"
 #include "geometry/bvh.h"
+#include "geometry/desc_refs.h"
 #include "geometry/primitive_bounds.h"
 #include "geometry/soa.h"
 

@@ -438,6 +438,7 @@ TEST(TomlReader, EachSectionIsReadUpToItsBoundAndRefusedOnePast) {
   for (const Section& section : sections) {
     const std::size_t before = section.read(parse(sphere));
     const std::size_t each = section.read(parse(sphere + section.entry(0))) - before;
+    ASSERT_GT(each, 0u) << section.name;
     std::string text = sphere;
     for (std::size_t i = 0; i < section.bound; ++i) text += section.entry(i);
     EXPECT_EQ(section.read(parse(text)), before + each * section.bound) << section.name;
