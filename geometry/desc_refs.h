@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstddef>
-#include <iterator>
 #include <ranges>
 #include <vector>
 
@@ -25,36 +24,7 @@ class DescRefs {
   void reserve(std::size_t n) { refs_.reserve(n); }
   void push_back(const Desc& d) { refs_.push_back(&d); }
   std::size_t size() const { return refs_.size(); }
-  bool empty() const { return refs_.empty(); }
   const Desc& operator[](std::size_t i) const { return *refs_[i]; }
-
-  // Iterates the descriptions (not the pointers).
-  class Iterator {
-   public:
-    using iterator_category = std::forward_iterator_tag;
-    using value_type = Desc;
-    using difference_type = std::ptrdiff_t;
-    using pointer = const Desc*;
-    using reference = const Desc&;
-    Iterator() = default;
-    explicit Iterator(const Desc* const* at) : at_(at) {}
-    const Desc& operator*() const { return **at_; }
-    Iterator& operator++() {
-      ++at_;
-      return *this;
-    }
-    Iterator operator++(int) {
-      Iterator before = *this;
-      ++at_;
-      return before;
-    }
-    bool operator==(const Iterator&) const = default;
-
-   private:
-    const Desc* const* at_ = nullptr;
-  };
-  Iterator begin() const { return Iterator(refs_.data()); }
-  Iterator end() const { return Iterator(refs_.data() + refs_.size()); }
 
  private:
   std::vector<const Desc*> refs_;

@@ -253,7 +253,7 @@ template <class K, class OriginOf, class IsTransmissive>
 void split_by_layer(const SceneDesc& desc, OriginOf origin_of, IsTransmissive is_transmissive, SceneInputs& inputs) {
   const auto& entries = desc.*SceneEntries<K>::of;
   if constexpr (!std::is_same_v<K, PolygonKind>) {
-    // Room for every entry up front: no copies of the descriptions as the lists grow.
+    // Room for every entry up front: the reference and origin lists are not regrown.
     std::size_t transmissive = 0;
     for (const auto& entry : entries) transmissive += is_transmissive(entry.material) ? 1 : 0;
     for (bool t : {false, true}) {

@@ -18,10 +18,7 @@ TEST(DescRefs, AListConvertsToReferencesToItsOwnElementsInOrder) {
   const DescRefs<int> refs = list;
   ASSERT_EQ(refs.size(), 3u);
   for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(&refs[i], &list[i]) << i;
-  std::vector<int> seen;
-  for (const int& value : refs) seen.push_back(value);
-  EXPECT_EQ(seen, list);
-  EXPECT_TRUE(DescRefs<int>().empty());
+  EXPECT_EQ(DescRefs<int>().size(), 0u);
 }
 
 TEST(DescRefs, PushedReferencesKeepTheirOrderAndABuilderIndexesThem) {
