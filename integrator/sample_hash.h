@@ -25,10 +25,21 @@ inline std::uint64_t sample_key(double x, double y, std::uint64_t seed) {
   return mix64(mix64(mix64(seed) ^ std::bit_cast<std::uint64_t>(x)) ^ std::bit_cast<std::uint64_t>(y));
 }
 
+// The numbers a key and an index a open: number b of them is
+// stream_uniform(hash_stream(key, a), b), so a caller drawing several b
+// for one (key, a) hashes the pair once.
+inline std::uint64_t hash_stream(std::uint64_t key, std::uint64_t a) {
+  return mix64(key ^ mix64(a + 0x9e3779b97f4a7c15ULL));
+}
+
+// Number b of a stream: uniform in [0, 1).
+inline float stream_uniform(std::uint64_t stream, std::uint64_t b) {
+  return float(mix64(stream ^ b) >> 40) * 0x1p-24f;  // 24 bits: exactly representable, < 1
+}
+
 // A uniform number in [0, 1) from a key and two indices.
 inline float hash_uniform(std::uint64_t key, std::uint64_t a, std::uint64_t b) {
-  const std::uint64_t h = mix64(mix64(key ^ mix64(a + 0x9e3779b97f4a7c15ULL)) ^ b);
-  return float(h >> 40) * 0x1p-24f;  // 24 bits: exactly representable, < 1
+  return stream_uniform(hash_stream(key, a), b);
 }
 
 }  // namespace QUIVER_UNIT_NAMESPACE

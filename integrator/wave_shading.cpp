@@ -75,12 +75,27 @@ void append_shadow_rays(ShadowSlot& slot, unsigned bits, std::size_t first, cons
       {lane_index<F>() + IntLanes<F>(static_cast<std::int32_t>(first))}, {slot.point.data() + i});
 }
 
-// The light sample's direction from each lane's origin (not unit) and the
-// end of its shadow ray, for sample j of n x n (area lights: stratified).
+// Each lane's stratified point in the unit square for sample j of an n x n
+// light: in cell (j % n, j / n), jittered by its path's numbers for the
+// light (`streams`, hash_stream of the path's key and the light's index).
+struct SampleJitter {
+  LaneArray a, b;
+};
 template <class F>
-Vec3<F> light_sample_direction(const WaveShadingInput& in, std::size_t light_index, int j, int n,
-                               const Vec3<F>& origin, std::size_t first, float& tmax) {
-  const LightDesc& light = in.scene->lights[light_index];
+SampleJitter sample_jitter(const std::uint64_t* streams, int j, int n) {
+  SampleJitter jitter;
+  for (int k = 0; k < lane_count<F>; ++k) {
+    jitter.a.v[k] = (float(j % n) + stream_uniform(streams[k], 2 * std::uint64_t(j))) / float(n);
+    jitter.b.v[k] = (float(j / n) + stream_uniform(streams[k], 2 * std::uint64_t(j) + 1)) / float(n);
+  }
+  return jitter;
+}
+
+// The light sample's direction from each lane's origin (not unit) and the
+// end of its shadow ray; area lights at each lane's jittered point.
+template <class F>
+Vec3<F> light_sample_direction(const LightDesc& light, const SampleJitter& jitter, const Vec3<F>& origin,
+                               float& tmax) {
   tmax = kShadowEndFraction;
   switch (light.kind) {
     case LightDesc::Kind::point:
@@ -89,14 +104,8 @@ Vec3<F> light_sample_direction(const WaveShadingInput& in, std::size_t light_ind
     case LightDesc::Kind::rectangle:
     case LightDesc::Kind::sphere: break;
   }
-  // Stratified jitter: a point in cell (j % n, j / n) of an n x n grid, per
-  // lane from its path's key (64-bit hashes, one lane at a time).
-  LaneArray a, b;
-  for (int k = 0; k < lane_count<F>; ++k) {
-    const std::uint64_t key = in.paths->key[first + std::size_t(k)] ^ in.seed;
-    a.v[k] = (float(j % n) + hash_uniform(key, light_index, 2 * std::uint64_t(j))) / float(n);
-    b.v[k] = (float(j / n) + hash_uniform(key, light_index, 2 * std::uint64_t(j) + 1)) / float(n);
-  }
+  const LaneArray& a = jitter.a;
+  const LaneArray& b = jitter.b;
   if (light.kind == LightDesc::Kind::rectangle) {
     return Vec3<F>(light.position) + Vec3<F>(light.edge_u) * load_lanes<F>(a.v) +
            Vec3<F>(light.edge_v) * load_lanes<F>(b.v) - origin;
@@ -235,13 +244,21 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   const Vec3<F> to_eye = -h.incident;
   std::size_t slot = 0;
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-    const int n = samples_per_side(scene.lights[l]);
-    const Vec3<F> intensity(scene.lights[l].color / float(n * n));
-    const bool spot = scene.lights[l].kind == LightDesc::Kind::spot;
-    const Vec3<float> spot_axis = spot ? normalize(scene.lights[l].direction) : Vec3<float>{0.f, 0.f, 0.f};
+    const LightDesc& light = scene.lights[l];
+    const int n = samples_per_side(light);
+    const Vec3<F> intensity(light.color / float(n * n));
+    const bool spot = light.kind == LightDesc::Kind::spot;
+    const Vec3<float> spot_axis = spot ? normalize(light.direction) : Vec3<float>{0.f, 0.f, 0.f};
+    const bool area = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
+    // Each lane's numbers for this light, drawn from its path's key.
+    std::uint64_t streams[kMaxLanes] = {};
+    if (area) {
+      for (int k = 0; k < W; ++k) streams[k] = hash_stream(in.paths->key[first + std::size_t(k)] ^ in.seed, l);
+    }
     for (int j = 0; j < n * n; ++j, ++slot) {
       float tmax;
-      Vec3<F> direction = light_sample_direction(in, l, j, n, h.origin, first, tmax);
+      const SampleJitter jitter = area ? sample_jitter<F>(streams, j, n) : SampleJitter{};
+      Vec3<F> direction = light_sample_direction(light, jitter, h.origin, tmax);
       const Vec3<F> to_light = normalize(direction);
       const F n_dot_l = dot(s.shading, to_light);
       // Near the terminator the shadow ray leaves from the lifted point (wholly where the face turns
@@ -251,7 +268,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
       Vec3<F> from = h.origin;
       if (any(lifted)) {
         from = select(lifted, lifted_origin(s.position, s.error, h.lift * share, s.geometric), h.origin);
-        direction = select(lifted, light_sample_direction(in, l, j, n, from, first, tmax), direction);
+        direction = select(lifted, light_sample_direction(light, jitter, from, tmax), direction);
       }
       // No shadow ray where the shading faces away from the light, nor where the face does unless lifted.
       Mask<F> cast = lit & (n_dot_l > F(0.f)) & (lifted | (dot(s.geometric, to_light) > F(0.f)));
@@ -261,7 +278,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
       // I_i * (kd (N.L) colour + ks (N.H)^n), times the path weight.
       const Vec3<F> reflected = h.color * (kd * n_dot_l) + Vec3<F>(specular, specular, specular);
       Vec3<F> contribution = mul(h.weight, mul(intensity, reflected));
-      if (spot) contribution = contribution * spot_light_share(scene.lights[l], spot_axis, to_light);
+      if (spot) contribution = contribution * spot_light_share(light, spot_axis, to_light);
       // SPD: a shadow ray wherever the surface faces the light, even when it adds nothing.
       if (!in.spawn_every_ray) cast = cast & (max_component(contribution) > F(0.f));
       const unsigned bits = lane_bits(cast);
