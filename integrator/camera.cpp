@@ -29,14 +29,8 @@ Ray<float> Camera::ray(double x, double y) const {
 }
 
 Camera::DirectionDifferentials Camera::direction_differentials(double x, double y, double spacing) const {
-  const Vec3<double> d = view_direction(*this, x, y);
-  const double length = std::sqrt(dot(d, d));
-  const Vec3<double> unit = d / length;
-  auto unit_change = [&](const Vec3<double>& change) {
-    const Vec3<double> dd = (change - unit * dot(unit, change)) / length;
-    return Vec3<float>(float(dd.x), float(dd.y), float(dd.z));
-  };
-  return {unit_change(frame_.right * (pixel_size_ * spacing)), unit_change(frame_.up * (-pixel_size_ * spacing))};
+  const std::array<Vec3<double>, 2> c = unit_direction_changes(*this, x, y, spacing);
+  return {{float(c[0].x), float(c[0].y), float(c[0].z)}, {float(c[1].x), float(c[1].y), float(c[1].z)}};
 }
 
 }  // namespace quiver

@@ -7,6 +7,7 @@
 // (i + 0.5, j + 0.5); x grows right, y grows down.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -27,7 +28,7 @@ class Camera {
 
   // The change of that ray's unit direction when (x, y) moves by `spacing`
   // pixels along x and along y (a pinhole's origin does not change):
-  // dD = (dd - D (D.dd)) / |d| for d the unnormalised direction.
+  // unit_direction_changes in double, rounded to float.
   struct DirectionDifferentials {
     Vec3<float> dx, dy;
   };
@@ -71,6 +72,24 @@ Vec3<D> unit_direction(const Camera& camera, const D& x, const D& y) {
   const Vec3<D> d = view_direction(camera, x, y);
   const D length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
   return {d.x / length, d.y / length, d.z / length};
+}
+
+// That unit direction's change when (x, y) moves by `spacing` pixels along
+// film x and along film y: dD = (dd - D (D.dd)) / |d| for d the direction
+// before normalising and dd its change (Camera::direction_differentials).
+template <class D>
+std::array<Vec3<D>, 2> unit_direction_changes(const Camera& camera, const D& x, const D& y, const D& spacing) {
+  using std::sqrt;
+  const CameraFrame& f = camera.frame();
+  const Vec3<D> d = view_direction(camera, x, y);
+  const D length = sqrt(dot(d, d));
+  const Vec3<D> unit = d / length;
+  const auto unit_change = [&](const Vec3<double>& axis, const D& step) {
+    const Vec3<D> change = Vec3<D>(D(axis.x), D(axis.y), D(axis.z)) * step;
+    return (change - unit * dot(unit, change)) / length;
+  };
+  const D size(camera.pixel_size());
+  return {unit_change(f.right, size * spacing), unit_change(f.up, -size * spacing)};
 }
 
 }  // namespace QUIVER_UNIT_NAMESPACE

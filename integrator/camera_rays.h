@@ -12,6 +12,7 @@
 
 #include "geometry/soa.h"
 #include "integrator/camera.h"
+#include "integrator/wave.h"
 
 namespace quiver {
 
@@ -20,5 +21,15 @@ template <KernelUnit U>
 void camera_rays(const Camera& camera, std::span<const double> x, std::span<const double> y, RaySoA& rays);
 
 using CameraRaysFunction = void (*)(const Camera&, std::span<const double>, std::span<const double>, RaySoA&);
+
+// Those rays' direction differentials: along_x and along_y are resized to
+// x.size() and hold Camera::direction_differentials(x[i], y[i], spacing[i]),
+// the same bits (unit_direction_changes in the unit's double lanes).
+template <KernelUnit U>
+void camera_direction_changes(const Camera& camera, std::span<const double> x, std::span<const double> y,
+                              std::span<const double> spacing, Vec3Columns& along_x, Vec3Columns& along_y);
+
+using CameraDirectionChangesFunction = void (*)(const Camera&, std::span<const double>, std::span<const double>,
+                                                std::span<const double>, Vec3Columns&, Vec3Columns&);
 
 }  // namespace quiver

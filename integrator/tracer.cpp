@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "integrator/ray_differentials.h"
-#include "integrator/visible_lights.h"
 
 namespace quiver {
 
@@ -40,6 +39,14 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
                                    [](auto u) -> ShadeWaveFunction { return &shade_wave<decltype(u)::value>; })),
       camera_rays_(with_kernel_unit(intersector.unit(),
                                     [](auto u) -> CameraRaysFunction { return &camera_rays<decltype(u)::value>; })),
+      camera_direction_changes_(with_kernel_unit(intersector.unit(),
+                                                 [](auto u) -> CameraDirectionChangesFunction {
+                                                   return &camera_direction_changes<decltype(u)::value>;
+                                                 })),
+      see_area_lights_(with_kernel_unit(intersector.unit(),
+                                        [](auto u) -> SeeAreaLightsFunction {
+                                          return &see_area_lights<decltype(u)::value>;
+                                        })),
       slots_(light_slot_count(scene)),
       occlusion_(slots_.size()),
       transmittance_(slots_.size()) {}
@@ -85,23 +92,17 @@ void Tracer::start_at_camera(const Camera& camera, const FilmSamples& film, Trac
   paths_.pad();
   differentials_of_rays_.clear();
   if (differentials_) {
-    for (std::size_t i = 0; i < n; ++i) {
-      // A pinhole: the origin does not change.
-      differentials_of_rays_.origin_dx.push({0.f, 0.f, 0.f});
-      differentials_of_rays_.origin_dy.push({0.f, 0.f, 0.f});
-      Camera::DirectionDifferentials d{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}};
-      float centre_x = 0.f, centre_y = 0.f;
-      if (film.footprints) {
-        d = camera.direction_differentials(film.x[i], film.y[i], film.spacing[i]);
-        centre_x = static_cast<float>((film.cell_x[i] - film.x[i]) / film.spacing[i]);
-        centre_y = static_cast<float>((film.cell_y[i] - film.y[i]) / film.spacing[i]);
+    // A pinhole: the origin does not change. Without footprints, nothing changes.
+    DifferentialColumns& d = differentials_of_rays_;
+    d.resize(n);
+    if (film.footprints) {
+      camera_direction_changes_(camera, film.x, film.y, film.spacing, d.direction_dx, d.direction_dy);
+      for (std::size_t i = 0; i < n; ++i) {
+        d.centre_x[i] = static_cast<float>((film.cell_x[i] - film.x[i]) / film.spacing[i]);
+        d.centre_y[i] = static_cast<float>((film.cell_y[i] - film.y[i]) / film.spacing[i]);
       }
-      differentials_of_rays_.direction_dx.push(d.dx);
-      differentials_of_rays_.direction_dy.push(d.dy);
-      differentials_of_rays_.centre_x.push_back(centre_x);
-      differentials_of_rays_.centre_y.push_back(centre_y);
     }
-    differentials_of_rays_.pad(rays_.count);
+    d.pad(rays_.count);
   }
   stats.rays.primary += n;
   WaveLanes& primary = stats.wave(0);
@@ -174,7 +175,7 @@ void Tracer::resolve_surfaces() {
     seen.x.assign(rays_.ox.size(), scene_.background.x);
     seen.y.assign(rays_.ox.size(), scene_.background.y);
     seen.z.assign(rays_.ox.size(), scene_.background.z);
-    see_area_lights(scene_, rays_, hits_, seen);
+    see_area_lights_(scene_, rays_, hits_, seen);
   }
   for (std::size_t i = 0; i < rays_.count; ++i) {
     const std::int32_t id = hits_.id[i];

@@ -28,6 +28,7 @@
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
 #include "integrator/trace_stats.h"
+#include "integrator/visible_lights.h"
 #include "integrator/wave.h"
 #include "integrator/wave_shading.h"
 
@@ -121,6 +122,8 @@ class Tracer {
   MaterialTable materials_;
   ShadeWaveFunction shade_wave_;
   CameraRaysFunction camera_rays_;
+  CameraDirectionChangesFunction camera_direction_changes_;
+  SeeAreaLightsFunction see_area_lights_;
 
   RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;

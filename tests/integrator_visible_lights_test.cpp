@@ -1,8 +1,11 @@
 // Area lights seen by camera, reflection and refraction rays
 // (integrator/visible_lights.h): where rays meet a rectangle or sphere
 // light, and what a render shows there.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -108,6 +111,78 @@ TEST(VisibleLights, CameraAndReflectionRaysShowTheLightUnshaded) {
     EXPECT_EQ(render(scene, settings).image.rgb, image.rgb) << isa_name(isa);
   }
 }
+
+// see_area_lights in every unit against the one-lane test ray by ray:
+// rays from a cube round the lights toward random points, some parallel to
+// the rectangle, some stopped by a hit before a light; a point light among
+// them sees nothing; a last partial packet whose last ray meets a light;
+// the same t, ids and colours.
+class VisibleLightsUnits : public ::testing::TestWithParam<KernelUnit> {};
+
+TEST_P(VisibleLightsUnits, MeetTheLightsAsTheOneLaneTestRayByRay) {
+  const KernelUnit unit = GetParam();
+  if (!kernel_unit_supported(unit)) GTEST_SKIP() << "this CPU cannot run " << kernel_unit_name(unit);
+  SceneDesc desc;
+  LightDesc point;
+  point.position = {0.f, 0.f, 1.f};
+  LightDesc sphere;
+  sphere.kind = LightDesc::Kind::sphere;
+  sphere.position = {0.5f, 0.2f, -0.3f};
+  sphere.radius = 0.6f;
+  sphere.color = {0.2f, 0.4f, 0.6f};
+  desc.camera = CameraDesc{{0.f, 0.f, 6.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 60.f, 0.f, 8, 8};
+  desc.lights = {point, rectangle_light(), sphere};
+  desc.materials = {MaterialDesc{}};
+  desc.spheres.push_back({{{5.f, 5.f, 5.f}, 0.1f}, 0});
+  const Scene scene = build_scene(desc, {});
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-3.f, 3.f);
+  RaySoA rays;
+  HitSoA hits;
+  for (int i = 0; i < 203; ++i) {
+    const Vec3<float> origin{coordinate(random), coordinate(random), coordinate(random)};
+    Vec3<float> target{coordinate(random) / 3.f, coordinate(random) / 3.f, coordinate(random) / 3.f};
+    if (i % 17 == 0) target.z = origin.z;  // parallel to the rectangle
+    rays.push(Ray<float>{origin, target - origin, i % 5 == 0 ? 0.5f : 0.f, std::numeric_limits<float>::infinity()});
+  }
+  rays.push(Ray<float>{{0.2f, 0.3f, 4.f}, {0.f, 0.f, -1.f}, 0.f, 1e30f});  // the last ray meets the rectangle
+  rays.pad();
+  hits.reset(rays);
+  for (std::size_t i = 0; i + 1 < rays.count; i += 3) {  // a surface met first at t in (0, 1.2)
+    hits.t[i] = 0.2f + 0.01f * float(i % 100);
+    hits.id[i] = 7;
+  }
+  Vec3Columns seen;
+  for (AlignedFloats* c : seen.columns()) c->assign(rays.ox.size(), 0.125f);
+  HitSoA expected_hits = hits;
+  Vec3Columns expected_seen = seen;
+  std::size_t met = 0;
+  for (std::size_t i = 0; i < rays.count; ++i) {
+    for (const LightDesc& light : scene.lights) {
+      const std::optional<float> t = area_light_distance(light, rays.get(i), expected_hits.t[i]);
+      if (!t) continue;
+      expected_hits.t[i] = *t;
+      expected_hits.id[i] = kNoHit;
+      expected_seen.set(i, light.color);
+      ++met;
+    }
+  }
+  ASSERT_GT(met, 40u);
+  with_kernel_unit(unit, [&](auto u) { see_area_lights<decltype(u)::value>(scene, rays, hits, seen); });
+  for (std::size_t i = 0; i < rays.count; ++i) {
+    const std::string where = std::string(kernel_unit_name(unit)) + " ray " + std::to_string(i);
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(hits.t[i]), std::bit_cast<std::uint32_t>(expected_hits.t[i])) << where;
+    EXPECT_EQ(hits.id[i], expected_hits.id[i]) << where;
+    EXPECT_EQ(seen.get(i)[0], expected_seen.get(i)[0]) << where;
+    EXPECT_EQ(seen.get(i)[1], expected_seen.get(i)[1]) << where;
+    EXPECT_EQ(seen.get(i)[2], expected_seen.get(i)[2]) << where;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryUnit, VisibleLightsUnits, ::testing::ValuesIn(kKernelUnits),
+                         [](const ::testing::TestParamInfo<KernelUnit>& info) {
+                           return std::string(kernel_unit_name(info.param));
+                         });
 
 }  // namespace
 }  // namespace quiver
