@@ -89,6 +89,7 @@ PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& c
   p.inputs = files_read(p.desc, !args.scene.empty());
   check_outputs_spare_inputs(checked.outputs, p.inputs);
   p.plan = plan_render(args.options, p.desc, checked.isa);
+  p.plan.settings.trace.time_phases = !args.stats.empty();  // reported only there
   set_view(p.desc, args.options.camera, p.plan.settings.width, p.plan.settings.height);
   p.scene = build_scene_timed(p.desc, p.plan.build, args.scene, p.build_ms);
   return p;

@@ -132,12 +132,14 @@ std::size_t FrameRenderer::render_tiles(Film& film, const TileSource& next, cons
             if (!t) return;
             // camera_and_film: the tile's time less what the tracer charged to its phases.
             const std::uint64_t traced_before = w.batch.stats.phases.total();
-            PhaseClock clock;
+            PhaseClock clock(true);
             std::uint64_t tile_time = 0;
             tile_renderer.render(s.tiles.at(*t), w);
             clock.charge(tile_time);
             const std::uint64_t traced = w.batch.stats.phases.total() - traced_before;
-            w.batch.stats.phases.camera_and_film += tile_time > traced ? tile_time - traced : 0;
+            if (s.settings.trace.time_phases) {
+              w.batch.stats.phases.camera_and_film += tile_time > traced ? tile_time - traced : 0;
+            }
             ++rendered;
             if (done) done(*t, double(tile_time) / 1e6);
           }

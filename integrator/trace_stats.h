@@ -34,7 +34,8 @@ struct WaveLanes {
 // shadows: the shadow waves (any-hit, transparent shadows, adding the light).
 // shadow_walks, a part of shadows: the any-hit and transparent-shadow walks
 // themselves, so intersection + shadow_walks is the time the BVH walks and
-// kernels take, the part of a frame no bookkeeping can save.
+// kernels take, the part of a frame no bookkeeping can save. Timed only
+// when TraceSettings::time_phases asks (else all 0).
 struct PhaseTimes {
   std::uint64_t camera_and_film = 0, intersection = 0, shading = 0, shadows = 0;
   std::uint64_t shadow_walks = 0;
@@ -42,24 +43,29 @@ struct PhaseTimes {
   std::uint64_t walks() const { return intersection + shadow_walks; }
 };
 
-// Adds the time since the last call (or construction) to a phase's counter.
+// Adds the time since the last call (or construction) to a phase's
+// counter; a clock that is off reads no time and charges nothing.
 class PhaseClock {
  public:
-  PhaseClock() : last_(std::chrono::steady_clock::now()) {}
+  explicit PhaseClock(bool on) : on_(on) {
+    if (on_) last_ = std::chrono::steady_clock::now();
+  }
   void charge(std::uint64_t& phase) {
+    if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
     phase += static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(now - last_).count());
     last_ = now;
   }
 
  private:
+  bool on_;
   std::chrono::steady_clock::time_point last_;
 };
 
-// Runs `work` and adds the time it took to `phase`.
+// Runs `work` and, when timing, adds the time it took to `phase`.
 template <class Work>
-void charge_time_of(std::uint64_t& phase, Work&& work) {
-  PhaseClock clock;
+void charge_time_of(std::uint64_t& phase, bool timing, Work&& work) {
+  PhaseClock clock(timing);
   work();
   clock.charge(phase);
 }

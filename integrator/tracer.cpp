@@ -55,7 +55,7 @@ void Tracer::trace(const Camera& camera, const FilmSamples& film, std::span<Vec3
                    std::span<FirstSurface> surfaces) {
   std::fill(colors.begin(), colors.end(), Vec3<float>(0.f, 0.f, 0.f));
   start_at_camera(camera, film, stats);
-  PhaseClock clock;
+  PhaseClock clock(settings_.time_phases);
   bool one_ray_per_sample = true;  // until a ray spawns two
   for (int depth = 0; rays_.count > 0; ++depth) {
     hits_.reset(rays_);
@@ -240,7 +240,7 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
     total += n;
     stats.shadow.issued_compacted += padded_to(n, width_);
     occlusion_[s].reset(slot.rays);
-    charge_time_of(stats.phases.shadow_walks,
+    charge_time_of(stats.phases.shadow_walks, settings_.time_phases,
                    [&] { intersector_.occluded(scene_, slot.rays, occlusion_[s], Layers::opaque); });
     transmittance_[s].assign(n, Vec3<float>(1.f, 1.f, 1.f));
     if (scene_.has_transmissive()) transmit(s, stats.phases.shadow_walks);
@@ -320,7 +320,8 @@ void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
       if (occluded[k] != 0) slot.rays.tmax[k] = -1.f;
     }
     transit_hits_.reset(slot.rays);
-    charge_time_of(walk_time, [&] { intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive); });
+    charge_time_of(walk_time, settings_.time_phases,
+                   [&] { intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive); });
     std::size_t kept = 0;
     for (const std::uint32_t k : transit_index_) {
       if (transit_hits_.id[k] != kNoHit && cross(slot.rays, k, k)) transit_index_[kept++] = k;
@@ -343,7 +344,7 @@ void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
     }
     transit_rays_.pad();
     transit_hits_.reset(transit_rays_);
-    charge_time_of(walk_time,
+    charge_time_of(walk_time, settings_.time_phases,
                    [&] { intersector_.closest(scene_, transit_rays_, transit_hits_, Layers::transmissive); });
     std::size_t kept = 0;
     for (std::size_t j = 0; j < n; ++j) {

@@ -49,6 +49,10 @@ struct TraceSettings {
   // (integrator/ray_differentials.h); only in scenes with textures. Off:
   // textures are point-sampled.
   bool filter_textures = true;
+  // Time each phase of a frame into TraceStats::phases (clock reads in
+  // every wave and walk: only when the times are reported). Off, the
+  // phases stay 0.
+  bool time_phases = false;
 };
 
 // Rays carry differentials (and textures are filtered) when the settings

@@ -637,6 +637,26 @@ TEST(Render, LaneStatisticsAddUp) {
   EXPECT_EQ(r.stats.light_sample_issued % lanes, 0u);
 }
 
+TEST(Render, PhasesAreTimedOnlyWhenAskedAndNeverChangeTheImage) {
+  const Scene scene = build_scene(default_scene(), {});
+  RenderSettings settings = small_settings(32, 24);
+  settings.isa = best_supported_isa();
+  const RenderResult untimed = render(scene, settings);
+  const PhaseTimes& none = untimed.stats.phases;
+  EXPECT_EQ(none.total(), 0u);
+  EXPECT_EQ(none.shadow_walks, 0u);
+  settings.trace.time_phases = true;
+  const RenderResult timed = render(scene, settings);
+  const PhaseTimes& p = timed.stats.phases;
+  EXPECT_GT(p.camera_and_film, 0u);
+  EXPECT_GT(p.intersection, 0u);
+  EXPECT_GT(p.shading, 0u);
+  EXPECT_GT(p.shadows, 0u);
+  EXPECT_GT(p.shadow_walks, 0u);
+  EXPECT_LE(p.shadow_walks, p.shadows);
+  EXPECT_EQ(timed.image.rgb, untimed.image.rgb);
+}
+
 // ---- depth 0, 1, 2 -----------------------------------------------------------
 
 SceneDesc mirrors_scene(bool second_mirror) {
