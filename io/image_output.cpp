@@ -320,7 +320,7 @@ void stage_image(StagedOutputs& outputs, const fs::path& path, const Framebuffer
 
 std::vector<std::uint8_t> srgb_rgb_bytes(const Framebuffer& framebuffer) {
   std::vector<std::uint8_t> bytes(framebuffer.rgb.size());
-  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(framebuffer.rgb[i]);
+  srgb_bytes(framebuffer.rgb, bytes);
   return bytes;
 }
 

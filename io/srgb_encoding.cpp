@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace quiver {
 
@@ -39,15 +40,54 @@ std::uint8_t srgb_byte_formula(float linear) {
   return static_cast<std::uint8_t>(std::clamp(std::floor(encoded * 255.0 + 0.5), 0.0, 255.0));
 }
 
-std::uint8_t srgb_byte(float linear) {
-  static const std::array<float, 256> thresholds = code_thresholds();
-  // The largest k with thresholds[k] <= linear, in 8 halving steps (NaN
-  // compares false throughout: code 0).
-  std::size_t k = 0;
-  for (std::size_t step = 128; step > 0; step /= 2) {
-    k += thresholds[k + step] <= linear ? step : 0;
+namespace {
+
+// Where the lookup starts: the code of the lowest float of each bucket of
+// the floats in [0, 1) that share their top 16 bits (exponent and 7 bits of
+// mantissa). No bucket's codes differ by more than one, so the lookup
+// takes at most one step from its start.
+constexpr std::uint32_t kBucketShift = 16;
+
+struct CodeTables {
+  std::array<float, 256> thresholds;
+  std::vector<std::uint8_t> bucket_code;
+
+  CodeTables() : thresholds(code_thresholds()) {
+    const std::uint32_t buckets = std::bit_cast<std::uint32_t>(1.f) >> kBucketShift;
+    bucket_code.resize(buckets);
+    std::uint8_t k = 0;
+    for (std::uint32_t b = 0; b < buckets; ++b) {
+      const float lowest = std::bit_cast<float>(b << kBucketShift);
+      while (k < 255 && thresholds[std::size_t(k) + 1] <= lowest) ++k;
+      bucket_code[b] = k;
+    }
   }
+};
+
+const CodeTables& code_tables() {
+  static const CodeTables tables;
+  return tables;
+}
+
+std::uint8_t code_of(const CodeTables& tables, float linear) {
+  // NaN, negatives and 0 are code 0; 1 and above 255.
+  if (!(linear > 0.f)) return 0;
+  if (!(linear < 1.f)) return 255;
+  // The largest k with thresholds[k] <= linear, from its bucket's code: the
+  // one step a bucket may hold without a branch, the loop for any further.
+  std::size_t k = tables.bucket_code[std::bit_cast<std::uint32_t>(linear) >> kBucketShift];
+  k += k < 255 && tables.thresholds[k + 1] <= linear ? 1 : 0;
+  while (k < 255 && tables.thresholds[k + 1] <= linear) ++k;
   return static_cast<std::uint8_t>(k);
+}
+
+}  // namespace
+
+std::uint8_t srgb_byte(float linear) { return code_of(code_tables(), linear); }
+
+void srgb_bytes(std::span<const float> linear, std::span<std::uint8_t> codes) {
+  const CodeTables& tables = code_tables();
+  for (std::size_t i = 0; i < linear.size(); ++i) codes[i] = code_of(tables, linear[i]);
 }
 
 }  // namespace quiver

@@ -123,7 +123,7 @@ py::array_t<std::uint8_t> to_srgb(const py::array_t<float, py::array::c_style | 
   std::uint8_t* out = codes.mutable_data();
   const auto n = std::size_t(linear.size());
   py::gil_scoped_release release;
-  for (std::size_t i = 0; i < n; ++i) out[i] = srgb_byte(in[i]);
+  srgb_bytes({in, n}, {out, n});
   return codes;
 }
 

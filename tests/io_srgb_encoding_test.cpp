@@ -1,10 +1,11 @@
 // The sRGB byte lookup against the formula it stands for: every float near
 // each code's step (where a lookup could be off by one), special values,
-// and a sweep over [0, 1].
+// a sweep over [0, 1], and the conversion of many values at once.
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -47,6 +48,17 @@ TEST(SrgbEncoding, SpecialValuesAndASweepOfTheUnitInterval) {
     const float linear = float(i) / 1e6f;
     ASSERT_EQ(int(srgb_byte(linear)), int(srgb_byte_formula(linear))) << linear;
   }
+}
+
+TEST(SrgbEncoding, ManyAtOnceAsOneAtATime) {
+  std::vector<float> linear;
+  for (int i = -10; i <= 1010; ++i) linear.push_back(float(i) / 1000.f);
+  linear.push_back(std::numeric_limits<float>::quiet_NaN());
+  std::vector<std::uint8_t> codes(linear.size(), 7);
+  srgb_bytes(linear, codes);
+  for (std::size_t i = 0; i < linear.size(); ++i) EXPECT_EQ(codes[i], srgb_byte(linear[i])) << linear[i];
+  EXPECT_EQ(codes.front(), 0);
+  EXPECT_EQ(codes[1010], 255);
 }
 
 }  // namespace
