@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "integrator/ray_differentials.h"
 
 namespace quiver {
 
@@ -47,6 +46,10 @@ Tracer::Tracer(const Scene& scene, const SceneIntersector& intersector, const Tr
                                         [](auto u) -> SeeAreaLightsFunction {
                                           return &see_area_lights<decltype(u)::value>;
                                         })),
+      hit_footprints_(with_kernel_unit(intersector.unit(),
+                                       [](auto u) -> HitFootprintsFunction {
+                                         return &hit_footprints<decltype(u)::value>;
+                                       })),
       slots_(light_slot_count(scene)),
       occlusion_(slots_.size()),
       transmittance_(slots_.size()) {}
@@ -177,6 +180,9 @@ void Tracer::resolve_surfaces() {
     seen.z.assign(rays_.ox.size(), scene_.background.z);
     see_area_lights_(scene_, rays_, hits_, seen);
   }
+  if (differentials_) {
+    hit_footprints_(rays_, hits_, differentials_of_rays_, surfaces_.point_dx, surfaces_.point_dy);
+  }
   for (std::size_t i = 0; i < rays_.count; ++i) {
     const std::int32_t id = hits_.id[i];
     if (id == kNoHit) continue;
@@ -214,17 +220,11 @@ void Tracer::store_surface(std::size_t i, const SurfaceDetail& d) {
 }
 
 void Tracer::resolve_surface_with_footprint(std::size_t i) {
-  const Ray<float> ray = rays_.get(i);
-  const Hit<float> hit = hits_.get(i);
   const DifferentialColumns& r = differentials_of_rays_;
-  const PointDifferentials footprint{
-      transfer_differential(r.origin_dx.get(i), r.direction_dx.get(i), ray.direction, hit.t, hit.ng),
-      transfer_differential(r.origin_dy.get(i), r.direction_dy.get(i), ray.direction, hit.t, hit.ng),
-      r.centre_x[i], r.centre_y[i]};
-  const SurfaceDetail d = surface_detail(scene_, ray, hit, &footprint);
+  const PointDifferentials footprint{surfaces_.point_dx.get(i), surfaces_.point_dy.get(i), r.centre_x[i],
+                                     r.centre_y[i]};
+  const SurfaceDetail d = surface_detail(scene_, rays_.get(i), hits_.get(i), &footprint);
   store_surface(i, d);
-  surfaces_.point_dx.set(i, footprint.dx);
-  surfaces_.point_dy.set(i, footprint.dy);
   surfaces_.normal_dx.set(i, d.normal_change[0]);
   surfaces_.normal_dy.set(i, d.normal_change[1]);
 }
@@ -310,15 +310,17 @@ void Tracer::transmit(std::size_t s, std::uint64_t& walk_time) {
     return true;
   };
   const std::size_t count = slot.rays.count;
-  transit_index_.clear();
+  // The lit rays' indices, written without a branch per ray.
+  transit_index_.resize(count);
+  std::size_t lit = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    if (occluded[k] == 0) transit_index_.push_back(static_cast<std::uint32_t>(k));
+    transit_index_[lit] = static_cast<std::uint32_t>(k);
+    lit += occluded[k] == 0 ? 1 : 0;
   }
+  transit_index_.resize(lit);
   transit_tmin_.assign(count, 0.f);
-  if (8 * transit_index_.size() >= 7 * count) {
-    for (std::size_t k = 0; k < count; ++k) {
-      if (occluded[k] != 0) slot.rays.tmax[k] = -1.f;
-    }
+  if (8 * lit >= 7 * count) {
+    for (std::size_t k = 0; k < count; ++k) slot.rays.tmax[k] = occluded[k] != 0 ? -1.f : slot.rays.tmax[k];
     transit_hits_.reset(slot.rays);
     charge_time_of(walk_time, settings_.time_phases,
                    [&] { intersector_.closest(scene_, slot.rays, transit_hits_, Layers::transmissive); });

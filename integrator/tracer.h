@@ -24,6 +24,7 @@
 #include "scene/scene.h"
 #include "integrator/camera.h"
 #include "integrator/camera_rays.h"
+#include "integrator/hit_footprints.h"
 #include "integrator/sample_hash.h"
 #include "integrator/scene_intersector.h"
 #include "integrator/surface.h"
@@ -104,8 +105,9 @@ class Tracer {
   void count_shading(int depth, TraceStats& stats) const;
   // The spawned rays become the wave (padded for the lanes), counted.
   void next_wave(int depth, TraceStats& stats);
-  // The scalar pass: surface_detail of every hit of the wave into surfaces_
-  // (with the footprints its differentials give, when they are carried).
+  // surface_detail of every hit of the wave into surfaces_, one hit at a
+  // time, after the packets' passes: the area lights the rays see and, when
+  // differentials are carried, the hits' footprints (hit_footprints.h).
   void resolve_surfaces();
   void resolve_surface_with_footprint(std::size_t i);
   void store_surface(std::size_t i, const SurfaceDetail& detail);
@@ -128,6 +130,7 @@ class Tracer {
   CameraRaysFunction camera_rays_;
   CameraDirectionChangesFunction camera_direction_changes_;
   SeeAreaLightsFunction see_area_lights_;
+  HitFootprintsFunction hit_footprints_;
 
   RaySoA rays_, next_rays_, transit_rays_;
   HitSoA hits_, transit_hits_;
