@@ -252,13 +252,20 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
   // The light seen, by ray and then slot. While every sample has one ray in
   // the wave (no refraction spawned yet), slot after slot adds to each
   // sample in that same order.
+  slot_lights_.clear();
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const ShadowSlot& slot = slots_[s];
+    slot_lights_.push_back({occlusion_[s].occluded.data(), slot.point.data(), slot.light_r.data(),
+                            slot.light_g.data(), slot.light_b.data(), transmittance_[s].data(), slot.rays.count});
+  }
+  const std::int32_t* const sample = paths_.sample.data();
+  const auto add = [&](const SlotLight& l, std::size_t k, Vec3<float>& out) {
+    out = out + mul(Vec3<float>(l.r[k], l.g[k], l.b[k]), l.transmittance[k]);
+  };
   if (one_ray_per_sample) {
-    for (std::size_t s = 0; s < slots_.size(); ++s) {
-      const ShadowSlot& slot = slots_[s];
-      for (std::size_t k = 0; k < slot.rays.count; ++k) {
-        if (occlusion_[s].occluded[k] != 0) continue;
-        Vec3<float>& out = colors[std::size_t(paths_.sample[std::size_t(slot.point[k])])];
-        out = out + mul(Vec3<float>(slot.light_r[k], slot.light_g[k], slot.light_b[k]), transmittance_[s][k]);
+    for (const SlotLight& l : slot_lights_) {
+      for (std::size_t k = 0; k < l.count; ++k) {
+        if (l.occluded[k] == 0) add(l, k, colors[std::size_t(sample[l.point[k]])]);
       }
     }
     return;
@@ -266,14 +273,11 @@ void Tracer::resolve_shadows(std::span<Vec3<float>> colors, std::uint64_t uncomp
   // Else rays merged from the slots (each slot's rays are in ray order).
   cursor_.assign(slots_.size(), 0);
   for (std::size_t i = 0; i < rays_.count; ++i) {
-    for (std::size_t s = 0; s < slots_.size(); ++s) {
-      const ShadowSlot& slot = slots_[s];
+    for (std::size_t s = 0; s < slot_lights_.size(); ++s) {
+      const SlotLight& l = slot_lights_[s];
       std::size_t& k = cursor_[s];
-      if (k >= slot.rays.count || std::size_t(slot.point[k]) != i) continue;
-      if (occlusion_[s].occluded[k] == 0) {
-        Vec3<float>& out = colors[std::size_t(paths_.sample[i])];
-        out = out + mul(Vec3<float>(slot.light_r[k], slot.light_g[k], slot.light_b[k]), transmittance_[s][k]);
-      }
+      if (k >= l.count || std::size_t(l.point[k]) != i) continue;
+      if (l.occluded[k] == 0) add(l, k, colors[std::size_t(sample[i])]);
       ++k;
     }
   }

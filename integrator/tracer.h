@@ -143,6 +143,17 @@ class Tracer {
   std::vector<OcclusionSoA> occlusion_;
   std::vector<std::vector<Vec3<float>>> transmittance_;
   std::vector<std::size_t> cursor_;
+  // A slot's columns that resolve_shadows adds up, as plain pointers: the
+  // colours written in between cannot change them, so they need not be
+  // read again per ray.
+  struct SlotLight {
+    const std::int32_t* occluded;
+    const std::int32_t* point;
+    const float *r, *g, *b;
+    const Vec3<float>* transmittance;
+    std::size_t count;
+  };
+  std::vector<SlotLight> slot_lights_;
   std::vector<std::uint32_t> transit_index_;
   std::vector<float> transit_tmin_;
 };
