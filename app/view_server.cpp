@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -15,12 +16,15 @@
 #include <thread>
 
 #include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "app/render_command_line.h"
 #include "app/render_options.h"
 #include "app/stats_json.h"
 #include "app/view_page.h"
 #include "io/image_output.h"
+#include "io/srgb_encoding.h"
 #include "simd/isa.h"
 
 namespace quiver {
@@ -48,13 +52,22 @@ void answer(httplib::Response& response, int status, const std::string& text) {
   response.set_content(text, "text/plain; charset=utf-8");
 }
 
-// The 8-bit sRGB codes as RGBA, alpha 255.
+// The 8-bit sRGB codes as RGBA, alpha 255; runs of pixels in parallel (a
+// frame's codes would take milliseconds on one thread).
 std::string rgba_bytes(const Framebuffer& image) {
-  const std::vector<std::uint8_t> rgb = srgb_rgb_bytes(image);
+  constexpr std::size_t kRun = 4096;
   std::string rgba(image.pixel_count() * 4, '\xff');
-  for (std::size_t p = 0; p < image.pixel_count(); ++p) {
-    for (std::size_t c = 0; c < 3; ++c) rgba[4 * p + c] = static_cast<char>(rgb[3 * p + c]);
-  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, image.pixel_count(), kRun),
+      [&](const tbb::blocked_range<std::size_t>& run) {
+        std::array<std::uint8_t, 3 * kRun> codes;
+        const std::size_t first = run.begin(), n = run.size();
+        srgb_bytes({image.rgb.data() + 3 * first, 3 * n}, codes);
+        for (std::size_t p = 0; p < n; ++p) {
+          for (std::size_t c = 0; c < 3; ++c) rgba[4 * (first + p) + c] = static_cast<char>(codes[3 * p + c]);
+        }
+      },
+      tbb::simple_partitioner());  // runs of at most kRun pixels
   return rgba;
 }
 
