@@ -4,7 +4,10 @@
 //   packets: W rays against one primitive at a time (primitive broadcast);
 //   scan:    one ray against W primitives at a time (ray broadcast), the
 //            block's nearest hit kept.
-// Closest hits are the smallest (t, id), as in the BVH walks.
+// Closest hits are the smallest (t, id), as in the BVH walks. The packet
+// loops _within a box first test each packet against it (may_meet_box,
+// geometry/bvh/slab.h: as conservative as a BVH node), the cull of a store
+// scanned without a BVH.
 //
 // A Method is a struct with
 //   template <class F> static R prepare(const Ray<F>&);   per-ray setup, hoisted
@@ -32,6 +35,8 @@
 #include <limits>
 #include <type_traits>
 
+#include "geometry/box.h"
+#include "geometry/bvh/slab.h"
 #include "geometry/leaf_loops.h"
 #include "geometry/method_error.h"
 #include "geometry/soa.h"
@@ -42,6 +47,10 @@ template <class S>
 struct KernelStreams {
   void (*closest_packets)(const RaySoA&, const S&, HitSoA&) = nullptr;
   void (*occluded_packets)(const RaySoA&, const S&, OcclusionSoA&) = nullptr;
+  // The same, skipping each packet whose rays all pass by `bounds`, a box
+  // of every primitive of the store (primitive_box): a scanned store's cull.
+  void (*closest_packets_within)(const RaySoA&, const S&, const Box& bounds, HitSoA&) = nullptr;
+  void (*occluded_packets_within)(const RaySoA&, const S&, const Box& bounds, OcclusionSoA&) = nullptr;
   // nullptr in the product, which runs packets, and where a kind has no
   // scan orientation (it does not pay).
   void (*closest_scan)(const RaySoA&, const S&, HitSoA&) = nullptr;
@@ -50,34 +59,57 @@ struct KernelStreams {
 
 inline namespace QUIVER_UNIT_NAMESPACE {
 
+// Packets of rays against every primitive; with bounds, a packet none of
+// whose active rays may meet them (may_meet_box, before the nearest hit so
+// far) is skipped.
 template <KernelUnit U, class Method, class S>
-[[gnu::flatten]] void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
+[[gnu::flatten]] void closest_packets_culled(const RaySoA& rays, const S& prims, const Box* bounds, HitSoA& hits) {
   using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Mask<F> active = first_lanes<F>(rays.count - first);
     const Ray<F> ray = rays.load<F>(first);
-    const auto prepared = Method::prepare(ray);
     Hit<F> hit = hits.load<F>(first);
+    if (bounds != nullptr && none(may_meet_box(ray, *bounds, active, next_float_up(hit.t)))) continue;
+    const auto prepared = Method::prepare(ray);
     closest_one_by_one<F>(MethodTest<Method, decltype(prepared)>{prepared}, prims, 0, prims.size(), active, hit);
     hits.store(first, hit);
   }
 }
 
 template <KernelUnit U, class Method, class S>
-[[gnu::flatten]] void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+[[gnu::flatten]] void occluded_packets_culled(const RaySoA& rays, const S& prims, const Box* bounds,
+                                              OcclusionSoA& result) {
   using F = UnitLanes<U>;
   constexpr std::size_t W = lane_count<F>;
   for (std::size_t first = 0; first < rays.count; first += W) {
     const Ray<F> ray = rays.load<F>(first);
-    const auto prepared = Method::prepare(ray);
     const Mask<F> valid = first_lanes<F>(rays.count - first);
+    if (bounds != nullptr && none(may_meet_box(ray, *bounds, valid, ray.tmax))) continue;
+    const auto prepared = Method::prepare(ray);
     const Mask<F> occluded = occluded_one_by_one<F>(MethodTest<Method, decltype(prepared)>{prepared}, prims, 0,
                                                     prims.size(), valid, ray.tmax,
                                                     nonzero_lanes(load_int_lanes<F>(result.occluded.data() + first)) &&
                                                         valid);
     store_int_lanes<F>(select(occluded, IntLanes<F>(1), IntLanes<F>(0)), result.occluded.data() + first);
   }
+}
+
+template <KernelUnit U, class Method, class S>
+void closest_packets(const RaySoA& rays, const S& prims, HitSoA& hits) {
+  closest_packets_culled<U, Method, S>(rays, prims, nullptr, hits);
+}
+template <KernelUnit U, class Method, class S>
+void occluded_packets(const RaySoA& rays, const S& prims, OcclusionSoA& result) {
+  occluded_packets_culled<U, Method, S>(rays, prims, nullptr, result);
+}
+template <KernelUnit U, class Method, class S>
+void closest_packets_within(const RaySoA& rays, const S& prims, const Box& bounds, HitSoA& hits) {
+  closest_packets_culled<U, Method, S>(rays, prims, &bounds, hits);
+}
+template <KernelUnit U, class Method, class S>
+void occluded_packets_within(const RaySoA& rays, const S& prims, const Box& bounds, OcclusionSoA& result) {
+  occluded_packets_culled<U, Method, S>(rays, prims, &bounds, result);
 }
 
 template <KernelUnit U, class Method, class S>
@@ -110,6 +142,8 @@ KernelStreams<S> make_streams() {
   KernelStreams<S> s;
   s.closest_packets = &closest_packets<U, Method, S>;
   s.occluded_packets = &occluded_packets<U, Method, S>;
+  s.closest_packets_within = &closest_packets_within<U, Method, S>;
+  s.occluded_packets_within = &occluded_packets_within<U, Method, S>;
   s.closest_scan = &closest_scan<U, Method, S>;
   s.occluded_scan = &occluded_scan<U, Method, S>;
   return s;
@@ -122,6 +156,8 @@ KernelStreams<S> make_packet_streams() {
   KernelStreams<S> s;
   s.closest_packets = &closest_packets<U, Method, S>;
   s.occluded_packets = &occluded_packets<U, Method, S>;
+  s.closest_packets_within = &closest_packets_within<U, Method, S>;
+  s.occluded_packets_within = &occluded_packets_within<U, Method, S>;
   return s;
 }
 

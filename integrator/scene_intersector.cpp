@@ -73,25 +73,27 @@ bool tests(Layers layers, bool transmissive) {
 template <class K>
 struct KindQuery {
   using Store = typename K::Store;
-  const Store& opaque;
-  const Store& transmissive;
+  const KindStore<K>& opaque;
+  const KindStore<K>& transmissive;
   const Bvh& bvh;
   const KindStreams<K>& streams;
 
   bool has(Layers layers, bool transmissive_layer) const {
-    return tests(layers, transmissive_layer) && (transmissive_layer ? transmissive : opaque).count > 0;
+    return tests(layers, transmissive_layer) && (transmissive_layer ? transmissive : opaque).store.count > 0;
   }
-  // Without a BVH, scan(store) for each tested layer's store. With one,
-  // through_tree(stores): both stores when both layers have this kind (the
-  // tree's leaves of untested layers are skipped), else the one store there
-  // is, when its layer is tested.
+  // Without a BVH, scan(store, box) for each tested layer's store, box its
+  // bounds for a bounded kind (the packets that pass it by skip the store),
+  // else nullptr. With one, through_tree(stores): both stores when both
+  // layers have this kind (the tree's leaves of untested layers are
+  // skipped), else the one store there is, when its layer is tested.
   template <class ThroughTree, class Scan>
-  void visit(Layers layers, ThroughTree through_tree, Scan scan_store) const {
+  void visit(Layers layers, ThroughTree through_tree, Scan scan) const {
     if (bvh.empty()) {
-      if (has(layers, false)) scan_store(opaque);
-      if (has(layers, true)) scan_store(transmissive);
+      for (const KindStore<K>* k : {&opaque, &transmissive}) {
+        if (has(layers, k == &transmissive)) scan(k->store, K::bounded ? &k->bounds : nullptr);
+      }
     } else {
-      with_tested_stores(opaque, transmissive, static_cast<unsigned>(layers), through_tree);
+      with_tested_stores(opaque.store, transmissive.store, static_cast<unsigned>(layers), through_tree);
     }
   }
 };
@@ -101,7 +103,7 @@ struct KindQuery {
 template <class Fn>
 void for_each_kind_query(const Scene& scene, const ProductStreams& streams, Fn fn) {
   const auto query = [&]<class K>(K) {
-    fn(KindQuery<K>{scene.opaque.store<K>(), scene.transmissive.store<K>(), scene.bvh<K>(), streams.of<K>()});
+    fn(KindQuery<K>{scene.opaque.kinds.of<K>(), scene.transmissive.kinds.of<K>(), scene.bvh<K>(), streams.of<K>()});
   };
   for_each_kind([&]<class K>(K k) {
     if constexpr (!K::bounded) query(k);
@@ -122,7 +124,10 @@ void SceneIntersector::closest(const Scene& scene, const RaySoA& rays, HitSoA& h
   for_each_kind_query(scene, streams_.kinds, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.streams.tree.closest_hits(rays, stores, kind.bvh, hits, traversal_); },
-        [&](const auto& store) { kind.streams.scan.closest_packets(rays, store, hits); });
+        [&](const auto& store, const Box* box) {
+          box != nullptr ? kind.streams.scan.closest_packets_within(rays, store, *box, hits)
+                         : kind.streams.scan.closest_packets(rays, store, hits);
+        });
   });
   if (!scene.instance_bvh.empty()) {
     streams_.instance_bvh.closest_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, hits, traversal_);
@@ -134,7 +139,10 @@ void SceneIntersector::occluded(const Scene& scene, const RaySoA& rays, Occlusio
   for_each_kind_query(scene, streams_.kinds, [&](const auto& kind) {
     kind.visit(
         layers, [&](const auto& stores) { kind.streams.tree.any_hits(rays, stores, kind.bvh, result, traversal_); },
-        [&](const auto& store) { kind.streams.scan.occluded_packets(rays, store, result); });
+        [&](const auto& store, const Box* box) {
+          box != nullptr ? kind.streams.scan.occluded_packets_within(rays, store, *box, result)
+                         : kind.streams.scan.occluded_packets(rays, store, result);
+        });
   });
   if (!scene.instance_bvh.empty()) {
     streams_.instance_bvh.any_hits(rays, instance_leaves(scene, layers), scene.instance_bvh, result, traversal_);

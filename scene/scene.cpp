@@ -303,7 +303,13 @@ std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options,
     build_store<K>(input.opaque, report, o.store, o.origins);
     build_store<K>(input.transmissive, report, t.store, t.origins);
     if constexpr (K::bounded) {
-      index_stores(input, options, o.store, o.origins, t.store, t.origins, scene.kind_bvhs[kind_index(kind_tag<K>)]);
+      Bvh& bvh = scene.kind_bvhs[kind_index(kind_tag<K>)];
+      index_stores(input, options, o.store, o.origins, t.store, t.origins, bvh);
+      if (bvh.empty()) {  // scanned: each store's box, the scans' cull
+        for (KindStore<K>* k : {&o, &t}) {
+          for (std::size_t i = 0; i < k->store.count; ++i) grow(k->bounds, primitive_box(k->store, i));
+        }
+      }
     }
   });
   std::int32_t next_id = 0;

@@ -36,6 +36,9 @@ template <class K>
 struct KindStore {
   typename K::Store store;
   std::vector<PrimitiveOrigin> origins;
+  // A box of every primitive (primitive_box), set where the kind is bounded
+  // and scanned without a BVH: the packets that pass it by skip the store.
+  Box bounds = empty_box();
 };
 
 // A layer's store of every kind (geometry/kinds.h).

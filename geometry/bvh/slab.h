@@ -15,6 +15,7 @@
 
 #include <array>
 
+#include "geometry/box.h"
 #include "geometry/bvh.h"
 #include "simd/lanes.h"
 
@@ -152,6 +153,24 @@ struct PacketSlab {
     return widened_interval(entry, exit, tmin, tmax, near);
   }
 };
+
+// The lanes of `active` whose ray may meet `box` within [tmin, tmax]: the
+// node tests' widened interval, each lane's planes chosen by its own signs;
+// a lane whose interval reaches behind its origin (tmin < 0) always may, as
+// such a ray enters every node. Conservative as the node tests are, so
+// skipping the other lanes culls no hit of the box's primitives.
+template <class F>
+inline Mask<F> may_meet_box(const Ray<F>& ray, const Box& box, const Mask<F>& active, const F& tmax) {
+  std::array<F, 3> entry, exit;
+  for (int a = 0; a < 3; ++a) {
+    const SlabTerms<F> terms = SlabTerms<F>::of(ray.origin[a], ray.direction[a]);
+    const Mask<F> negative = terms.entry_inv_dir < F(0.f);
+    entry[a] = terms.entry(select(negative, F(box.hi[a]), F(box.lo[a])));
+    exit[a] = terms.widened_exit(select(negative, F(box.lo[a]), F(box.hi[a])));
+  }
+  F near;
+  return active && (widened_interval(entry, exit, ray.tmin, tmax, near) || ray.tmin < F(0.f));
+}
 
 // Whether a ray's node tests may compare distances by their bits
 // (widened_interval_bits): tmin is +0 to +inf (sign bit clear, not NaN),

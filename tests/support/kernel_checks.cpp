@@ -59,6 +59,9 @@ void expect_results_match_scalar(const StreamResults& ref, const StreamResults& 
   EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_scan)) << "scan vs scalar";
   EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_packets)) << "any-hit packets vs scalar";
   EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_scan)) << "any-hit scan vs scalar";
+  EXPECT_TRUE(hits_bit_equal(ref.closest_packets, got.closest_within)) << "packets within the store's box vs scalar";
+  EXPECT_TRUE(occlusion_equal(ref.occluded_packets, got.occluded_within))
+      << "any-hit packets within the store's box vs scalar";
   EXPECT_TRUE(occlusion_matches_hits(ref.occluded_packets, ref.closest_packets));
 }
 

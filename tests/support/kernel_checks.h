@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/primitive_bounds.h"
 #include "geometry/streams.h"
 #include "simd/isa.h"
 #include "tests/support/ray_sampling.h"
@@ -43,14 +44,23 @@ Hit<float> closest_hit(const KernelStreams<S>& streams, const Ray<float>& ray, c
 }
 
 struct StreamResults {
-  HitSoA closest_packets, closest_scan;
-  OcclusionSoA occluded_packets, occluded_scan;
+  HitSoA closest_packets, closest_scan, closest_within;
+  OcclusionSoA occluded_packets, occluded_scan, occluded_within;
 };
 
-// Runs every stream the kernel has (a missing scan is left as packets).
+// The box of every primitive of a bounded kind's store (primitive_box).
+template <class S>
+Box store_box(const S& prims) {
+  Box bounds = empty_box();
+  for (std::size_t i = 0; i < prims.count; ++i) grow(bounds, primitive_box(prims, i));
+  return bounds;
+}
+
+// Runs every stream the kernel has (a missing scan is left as packets; the
+// packets within the store's box, for bounded kinds, else as packets).
 template <class S>
 StreamResults run_streams(const KernelStreams<S>& streams, const RaySoA& rays, const S& prims) {
-  StreamResults r{HitSoA(rays), HitSoA(rays), OcclusionSoA(rays), OcclusionSoA(rays)};
+  StreamResults r{HitSoA(rays), HitSoA(rays), HitSoA(rays), OcclusionSoA(rays), OcclusionSoA(rays), OcclusionSoA(rays)};
   streams.closest_packets(rays, prims, r.closest_packets);
   streams.occluded_packets(rays, prims, r.occluded_packets);
   if (streams.closest_scan) {
@@ -60,11 +70,21 @@ StreamResults run_streams(const KernelStreams<S>& streams, const RaySoA& rays, c
     r.closest_scan = r.closest_packets;
     r.occluded_scan = r.occluded_packets;
   }
+  r.closest_within = r.closest_packets;
+  r.occluded_within = r.occluded_packets;
+  if constexpr (requires { primitive_box(prims, std::size_t(0)); }) {
+    const Box bounds = store_box(prims);
+    r.closest_within = HitSoA(rays);
+    r.occluded_within = OcclusionSoA(rays);
+    streams.closest_packets_within(rays, prims, bounds, r.closest_within);
+    streams.occluded_packets_within(rays, prims, bounds, r.occluded_within);
+  }
   return r;
 }
 
 // A tested unit's results equal the scalar reference's bit for bit, in both
-// orientations, and any-hit agrees with closest-hit.
+// orientations and culled by the store's box, and any-hit agrees with
+// closest-hit.
 void expect_results_match_scalar(const StreamResults& ref, const StreamResults& got);
 
 // Runs the scalar and the tested streams and checks them with
