@@ -37,6 +37,14 @@ TEST(MayMeetBox, TheTestStaysConservativeWhereRoundingDecides) {
   EXPECT_FALSE(meets({0.5f, -3.f, 1.25f}, {0.f, 1.f, 0.f}, 0.f, kInf));  // axis-parallel outside one
   // A segment reaching behind its origin is never culled (relative widening would narrow it there).
   EXPECT_TRUE(meets({2.f, 0.5f, -2.f}, {0.f, 0.f, 1.f}, -1.f, kInf));
+  // Axis-parallel along a face at 0, whichever way the zero component's sign points: a sphere
+  // touching that face is met there (a tangent hit the kernels report).
+  const Box left_of_zero{{-2.f, 0.f, -1.f}, {0.f, 2.f, 1.f}}, right_of_zero{{0.f, 0.f, -1.f}, {2.f, 2.f, 1.f}};
+  for (const float zero : {0.f, -0.f}) {
+    const Ray<float> on_face{{0.f, 1.5f, 6.f}, {zero, -0.083f, -0.997f}, 0.f, kInf};
+    EXPECT_TRUE(may_meet_box(on_face, left_of_zero, true, kInf)) << zero;
+    EXPECT_TRUE(may_meet_box(on_face, right_of_zero, true, kInf)) << zero;
+  }
 }
 
 }  // namespace

@@ -54,16 +54,19 @@ inline namespace QUIVER_UNIT_NAMESPACE {
 // scaled by kSlabWidening (1/d and the offset scaled per ray), so the test
 // needs no multiply. A zero d is taken as +-2^-80 (sign kept): 1/d stays
 // finite, and an axis-parallel ray tests the slab it lies in, widened by
-// 2^-22 |o|.
+// 2^-22 |o| and by 2^-40.
 template <class F>
 struct SlabTerms {
   F entry_inv_dir, entry_offset, exit_inv_dir, exit_offset;  // offsets negated
 
   [[gnu::always_inline]] static SlabTerms of(const F& origin, const F& direction) {
     const F tiny(0x1p-80f);
-    const F inv = F(1.f) / select(abs(direction) < tiny, copysign(tiny, direction), direction);
+    const Mask<F> zero = abs(direction) < tiny;
+    const F inv = F(1.f) / select(zero, copysign(tiny, direction), direction);
     const F offset = origin * inv;
-    const F margin = F(0x1p-22f) * abs(offset);
+    // A zero d's slab also widened by 2^-40 absolute (2^40 in t): a ray lying
+    // on a face at 0 (where 2^-22 |o| is 0) would else leave it at t = 0.
+    const F margin = F(0x1p-22f) * abs(offset) + select(zero, F(0x1p40f), F(0.f));
     return {inv, -(offset + margin), inv * F(kSlabWidening), -((offset - margin) * F(kSlabWidening))};
   }
   // One ray's terms in every lane of G.
