@@ -118,11 +118,17 @@ int run_render(const RenderArgs& args) {
     const quiver::RenderSettings& settings = prepared.plan.settings;
 
     quiver::set_interrupt_phase(quiver::InterruptPhase::rendering);
-    quiver::ProgressBar progress(stderr, quiver::progress_style_for(stderr, args.quiet));
-    const quiver::RenderResult result = quiver::render(
-        prepared.scene, settings,
-        [&](const quiver::RenderProgressState& p) { progress.update(p.tiles_done, p.tiles_total, p.work_done, p.tile_seconds); },
-        &quiver::stop_requested());
+    const quiver::ProgressStyle style = quiver::progress_style_for(stderr, args.quiet);
+    quiver::ProgressBar progress(stderr, style);
+    // No progress shown, no callback: the render then skips estimating its tiles' costs.
+    quiver::RenderProgress report_progress;
+    if (style != quiver::ProgressStyle::off) {
+      report_progress = [&](const quiver::RenderProgressState& p) {
+        progress.update(p.tiles_done, p.tiles_total, p.work_done, p.tile_seconds);
+      };
+    }
+    const quiver::RenderResult result =
+        quiver::render(prepared.scene, settings, report_progress, &quiver::stop_requested());
     progress.finish();
     if (result.stopped()) {
       return report_interrupted("during the render, after " + std::to_string(result.tiles_done) + " of " +
