@@ -208,7 +208,7 @@ void write_lights(std::ostream& out, const SceneDesc& desc, const Scene& scene) 
       case LightDesc::Kind::sphere: out << " centre " << vec(l.position) << " radius " << number(l.radius); break;
     }
     out << " colour " << vec(l.color);
-    if (l.kind == LightDesc::Kind::rectangle || l.kind == LightDesc::Kind::sphere) {
+    if (l.is_area()) {
       out << " samples " << l.samples << "x" << l.samples;
     }
     out << "\n";

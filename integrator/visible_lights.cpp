@@ -11,7 +11,7 @@ std::optional<float> area_light_distance(const LightDesc& light, const Ray<float
 }
 
 bool has_area_lights(const Scene& scene) {
-  return std::any_of(scene.lights.begin(), scene.lights.end(), is_area_light);
+  return std::any_of(scene.lights.begin(), scene.lights.end(), [](const LightDesc& l) { return l.is_area(); });
 }
 
 }  // namespace quiver

@@ -31,10 +31,6 @@ inline RectangleFrame rectangle_frame(const LightDesc& light) {
   return {n, dot(n, n)};
 }
 
-inline bool is_area_light(const LightDesc& light) {
-  return light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
-}
-
 inline namespace QUIVER_UNIT_NAMESPACE {
 
 // The active lanes whose ray meets the area light (frame: its

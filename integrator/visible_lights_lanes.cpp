@@ -14,7 +14,7 @@ void see_area_lights(const Scene& scene, const RaySoA& rays, HitSoA& hits, Vec3C
   using F = UnitLanes<U>;
   std::vector<std::pair<const LightDesc*, RectangleFrame>> area_lights;
   for (const LightDesc& light : scene.lights) {
-    if (is_area_light(light)) area_lights.emplace_back(&light, rectangle_frame(light));
+    if (light.is_area()) area_lights.emplace_back(&light, rectangle_frame(light));
   }
   for (std::size_t first = 0; first < rays.count; first += std::size_t(lane_count<F>)) {
     const Mask<F> active = first_lanes<F>(rays.count - first);

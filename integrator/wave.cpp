@@ -134,8 +134,7 @@ std::size_t grow_spawned(std::size_t n, RaySoA& rays, PathColumns& paths, Differ
 }
 
 int samples_per_side(const LightDesc& light) {
-  const bool area = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
-  return area ? light.samples : 1;
+  return light.is_area() ? light.samples : 1;
 }
 
 }  // namespace quiver

@@ -249,7 +249,7 @@ void shade_lights(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
     const Vec3<F> intensity(light.color / float(n * n));
     const bool spot = light.kind == LightDesc::Kind::spot;
     const Vec3<float> spot_axis = spot ? normalize(light.direction) : Vec3<float>{0.f, 0.f, 0.f};
-    const bool area = light.kind == LightDesc::Kind::rectangle || light.kind == LightDesc::Kind::sphere;
+    const bool area = light.is_area();
     // Each lane's numbers for this light, drawn from its path's key.
     std::uint64_t streams[kMaxLanes] = {};
     if (area) {

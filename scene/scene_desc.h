@@ -50,6 +50,9 @@ struct LightDesc {
   float radius = 1.f;                      // sphere
   Vec3<float> color{1.f, 1.f, 1.f};
   int samples = 4;                         // area lights: per side
+
+  // A rectangle or a sphere: sampled over its area, and seen by rays.
+  bool is_area() const { return kind == Kind::rectangle || kind == Kind::sphere; }
 };
 
 enum class WrapMode { repeat, clamp, mirror };
