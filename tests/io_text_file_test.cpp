@@ -1,6 +1,7 @@
 // Tests of io/text_file.h: a file of exactly the bound reads whole, one byte
-// more is refused naming the file, the bound and its reason; files that are
-// missing or not regular files are refused naming the file.
+// more is refused naming the file, the bound and its reason, also when the
+// content outgrows the stated size; files that are missing or not regular
+// files are refused naming the file.
 #include "io/text_file.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 #include "io/parse_error.h"
 #include "tests/support/temporary_directory.h"
@@ -41,6 +43,28 @@ TEST(TextFile, ReadsUpToTheBoundAndRefusesOneByteMore) {
   const fs::path empty = temporary.path() / "empty.txt";
   std::ofstream(empty, std::ios::binary).flush();
   EXPECT_EQ(read_text_file(empty, 0, "a test file"), "");
+}
+
+// A file whose content outgrows its stated size (procfs states 0 bytes, a
+// file may grow while read) is bounded while it is read, not only by size.
+TEST(TextFile, AFileLongerThanItsStatedSizeIsBoundedWhileRead) {
+  const fs::path kallsyms = "/proc/kallsyms";
+  std::error_code error;
+  std::ifstream in(kallsyms, std::ios::binary);
+  if (!in || fs::file_size(kallsyms, error) != 0 || error) {
+    GTEST_SKIP() << "needs Linux's /proc/kallsyms, readable and stated as 0 bytes";
+  }
+  std::string chunk(std::size_t{1} << 16, '\0');
+  std::size_t length = 0;
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    length += static_cast<std::size_t>(in.gcount());
+  }
+  const std::size_t bound = 2 * chunk.size();  // more than one of the reader's chunks
+  if (length <= 2 * bound) GTEST_SKIP() << "/proc/kallsyms holds only " << length << " bytes here";
+  const std::string message = refusal(kallsyms, bound);
+  EXPECT_NE(message.find("larger than the limit of " + std::to_string(bound) + " bytes"), std::string::npos)
+      << message;
 }
 
 TEST(TextFile, RefusesMissingFilesAndDirectories) {
