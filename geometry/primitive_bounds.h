@@ -14,6 +14,14 @@ namespace quiver {
 // Grows b by the points c +- r per axis (c and r in double), rounded outward.
 void grow_ball(Box& b, const double c[3], double r);
 
+// The box of primitives [0, store.count) (empty for none).
+template <class Store>
+Box store_box(const Store& store) {
+  Box bounds = empty_box();
+  for (std::size_t i = 0; i < store.count; ++i) grow(bounds, primitive_box(store, i));
+  return bounds;
+}
+
 // The boxes of primitives [0, store.count).
 template <class Store>
 std::vector<Box> primitive_boxes(const Store& store) {

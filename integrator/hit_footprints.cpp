@@ -11,24 +11,18 @@ void hit_footprints(const RaySoA& rays, const HitSoA& hits, const DifferentialCo
                     Vec3Columns& point_dx, Vec3Columns& point_dy) {
   using F = UnitLanes<U>;
   const Vec3<F> none(F(0.f), F(0.f), F(0.f));
-  const auto load = [](const Vec3Columns& c, std::size_t first) { return load_vec3<F>(c.x, c.y, c.z, first); };
-  const auto store = [](const Vec3<F>& v, Vec3Columns& c, std::size_t first) {
-    store_lanes(v.x, c.x.data() + first);
-    store_lanes(v.y, c.y.data() + first);
-    store_lanes(v.z, c.z.data() + first);
-  };
   for (std::size_t first = 0; first < rays.count; first += std::size_t(lane_count<F>)) {
     const Ray<F> ray = rays.load<F>(first);
     const Hit<F> hit = hits.load<F>(first);
     const Mask<F> met = first_lanes<F>(rays.count - first) & nonzero_lanes(hit.id - IntLanes<F>(kNoHit));
     const auto transfer = [&](const Vec3Columns& d_origin, const Vec3Columns& d_direction) {
       return select(met,
-                    transfer_differential(load(d_origin, first), load(d_direction, first), ray.direction, hit.t,
-                                          hit.ng),
+                    transfer_differential(d_origin.load<F>(first), d_direction.load<F>(first), ray.direction,
+                                          hit.t, hit.ng),
                     none);
     };
-    store(transfer(differentials.origin_dx, differentials.direction_dx), point_dx, first);
-    store(transfer(differentials.origin_dy, differentials.direction_dy), point_dy, first);
+    point_dx.store(first, transfer(differentials.origin_dx, differentials.direction_dx));
+    point_dy.store(first, transfer(differentials.origin_dy, differentials.direction_dy));
   }
 }
 

@@ -21,7 +21,7 @@ void see_area_lights(const Scene& scene, const RaySoA& rays, HitSoA& hits, Vec3C
     const Ray<F> ray = rays.load<F>(first);
     F t = load_lanes<F>(hits.t.data() + first);
     IntLanes<F> id = load_int_lanes<F>(hits.id.data() + first);
-    Vec3<F> color = load_vec3<F>(seen.x, seen.y, seen.z, first);
+    Vec3<F> color = seen.load<F>(first);
     Mask<F> cleared(false);
     for (const auto& [light, frame] : area_lights) {
       F light_t;
@@ -33,9 +33,7 @@ void see_area_lights(const Scene& scene, const RaySoA& rays, HitSoA& hits, Vec3C
     if (none(cleared)) continue;
     store_lanes(t, hits.t.data() + first);
     store_int_lanes<F>(select(cleared, IntLanes<F>(kNoHit), id), hits.id.data() + first);
-    store_lanes(color.x, seen.x.data() + first);
-    store_lanes(color.y, seen.y.data() + first);
-    store_lanes(color.z, seen.z.data() + first);
+    seen.store(first, color);
   }
 }
 

@@ -27,6 +27,17 @@ struct Vec3Columns {
   void assign(std::size_t padded);  // zeros
   void set(std::size_t i, const Vec3<float>& v);
   Vec3<float> get(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  // Lanes [first, first + lanes of F) (aligned: first a multiple of them).
+  template <class F>
+  Vec3<F> load(std::size_t first) const {
+    return load_vec3<F>(x, y, z, first);
+  }
+  template <class F>
+  void store(std::size_t first, const Vec3<F>& v) {
+    store_lanes(v.x, x.data() + first);
+    store_lanes(v.y, y.data() + first);
+    store_lanes(v.z, z.data() + first);
+  }
   std::array<AlignedFloats*, 3> columns() { return {&x, &y, &z}; }
 };
 

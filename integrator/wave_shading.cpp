@@ -151,11 +151,6 @@ struct SpawnedDifferentials {
 };
 
 template <class F>
-Vec3<F> load_vec3_columns(const Vec3Columns& c, std::size_t first) {
-  return load_vec3<F>(c.x, c.y, c.z, first);
-}
-
-template <class F>
 SpawnedDifferentials<F> spawned_differentials(const WaveShadingInput& in, std::size_t first, const SurfaceFrame<F>& s,
                                               const Vec3<F>& oriented_normal, const Vec3<F>& incident,
                                               const Mask<F>& mirrored_outward, const F& eta,
@@ -172,12 +167,12 @@ SpawnedDifferentials<F> spawned_differentials(const WaveShadingInput& in, std::s
                   refract_differential(incident, d_incident, s.geometric, none, eta, along_geometric),
                   refract_differential(incident, d_incident, s.shading, d_normal * turn, eta, along_shading));
   };
-  const Vec3<F> d_incident_x = load_vec3_columns<F>(in.differentials->direction_dx, first);
-  const Vec3<F> d_incident_y = load_vec3_columns<F>(in.differentials->direction_dy, first);
-  const Vec3<F> d_normal_x = load_vec3_columns<F>(in.surfaces->normal_dx, first);
-  const Vec3<F> d_normal_y = load_vec3_columns<F>(in.surfaces->normal_dy, first);
-  return {Vec3Lanes<F>(load_vec3_columns<F>(in.surfaces->point_dx, first)),
-          Vec3Lanes<F>(load_vec3_columns<F>(in.surfaces->point_dy, first)),
+  const Vec3<F> d_incident_x = in.differentials->direction_dx.load<F>(first);
+  const Vec3<F> d_incident_y = in.differentials->direction_dy.load<F>(first);
+  const Vec3<F> d_normal_x = in.surfaces->normal_dx.load<F>(first);
+  const Vec3<F> d_normal_y = in.surfaces->normal_dy.load<F>(first);
+  return {Vec3Lanes<F>(in.surfaces->point_dx.load<F>(first)),
+          Vec3Lanes<F>(in.surfaces->point_dy.load<F>(first)),
           Vec3Lanes<F>(reflected(d_incident_x, d_normal_x)),
           Vec3Lanes<F>(reflected(d_incident_y, d_normal_y)),
           Vec3Lanes<F>(refracted(d_incident_x, d_normal_x)),
@@ -221,9 +216,9 @@ PacketHits<F> load_packet_hits(const WaveShadingInput& in, std::size_t first) {
   h.weight = load_vec3<F>(in.paths->weight_r, in.paths->weight_g, in.paths->weight_b, first);
   h.smooth = nonzero_lanes(load_int_lanes<F>(columns.smooth.data() + first));
   h.interpolated = load_vec3<F>(columns.nx, columns.ny, columns.nz, first);
-  h.lift = load_vec3<F>(columns.shadow_lift.x, columns.shadow_lift.y, columns.shadow_lift.z, first);
+  h.lift = columns.shadow_lift.load<F>(first);
   h.s = surface_frame(ray, h.hit, h.smooth, h.interpolated);
-  h.s.error = h.s.error + load_vec3<F>(columns.error.x, columns.error.y, columns.error.z, first);
+  h.s.error = h.s.error + columns.error.load<F>(first);
   h.color = load_vec3<F>(columns.color_r, columns.color_g, columns.color_b, first);
   h.material = load_int_lanes<F>(columns.material.data() + first);
   h.direction = ray.direction;
@@ -428,7 +423,7 @@ void shade_packet(const WaveShadingInput& in, const WaveAppendTargets& to, WaveS
   const Vec3<F> ambient = mul(h.weight, mul(Vec3<F>(scene.ambient), h.color) * ka);
   const SurfaceColumns& columns = *in.surfaces;
   const Vec3<F> seen = columns.seen.x.empty() ? Vec3<F>(scene.background)
-                                              : load_vec3<F>(columns.seen.x, columns.seen.y, columns.seen.z, first);
+                                              : columns.seen.load<F>(first);
   const Vec3<F> emitted = select(h.hit_mask, ambient, mul(h.weight, seen));
   store_lanes(emitted.x, out.emitted_r.data() + first);
   store_lanes(emitted.y, out.emitted_g.data() + first);

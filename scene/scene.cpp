@@ -67,9 +67,7 @@ std::vector<TriangleDesc> polygon_triangles(const ScenePolygon& polygon, bool te
 
 void layer_bounds(const GeometryLayer& g, Box& bounds) {
   g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
-    if constexpr (K::bounded) {
-      for (std::size_t i = 0; i < k.store.count; ++i) grow(bounds, primitive_box(k.store, i));
-    }
+    if constexpr (K::bounded) grow(bounds, store_box(k.store));
   });
 }
 
@@ -126,9 +124,7 @@ void build_instancing(const SceneDesc& desc, const SceneBuildOptions& options, O
     index_stores(input, always, mesh.stores[0], origins[0], mesh.stores[1], origins[1], mesh.bvh);
     mesh.stores[0].id_base = 0;
     mesh.stores[1].id_base = static_cast<std::int32_t>(mesh.stores[0].count);
-    for (const TriangleSoA& store : mesh.stores) {
-      for (std::size_t i = 0; i < store.count; ++i) grow(mesh.bounds, primitive_box(store, i));
-    }
+    for (const TriangleSoA& store : mesh.stores) grow(mesh.bounds, store_box(store));
   }
   std::vector<Placement> placements;
   placements.reserve(desc.instances.size());
@@ -306,9 +302,7 @@ std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options,
       Bvh& bvh = scene.kind_bvhs[kind_index(kind_tag<K>)];
       index_stores(input, options, o.store, o.origins, t.store, t.origins, bvh);
       if (bvh.empty()) {  // scanned: each store's box, the scans' cull
-        for (KindStore<K>* k : {&o, &t}) {
-          for (std::size_t i = 0; i < k->store.count; ++i) grow(k->bounds, primitive_box(k->store, i));
-        }
+        for (KindStore<K>* k : {&o, &t}) k->bounds = store_box(k->store);
       }
     }
   });

@@ -48,14 +48,6 @@ struct StreamResults {
   OcclusionSoA occluded_packets, occluded_scan, occluded_within;
 };
 
-// The box of every primitive of a bounded kind's store (primitive_box).
-template <class S>
-Box store_box(const S& prims) {
-  Box bounds = empty_box();
-  for (std::size_t i = 0; i < prims.count; ++i) grow(bounds, primitive_box(prims, i));
-  return bounds;
-}
-
 // Runs every stream the kernel has (a missing scan is left as packets; the
 // packets within the store's box, for bounded kinds, else as packets).
 template <class S>
