@@ -10,11 +10,20 @@
 #include <string>
 #include <type_traits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include "scene/camera_frame.h"
 
 namespace quiver {
 
 namespace {
+
+// Minimum and maximum that order -0 below +0: the same bits whatever the
+// order of the values (std::min and std::max keep the first of equals), so
+// that a fold split over threads gives a sequential fold's result.
+double least(double a, double b) { return b < a || (b == a && std::signbit(b)) ? b : a; }
+double greatest(double a, double b) { return a < b || (a == b && !std::signbit(b)) ? b : a; }
 
 // Axis-aligned bounds in double of the points fed to it (finite ones only).
 struct Bounds {
@@ -26,12 +35,21 @@ struct Bounds {
   void add(const Vec3<float>& p, double margin = 0.0) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(margin)) return;
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], double(p[a]) - margin);
-      hi[a] = std::max(hi[a], double(p[a]) + margin);
+      lo[a] = least(lo[a], double(p[a]) - margin);
+      hi[a] = greatest(hi[a], double(p[a]) + margin);
     }
   }
   bool empty() const { return lo[0] > hi[0]; }
 };
+
+Bounds joined(const Bounds& a, const Bounds& b) {
+  Bounds j;
+  for (int k = 0; k < 3; ++k) {
+    j.lo[k] = least(a.lo[k], b.lo[k]);
+    j.hi[k] = greatest(a.hi[k], b.hi[k]);
+  }
+  return j;
+}
 
 // Balls that together cover every bounded primitive: each kind's extent,
 // and the corners of each instance's placed mesh box (the meshes' boxes
@@ -46,11 +64,23 @@ class ExtentBalls {
     }
   }
 
-  // Calls visit(p, margin) for each ball.
-  template <class Visit>
-  void operator()(Visit&& visit) const {
+  // Folds every ball (fold(state, p, margin)) into a state that starts as
+  // `none`, each kind's entries in parallel blocks joined by combine: for
+  // minima and maxima only, whose bits do not depend on the order or the
+  // thread count.
+  template <class State, class Fold, class Combine>
+  State reduce(const State& none, const Fold& fold, const Combine& combine) const {
+    constexpr std::size_t kEntriesPerTask = 4096;
+    State total = none;
     for_each_kind([&]<class K>(K) {
-      for (const auto& entry : scene_.*SceneEntries<K>::of) K::extent(entry.*SceneEntries<K>::desc, visit);
+      const auto& entries = scene_.*SceneEntries<K>::of;
+      const auto fold_block = [&](const tbb::blocked_range<std::size_t>& block, State state) {
+        const auto add = [&](const Vec3<float>& p, double margin) { fold(state, p, margin); };
+        for (std::size_t i = block.begin(); i != block.end(); ++i) K::extent(entries[i].*SceneEntries<K>::desc, add);
+        return state;
+      };
+      total = combine(total, tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, entries.size(), kEntriesPerTask),
+                                                  none, fold_block, combine));
     });
     for (const SceneInstance& instance : scene_.instances) {
       if (instance.mesh >= mesh_bounds_.size() || mesh_bounds_[instance.mesh].empty()) continue;
@@ -59,15 +89,15 @@ class ExtentBalls {
         const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
                             static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
                             static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
-        visit(apply_point(instance.object_to_world, p), 0.0);
+        fold(total, apply_point(instance.object_to_world, p), 0.0);
       }
     }
+    return total;
   }
 
   Bounds bounds() const {
-    Bounds b;
-    (*this)([&](const Vec3<float>& p, double margin) { b.add(p, margin); });
-    return b;
+    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); },
+                  [](const Bounds& a, const Bounds& b) { return joined(a, b); });
   }
 
  private:
@@ -233,31 +263,30 @@ struct ViewAxes {
 // half-angles shrunk by fill: a ball at (x, y, h) in the view's axes around
 // target, seen from distance d, is inside the right-hand plane when its
 // centre is at least margin from it, d >= h + (x + margin sqrt(1 + t^2)) / t.
-template <class VisitBalls>
-double fitting_distance(const VisitBalls& visit_balls, const Vec3<double>& target, const ViewAxes& axes,
-                        double fill) {
+template <class Balls>
+double fitting_distance(const Balls& balls, const Vec3<double>& target, const ViewAxes& axes, double fill) {
   const double tx = fill * axes.tangent_across, ty = fill * axes.tangent_up;
   const double sx = std::sqrt(1.0 + tx * tx), sy = std::sqrt(1.0 + ty * ty);
-  double distance = 0.0;
-  visit_balls([&](const Vec3<float>& p, double margin) {
+  const auto fold = [&](double& distance, const Vec3<float>& p, double margin) {
     const Vec3<double> q = to_double(p) - target;
     if (!std::isfinite(dot(q, q)) || !std::isfinite(margin)) return;
     const double h = dot(q, axes.toward_eye);
-    distance = std::max({distance, h + (std::fabs(dot(q, axes.right)) + margin * sx) / tx,
-                         h + (std::fabs(dot(q, axes.up)) + margin * sy) / ty});
-  });
-  return distance;
+    distance = greatest(greatest(distance, h + (std::fabs(dot(q, axes.right)) + margin * sx) / tx),
+                        h + (std::fabs(dot(q, axes.up)) + margin * sy) / ty);
+  };
+  return balls.reduce(0.0, fold, greatest);
 }
 
 // The target moved across the view to the middle of the balls' image seen
 // from distance along toward_eye. A ball at x across and depth z, of radius
 // m < z, spans the tangents (x z -+ m sqrt(x^2 + z^2 - m^2)) / (z^2 - m^2).
-template <class VisitBalls>
-Vec3<double> centred_target(const VisitBalls& visit_balls, const Vec3<double>& target, const ViewAxes& axes,
-                            double distance) {
-  double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  double hi[2] = {-lo[0], -lo[1]};
-  visit_balls([&](const Vec3<float>& p, double margin) {
+template <class Balls>
+Vec3<double> centred_target(const Balls& balls, const Vec3<double>& target, const ViewAxes& axes, double distance) {
+  struct Span {  // of the tangents across and up
+    double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    double hi[2] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  };
+  const auto fold = [&](Span& span, const Vec3<float>& p, double margin) {
     const Vec3<double> q = to_double(p) - target;
     const double z = distance - dot(q, axes.toward_eye);
     if (!std::isfinite(dot(q, q)) || !std::isfinite(margin) || !(z > margin)) return;
@@ -265,13 +294,33 @@ Vec3<double> centred_target(const VisitBalls& visit_balls, const Vec3<double>& t
     for (int k = 0; k < 2; ++k) {
       const double x = across[k], spread = margin * std::sqrt(x * x + z * z - margin * margin);
       const double scale = 1.0 / (z * z - margin * margin);
-      lo[k] = std::min(lo[k], (x * z - spread) * scale);
-      hi[k] = std::max(hi[k], (x * z + spread) * scale);
+      span.lo[k] = least(span.lo[k], (x * z - spread) * scale);
+      span.hi[k] = greatest(span.hi[k], (x * z + spread) * scale);
     }
-  });
-  if (!(lo[0] <= hi[0]) || !(lo[1] <= hi[1])) return target;
-  return target + axes.right * (0.5 * (lo[0] + hi[0]) * distance) + axes.up * (0.5 * (lo[1] + hi[1]) * distance);
+  };
+  const auto combine = [](const Span& a, const Span& b) {
+    Span j;
+    for (int k = 0; k < 2; ++k) {
+      j.lo[k] = least(a.lo[k], b.lo[k]);
+      j.hi[k] = greatest(a.hi[k], b.hi[k]);
+    }
+    return j;
+  };
+  const Span span = balls.reduce(Span{}, fold, combine);
+  if (!(span.lo[0] <= span.hi[0]) || !(span.lo[1] <= span.hi[1])) return target;
+  return target + axes.right * (0.5 * (span.lo[0] + span.hi[0]) * distance) +
+         axes.up * (0.5 * (span.lo[1] + span.hi[1]) * distance);
 }
+
+// The unit ball at the origin, for a scene without a bounded primitive.
+struct UnitBall {
+  template <class State, class Fold, class Combine>
+  State reduce(const State& none, const Fold& fold, const Combine&) const {
+    State state = none;
+    fold(state, Vec3<float>{0.f, 0.f, 0.f}, 1.0);
+    return state;
+  }
+};
 
 }  // namespace
 
@@ -308,8 +357,7 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
   Vec3<double> target{0.0, 0.0, 0.0};
   double distance = 0.0;
   if (bounds.empty()) {
-    const auto unit_ball = [](auto&& visit) { visit(Vec3<float>{0.f, 0.f, 0.f}, 1.0); };
-    distance = fitting_distance(unit_ball, target, axes, kDefaultViewFill);
+    distance = fitting_distance(UnitBall{}, target, axes, kDefaultViewFill);
   } else {
     for (int a = 0; a < 3; ++a) target[a] = 0.5 * bounds.lo[a] + 0.5 * bounds.hi[a];
     // Fit and centre twice (moving the target changes the depths, so the
