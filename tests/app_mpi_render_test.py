@@ -278,10 +278,12 @@ def case_bad_input(work):
 def case_checkpoint_interval(work):
     scene, flags = SCENES["builtin-adaptive-aovs"]
     writes = {}
-    # One past the bound (a day) is refused; the bound itself is run below.
-    done = run(mpirun(2) + [QUIVER_MPI, *scene, *flags, "-o", os.path.join(work, "past.exr"), "--quiet",
-                            "--checkpoint-interval", "86400.001"])
-    expect_one_error(done, 2, "--checkpoint-interval: expected seconds in (0, 86400]", "an interval past a day")
+    # Zero (the open end of the range) and one past the bound (a day) are
+    # refused; the bound itself and a microsecond are run below.
+    for refused, what in (("86400.001", "an interval past a day"), ("0", "a zero interval")):
+        done = run(mpirun(2) + [QUIVER_MPI, *scene, *flags, "-o", os.path.join(work, "past.exr"), "--quiet",
+                                "--checkpoint-interval", refused])
+        expect_one_error(done, 2, "--checkpoint-interval: expected seconds in (0, 86400]", what)
     for interval in ("86400", "0.000001"):
         out, stats = os.path.join(work, "interval.exr"), os.path.join(work, "interval.json")
         done = run(mpirun(2) + [QUIVER_MPI, *scene, *flags, "-o", out, "--stats", stats, "--quiet",

@@ -65,6 +65,22 @@ TEST(Lanes, IntLessOfLanesIsTheScalarLessThan) {
   }
 }
 
+// The lanes' finiteness test is std::isfinite's at the edges of the range:
+// the largest finite float is finite, infinities and NaN are not.
+TEST(Lanes, FiniteLanesAreStdIsfiniteAtTheRangesEdges) {
+  using Floats = xsimd::batch<float>;
+  constexpr float kMax = std::numeric_limits<float>::max(), kInf = std::numeric_limits<float>::infinity();
+  const float values[] = {0.f, -0.f, std::numeric_limits<float>::denorm_min(), 1.f, std::nextafter(kMax, 0.f), kMax,
+                          -kMax, kInf, -kInf, std::numeric_limits<float>::quiet_NaN()};
+  for (float v : values) {
+    const auto mask = isfinite_lanes(Floats(v));
+    for (std::size_t lane = 0; lane < Floats::size; ++lane) {
+      EXPECT_EQ(bool(mask.get(lane)), bool(std::isfinite(v))) << v << " in lane " << lane;
+    }
+    EXPECT_EQ(isfinite_lanes(v), bool(std::isfinite(v))) << v;
+  }
+}
+
 TEST(Lanes, MasksDifferIsXorAtWidth1) {
   EXPECT_FALSE(masks_differ(true, true));
   EXPECT_TRUE(masks_differ(true, false));
