@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <cmath>
@@ -11,6 +13,9 @@
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include "io/obj_reader.h"
 #include "scene/auto_view.h"
@@ -139,6 +144,34 @@ TEST(AutoView, FramesEveryPrimitiveCentredFillingTheImage) {
     EXPECT_LE(std::max(fill_x, fill_y), kDefaultViewFill + 1e-6);
     EXPECT_NEAR(0.5 * (box.min_x + box.max_x), 0.5 * width, 0.01 * width);
     EXPECT_NEAR(0.5 * (box.min_y + box.max_y), 0.5 * height, 0.01 * height);
+  }
+}
+
+// The view of a mesh large enough to be folded over threads in many blocks
+// is the same bits on one thread as on every thread.
+TEST(AutoView, AMeshFoldedOverThreadsGetsTheSameViewOnOneThread) {
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  std::uint32_t state = 12345;
+  const auto next = [&] {  // a fixed LCG in [-1, 1), so the mesh is the same on every machine
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) * 0x1p-23f - 1.f;
+  };
+  for (int t = 0; t < 60000; ++t) {
+    SceneTriangle triangle{};
+    for (Vec3<float>& p : triangle.triangle.p) p = {next() * 3.f, next(), next() * 2.f};
+    scene.triangles.push_back(triangle);
+  }
+  const auto view_on = [&](std::size_t threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    SceneDesc framed = scene;
+    add_default_view(framed, 640, 480);
+    return *framed.camera;
+  };
+  const CameraDesc one = view_on(1), every = view_on(std::max<std::size_t>(2, tbb::this_task_arena::max_concurrency()));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(one.from[a]), std::bit_cast<std::uint32_t>(every.from[a])) << a;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(one.at[a]), std::bit_cast<std::uint32_t>(every.at[a])) << a;
   }
 }
 
