@@ -74,7 +74,11 @@ class LineScanner {
   bool next_statement() {
     while (next_ < text_.size()) {
       std::size_t end = next_;
-      while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') ++end;
+      if (has_cr_) {
+        while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') ++end;
+      } else {
+        end = std::min(text_.find('\n', next_), text_.size());
+      }
       line_text_ = text_.substr(next_, end - next_);
       next_ = end;
       if (next_ < text_.size())
@@ -176,8 +180,9 @@ class LineScanner {
   // The decimal exponent, leading zeros aside, has at most 9 digits:
   // longer ones are absurd whatever the value they give.
   static bool exponent_has_at_most_9_digits(std::string_view token) {
-    const std::size_t e = token.find_first_of("eE");
-    if (e == std::string_view::npos) return true;
+    std::size_t e = 0;  // a plain loop: most tokens are short and have no exponent
+    while (e < token.size() && token[e] != 'e' && token[e] != 'E') ++e;
+    if (e == token.size()) return true;
     std::size_t i = e + 1;
     if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
     while (i < token.size() && token[i] == '0') ++i;
@@ -209,8 +214,8 @@ class LineScanner {
 
   // Cuts the line before a '#' that follows a blank (and the blanks before it).
   void end_at_trailing_comment() {
-    for (std::size_t i = scan_ + 1; i < line_text_.size(); ++i) {
-      if (line_text_[i] != '#' || !is_blank(line_text_[i - 1])) continue;
+    for (std::size_t i = line_text_.find('#', scan_ + 1); i != std::string_view::npos; i = line_text_.find('#', i + 1)) {
+      if (!is_blank(line_text_[i - 1])) continue;
       warnings_.warn(joined({"trailing comment in ", file_}), {std::string(file_), line_, i + 1},
                      "end of line (in OBJ and MTL a comment is a line of its own)",
                      quoted_token(line_text_.substr(i)), "the statement ends before it");
@@ -224,6 +229,7 @@ class LineScanner {
   std::string_view text_;
   std::string_view file_;
   ReaderWarnings& warnings_;
+  bool has_cr_ = text_.find('\r') != std::string_view::npos;  // else lines end at '\n' alone: found by memchr
   std::size_t next_ = 0;
   std::size_t line_ = 0;
   std::string_view line_text_;
@@ -582,11 +588,12 @@ class ObjReader {
     std::size_t count = 0;
     while (true) {
       if (count == 3) scan_.fail_at(corner, "a corner v, v/vt, v//vn or v/vt/vn (at most two '/')");
-      const std::size_t slash = rest.find('/');
+      std::size_t slash = 0;  // a plain loop: a corner is a few bytes
+      while (slash < rest.size() && rest[slash] != '/') ++slash;
       parts[count] = rest.substr(0, slash);
       part_columns[count] = column;
       ++count;
-      if (slash == std::string_view::npos) break;
+      if (slash == rest.size()) break;
       rest.remove_prefix(slash + 1);
       column += slash + 1;
     }
