@@ -292,6 +292,12 @@ TEST_F(Cli, ASceneFileAloneRendersAndMistypesGetTheNearestSpelling) {
   EXPECT_NE(flag.err.find("'--heigth' is not a flag of 'quiver render' (did you mean '--height'?)"),
             std::string::npos)
       << flag.err;
+  // A mistyped flag right after the command (before the scene) is named too.
+  const Outcome first_flag = run({"render", "--widht", "10", scene, "-o", "out.png"});
+  EXPECT_EQ(first_flag.exit_code, 2);
+  EXPECT_NE(first_flag.err.find("'--widht' is not a flag of 'quiver render' (did you mean '--width'?)"),
+            std::string::npos)
+      << first_flag.err;
   const Outcome info_flag = run({"info", scene, "--crease-angel", "30"});
   EXPECT_EQ(info_flag.exit_code, 2);
   EXPECT_NE(info_flag.err.find("(did you mean '--crease-angle'?)"), std::string::npos) << info_flag.err;

@@ -298,6 +298,25 @@ TEST(AutoView, AModelTooLargeForAFloatCameraIsAnErrorNamingItsFile) {
 // The rig follows the scene's camera: the key above and to its right, the
 // fill at its eye, 70% and 30% of 1 minus the ambient; a zero ambient
 // becomes 0.1 and a background of the scene's own stays.
+// The rig's light in all is 1 less the largest ambient component, that
+// component taken as at least 0.1 (a dim ambient does not brighten the
+// lights past 0.9) and the total as at least 0.3.
+TEST(AutoView, TheRigsLightIsOneLessTheLargestAmbientWithinItsFloors) {
+  EXPECT_FLOAT_EQ(default_light_total({0.05f, 0.02f, 0.f}), 0.9f);
+  EXPECT_FLOAT_EQ(default_light_total({0.1f, 0.1f, 0.1f}), 0.9f);
+  EXPECT_FLOAT_EQ(default_light_total({0.2f, 0.5f, 0.1f}), 0.5f);
+  EXPECT_FLOAT_EQ(default_light_total({0.9f, 0.f, 0.f}), 0.3f);
+  // Through the rig: a dim, non-zero ambient is kept and the lights share 0.9.
+  SceneDesc scene;
+  scene.materials.emplace_back();
+  scene.spheres.push_back({{{0.f, 0.f, 0.f}, 1.f}, 0});
+  scene.ambient = {0.05f, 0.02f, 0.f};
+  add_default_view(scene, 64, 48);
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.ambient.x, 0.05f);
+  EXPECT_FLOAT_EQ(scene.lights[0].color.x + scene.lights[1].color.x, 0.9f);
+}
+
 TEST(AutoView, KeepsWhatTheSceneHasAndLightsItsCamera) {
   SceneDesc scene;
   CameraDesc camera{};
