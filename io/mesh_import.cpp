@@ -266,7 +266,9 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
     // as welding every corner, for a sixth of the lookups in a closed mesh.
     constexpr std::uint32_t kUnwelded = ~std::uint32_t{0};
     std::vector<std::uint32_t> welded_vertex;
-    if (smooth_missing && part.vertex_count < 3 * part.triangle_count) welded_vertex.assign(part.vertex_count, kUnwelded);
+    if (smooth_missing && part.vertex_count < 3 * part.triangle_count) {
+      welded_vertex.assign(part.vertex_count, kUnwelded);
+    }
     const auto weld = [&](std::uint32_t v, const Vec3<float>& p) {
       if (welded_vertex.empty()) return welder.index_of(p);
       if (welded_vertex[v] == kUnwelded) welded_vertex[v] = welder.index_of(p);

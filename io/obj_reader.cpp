@@ -214,7 +214,8 @@ class LineScanner {
 
   // Cuts the line before a '#' that follows a blank (and the blanks before it).
   void end_at_trailing_comment() {
-    for (std::size_t i = line_text_.find('#', scan_ + 1); i != std::string_view::npos; i = line_text_.find('#', i + 1)) {
+    for (std::size_t i = line_text_.find('#', scan_ + 1); i != std::string_view::npos;
+         i = line_text_.find('#', i + 1)) {
       if (!is_blank(line_text_[i - 1])) continue;
       warnings_.warn(joined({"trailing comment in ", file_}), {std::string(file_), line_, i + 1},
                      "end of line (in OBJ and MTL a comment is a line of its own)",

@@ -96,8 +96,7 @@ class ExtentBalls {
   }
 
   Bounds bounds() const {
-    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); },
-                  [](const Bounds& a, const Bounds& b) { return joined(a, b); });
+    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); }, joined);
   }
 
  private:
