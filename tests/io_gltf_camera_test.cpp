@@ -101,6 +101,11 @@ TEST(GltfCamera, BadValuesAreErrorsNamingTheirPath) {
             "t.gltf: expected cameras[0].perspective.yfov to be a number of radians in (0, pi)");
   EXPECT_EQ(error_of(R"({"nodes": [{"scale": [0, 0, 0], "camera": 0}], )" + lens + "}"),
             "t.gltf: expected nodes[0] to be a transform that keeps a camera's view and up apart");
+  // A yfov just below pi is a valid number, but its view across rounds to
+  // 180 degrees in float: an error, as quiver's camera needs less.
+  EXPECT_EQ(error_of(R"({"nodes": [{"camera": 0}], "cameras": [{"type": "perspective", )"
+                     R"("perspective": {"yfov": 3.1415926535}}]})"),
+            "t.gltf: expected cameras[0].perspective to be a view narrower than 180 degrees across");
 }
 
 // Assimp's own test file: a perspective camera at (0.5, 0.5, 3) looking

@@ -119,6 +119,11 @@ TEST(GltfLights, SpotsKeepTheirConeAndRangesAreNamed) {
   const GltfLights plain = read(with_lights(R"([{"type": "spot", "spot": {}}])", "[" + names_light(0) + "]"));
   EXPECT_FLOAT_EQ(plain.lights[0].light.cone_inner_cos, 1.f);
   EXPECT_FLOAT_EQ(plain.lights[0].light.cone_outer_cos, float(std::cos(std::numbers::pi / 4)));
+  // The widest cone glTF allows, pi/2 (as JSON writes the double), is kept.
+  const GltfLights widest = read(with_lights(R"([{"type": "spot", "spot": {"outerConeAngle": 1.5707963267948966}}])",
+                                             "[" + names_light(0) + "]"));
+  ASSERT_EQ(widest.lights.size(), 1u);
+  EXPECT_FLOAT_EQ(widest.lights[0].light.cone_outer_cos, float(std::cos(std::numbers::pi / 2)));
 }
 
 TEST(GltfLights, BadValuesNameTheirPath) {

@@ -97,6 +97,9 @@ TEST(ImageSignature, BytesOfNoFormatAreNoFormat) {
         "\0\0\0\x0CjP  \r\n\x87\n"sv}) {
     EXPECT_EQ(image_format_of(head, ".png"), std::nullopt) << ::testing::PrintToString(std::string(head));
   }
+  // A head that ends after "P6" is not a pixel map, whatever lies past its end.
+  const std::string buffer = "P6 2 2 255 ";
+  EXPECT_EQ(image_format_of(std::string_view(buffer).substr(0, 2), ".ppm"), std::nullopt);
 }
 
 }  // namespace

@@ -696,6 +696,29 @@ TEST(MeshFileCheck, StlAndGltfStateTheirSizesTruthfully) {
       << import_error(gltf);
 }
 
+// The headers' own sizes: an STL of exactly its 84-byte header that states
+// a triangle is a wrong count (not a short header), and a GLB one byte short
+// of its 12-byte header is a bad header (nothing past it is read).
+TEST(MeshFileCheck, HeadersAtTheirExactSizesAndOneByteShort) {
+  std::string stl(84, '\0');
+  stl[80] = 1;
+  try {
+    check_stl(stl, "h.stl");
+    ADD_FAILURE() << "an 84-byte STL stating a triangle was accepted";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), "h.stl: byte 80: expected a binary STL's triangle count N with 84 + 50 N "
+                                         "= 84, the file's size (or an ASCII STL starting 'solid'), found 1");
+  }
+  const std::string glb = std::string("glTF") + std::string("\x02\0\0\0", 4) + std::string("\x0b\0\0", 3);
+  ASSERT_EQ(glb.size(), 11u);
+  try {
+    check_gltf(glb, "h.glb", ".", PathRule{}, true, 1u << 20, 1000);
+    ADD_FAILURE() << "an 11-byte GLB was accepted";
+  } catch (const ParseError& error) {
+    EXPECT_EQ(std::string(error.what()), "h.glb: byte 0: expected a GLB header starting 'glTF', found 'glTF'");
+  }
+}
+
 // A binary STL may state up to kMaxObjTriangles triangles, not one more:
 // the bytes of a file of exactly that many, mapped without being touched
 // (anonymous pages read as zeros; only the count is written).
