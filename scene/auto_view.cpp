@@ -1,6 +1,7 @@
 #include "scene/auto_view.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -25,31 +26,36 @@ namespace {
 double least(double a, double b) { return b < a || (b == a && std::signbit(b)) ? b : a; }
 double greatest(double a, double b) { return a < b || (a == b && !std::signbit(b)) ? b : a; }
 
-// Axis-aligned bounds in double of the points fed to it (finite ones only).
-struct Bounds {
-  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-  double hi[3] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                  -std::numeric_limits<double>::infinity()};
+// Ranges [lo, hi] of values along N axes (lo > hi: none yet), grown with
+// least and greatest.
+template <std::size_t N>
+struct Ranges {
+  std::array<double, N> lo, hi;
+  Ranges() {
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+  }
+  void include(std::size_t k, double low, double high) {
+    lo[k] = least(lo[k], low);
+    hi[k] = greatest(hi[k], high);
+  }
+};
 
+// a's ranges grown by b's: a fold's join (Ranges or a type built on them).
+template <class R>
+R joined(R a, const R& b) {
+  for (std::size_t k = 0; k < a.lo.size(); ++k) a.include(k, b.lo[k], b.hi[k]);
+  return a;
+}
+
+// Axis-aligned bounds in double of the points fed to it (finite ones only).
+struct Bounds : Ranges<3> {
   void add(const Vec3<float>& p, double margin = 0.0) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(margin)) return;
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = least(lo[a], double(p[a]) - margin);
-      hi[a] = greatest(hi[a], double(p[a]) + margin);
-    }
+    for (int a = 0; a < 3; ++a) include(std::size_t(a), double(p[a]) - margin, double(p[a]) + margin);
   }
   bool empty() const { return lo[0] > hi[0]; }
 };
-
-Bounds joined(const Bounds& a, const Bounds& b) {
-  Bounds j;
-  for (int k = 0; k < 3; ++k) {
-    j.lo[k] = least(a.lo[k], b.lo[k]);
-    j.hi[k] = greatest(a.hi[k], b.hi[k]);
-  }
-  return j;
-}
 
 // Balls that together cover every bounded primitive: each kind's extent,
 // and the corners of each instance's placed mesh box (the meshes' boxes
@@ -96,7 +102,8 @@ class ExtentBalls {
   }
 
   Bounds bounds() const {
-    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); }, joined);
+    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); },
+                  joined<Bounds>);
   }
 
  private:
@@ -281,31 +288,19 @@ double fitting_distance(const Balls& balls, const Vec3<double>& target, const Vi
 // m < z, spans the tangents (x z -+ m sqrt(x^2 + z^2 - m^2)) / (z^2 - m^2).
 template <class Balls>
 Vec3<double> centred_target(const Balls& balls, const Vec3<double>& target, const ViewAxes& axes, double distance) {
-  struct Span {  // of the tangents across and up
-    double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    double hi[2] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  };
+  using Span = Ranges<2>;  // of the tangents across and up
   const auto fold = [&](Span& span, const Vec3<float>& p, double margin) {
     const Vec3<double> q = to_double(p) - target;
     const double z = distance - dot(q, axes.toward_eye);
     if (!std::isfinite(dot(q, q)) || !std::isfinite(margin) || !(z > margin)) return;
     const double across[2] = {dot(q, axes.right), dot(q, axes.up)};
-    for (int k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < 2; ++k) {
       const double x = across[k], spread = margin * std::sqrt(x * x + z * z - margin * margin);
       const double scale = 1.0 / (z * z - margin * margin);
-      span.lo[k] = least(span.lo[k], (x * z - spread) * scale);
-      span.hi[k] = greatest(span.hi[k], (x * z + spread) * scale);
+      span.include(k, (x * z - spread) * scale, (x * z + spread) * scale);
     }
   };
-  const auto combine = [](const Span& a, const Span& b) {
-    Span j;
-    for (int k = 0; k < 2; ++k) {
-      j.lo[k] = least(a.lo[k], b.lo[k]);
-      j.hi[k] = greatest(a.hi[k], b.hi[k]);
-    }
-    return j;
-  };
-  const Span span = balls.reduce(Span{}, fold, combine);
+  const Span span = balls.reduce(Span{}, fold, joined<Span>);
   if (!(span.lo[0] <= span.hi[0]) || !(span.lo[1] <= span.hi[1])) return target;
   return target + axes.right * (0.5 * (span.lo[0] + span.hi[0]) * distance) +
          axes.up * (0.5 * (span.lo[1] + span.hi[1]) * distance);
