@@ -136,6 +136,18 @@ TEST(ProgressBar, TheTimeLeftFollowsThePaceOfTheWork) {
   EXPECT_EQ(count(text, '\n'), 5u) << text;
 }
 
+// A second left exactly is the first figure of one decimal (the two-decimal
+// form is for less than a second).
+TEST(ProgressBar, OneSecondLeftReadsWithOneDecimal) {
+  Capture out;
+  ASSERT_NE(out.file(), nullptr);
+  ProgressBar bar(out.file(), ProgressStyle::log, 0s, 0s);
+  std::this_thread::sleep_for(1s);  // the elapsed time reaches the work's second
+  bar.update(1, 4, 0.5, 1.0);       // half the work in one second: one second left
+  const std::string text = out.text();
+  EXPECT_NE(text.find(", ETA 1.0 s\n"), std::string::npos) << text;
+}
+
 TEST(ProgressBar, ALogGetsWholeLinesAndNothingAtTheEnd) {
   bool drawn = false;
   const std::string text = two_updates_and_finish(ProgressStyle::log, drawn);

@@ -230,6 +230,13 @@ TEST(BvhBuild, RejectsBadOptionsAndEmptyInputGivesNoTree) {
   BvhBuildOptions bad_leaf;
   bad_leaf.max_leaf_size = kMaxLeafSize + 1;
   EXPECT_THROW(build_bvh(one, bad_leaf, order), std::invalid_argument);
+  bad_leaf.max_leaf_size = 0;
+  EXPECT_THROW(build_bvh(one, bad_leaf, order), std::invalid_argument);
+  for (const int ends : {1, int(kMaxLeafSize)}) {  // both ends of the range are leaf sizes
+    BvhBuildOptions leaf;
+    leaf.max_leaf_size = ends;
+    EXPECT_FALSE(build_bvh(one, leaf, order).empty()) << ends;
+  }
   EXPECT_TRUE(build_bvh(std::vector<Box>{}, BvhBuildOptions{}, order).empty());
   EXPECT_THROW(build_bvh(one, BvhBuildOptions{}, order, std::vector<std::uint8_t>{2}), std::invalid_argument);
   EXPECT_THROW(build_bvh(one, BvhBuildOptions{}, order, std::vector<std::uint8_t>{0, 1}), std::invalid_argument);

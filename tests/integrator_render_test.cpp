@@ -315,6 +315,9 @@ TEST(Render, ThreadCountAndTileSizeDoNotChangeTheImage) {
     settings.tile_size = 7;
     const RenderResult two = render(scene, settings);
     EXPECT_TRUE(same_bits(one.image.rgb, two.image.rgb)) << aa;
+    settings.tile_size = 1;  // the smallest tile: a pixel
+    const RenderResult pixels = render(scene, settings);
+    EXPECT_TRUE(same_bits(one.image.rgb, pixels.image.rgb)) << aa;
   }
 }
 

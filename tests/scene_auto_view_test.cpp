@@ -414,6 +414,15 @@ TEST(AutoView, AMeshIsSeenFromTheSideItsTopLeansTo) {
   const DefaultView straight = choose_default_view(upright);
   EXPECT_EQ(straight.front.z, 1.0) << straight.front_reason;
 
+  // Exactly kViewMeshTriangles triangles are a mesh; one fewer are not.
+  SceneDesc least;
+  add_square(least, {0.f, 0.f, 0.f}, 0, 2, 1.f, 4);
+  add_square(least, {0.f, 2.f, -0.75f}, 0, 2, 0.25f, 4);
+  ASSERT_EQ(least.triangles.size(), kViewMeshTriangles);
+  EXPECT_EQ(choose_default_view(least).front.z, -1.0);
+  least.triangles.erase(least.triangles.begin());
+  EXPECT_EQ(choose_default_view(least).front.z, 1.0);
+
   // Too few triangles to be a mesh (a hand-made scene): the default view.
   SceneDesc small;
   add_square(small, {0.f, 0.f, 0.f}, 0, 2, 1.f, 2);
