@@ -216,13 +216,14 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     const auto background_as_read = desc.background;
     const std::optional<quiver::DefaultView> default_view =
         quiver::set_view(desc, camera_flags, quiver::kDefaultImageSide, quiver::kDefaultImageSide);
+    quiver::SceneInfoContext context;
+    context.read = quiver::read_counts(desc);
     double build_ms = 0.0;
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
     desc.camera = camera_as_read;
     desc.lights = lights_as_read;
     desc.ambient = ambient_as_read;
     desc.background = background_as_read;
-    quiver::SceneInfoContext context;
     context.scene = scene_path;
     context.load_ms = load_ms;
     context.build_ms = build_ms;

@@ -74,10 +74,10 @@ void print_scene_warnings(const SceneDesc& desc) {
   for (const std::string& warning : desc.warnings) std::fprintf(stderr, "quiver: %s\n", warning.c_str());
 }
 
-Scene build_scene_timed(const SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
+Scene build_scene_timed(SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
                         double& build_ms) {
   const Clock::time_point start = Clock::now();
-  Scene built = build_named_scene(desc, options, scene);
+  Scene built = build_named_scene_releasing_triangles(desc, options, scene);
   build_ms = ms_since(start);
   return built;
 }

@@ -73,8 +73,10 @@ SceneDesc load_scene_timed(const std::string& scene, const SceneLoadOptions& opt
 // What the readers forgave (SceneDesc::warnings), one "quiver: " line each on stderr.
 void print_scene_warnings(const SceneDesc& desc);
 
-// build_scene, timed, its errors (bad material or texture indices) naming the scene.
-Scene build_scene_timed(const SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
+// build_scene, timed, its errors (bad material or texture indices) naming the
+// scene; desc.triangles is released while building (empty afterwards: a
+// command keeps the built scene, not a large mesh's description beside it).
+Scene build_scene_timed(SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
                         double& build_ms);
 
 // Reads and builds the scene for a checked render; throws UsageError when an

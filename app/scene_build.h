@@ -12,4 +12,8 @@ namespace quiver {
 // "<name>: <message>" (name empty: "the built-in scene").
 Scene build_named_scene(const SceneDesc& desc, const SceneBuildOptions& options, const std::string& name);
 
+// The same with build_scene_releasing_triangles: desc.triangles is empty afterwards.
+Scene build_named_scene_releasing_triangles(SceneDesc& desc, const SceneBuildOptions& options,
+                                            const std::string& name);
+
 }  // namespace quiver

@@ -85,12 +85,6 @@ std::string_view wrap_name(WrapMode wrap) {
   return "?";
 }
 
-ByKind<std::size_t> read_counts(const SceneDesc& desc) {
-  ByKind<std::size_t> counts;
-  for_each_kind([&]<class K>(K) { counts[kind_index(kind_tag<K>)] = (desc.*SceneEntries<K>::of).size(); });
-  return counts;
-}
-
 ByKind<std::size_t> layer_counts(const GeometryLayer& g) {
   ByKind<std::size_t> counts;
   g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) { counts[kind_index(kind_tag<K>)] = k.store.count; });
@@ -106,8 +100,7 @@ void write_row(std::ostream& out, std::string_view name, std::initializer_list<s
   out << "\n";
 }
 
-void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene) {
-  const auto read = read_counts(desc);
+void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene, const KindCounts& read) {
   const auto& reports = scene.counts.kinds;
   const auto names = kind_plurals();
   const auto opaque = layer_counts(scene.opaque);
@@ -292,6 +285,12 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
 
 }  // namespace
 
+KindCounts read_counts(const SceneDesc& desc) {
+  KindCounts counts{};
+  for_each_kind([&]<class K>(K) { counts[kind_index(kind_tag<K>)] = (desc.*SceneEntries<K>::of).size(); });
+  return counts;
+}
+
 std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& g) {
   std::array<std::size_t, kKindCount> bytes{};
   g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
@@ -321,7 +320,7 @@ void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& sce
   out << "scene           " << context.scene << "\n"
       << "load            " << milliseconds(context.load_ms) << "\n"
       << "build           " << milliseconds(context.build_ms) << "\n";
-  write_primitives(out, desc, scene);
+  write_primitives(out, desc, scene, context.read);
   write_face_tallies(out, desc);
   write_camera(out, scene, context.default_view);
   write_render_settings(out, desc.render);

@@ -21,18 +21,24 @@ namespace quiver {
 // GeometryLayer::memory_bytes().
 std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& layer);
 
+// Each kind's primitives as read (kind_index order).
+using KindCounts = std::array<std::size_t, kKindCount>;
+KindCounts read_counts(const SceneDesc& desc);
+
 struct SceneInfoContext {
   std::string scene;  // the file as named on the command line
   double load_ms = 0.0, build_ms = 0.0;
   std::optional<DefaultView> default_view;  // the file had no camera: the view added
   std::optional<std::size_t> peak_resident_bytes;  // the process's most resident memory, after load and build
+  KindCounts read{};  // read_counts of the scene as read, taken before its build released its triangles
 };
 
 // The most memory the process has held resident so far (getrusage's
 // ru_maxrss, which Linux gives in KiB), in bytes.
 std::size_t peak_resident_bytes();
 
-// desc is the scene as read (before any default view was added).
+// desc is the scene as read (before any default view was added), its
+// triangles perhaps released by the build (their count is context.read's).
 void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context);
 
 }  // namespace quiver

@@ -289,15 +289,25 @@ SceneInputs scene_inputs(const SceneDesc& desc, OriginOf origin_of, IsTransmissi
 
 // Every kind's stores in both layers, their BVHs, ids from 0 in the list's
 // order (opaque layer first), and the per-id material tables. Returns the
-// next free id.
-std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene) {
+// next free id. The triangle stores' descriptions are let go once they are
+// built (a BVH reorders them by their own columns), and with them
+// `release_triangles` when given.
+std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options, Scene& scene,
+                          std::vector<SceneTriangle>* release_triangles) {
   for_each_kind([&]<class K>(K) {
-    const KindInput<K>& input = inputs.kinds.of<K>();
+    KindInput<K>& input = inputs.kinds.of<K>();
     KindStore<K>& o = scene.opaque.kinds.of<K>();
     KindStore<K>& t = scene.transmissive.kinds.of<K>();
     BuildReport& report = scene.counts.kinds[kind_index(kind_tag<K>)];
     build_store<K>(input.opaque, report, o.store, o.origins);
     build_store<K>(input.transmissive, report, t.store, t.origins);
+    if constexpr (std::is_same_v<K, TriangleKind>) {
+      static_assert(ColumnsHoldEveryField<typename K::Store>, "the BVH reorder would read the released descriptions");
+      input.opaque.descs = {};
+      input.transmissive.descs = {};
+      inputs.polygon_triangles = {};
+      if (release_triangles != nullptr) std::vector<SceneTriangle>().swap(*release_triangles);
+    }
     if constexpr (K::bounded) {
       Bvh& bvh = scene.kind_bvhs[kind_index(kind_tag<K>)];
       index_stores(input, options, o.store, o.origins, t.store, t.origins, bvh);
@@ -347,13 +357,18 @@ void set_bounds(Scene& scene) {
   }
 }
 
-// Scene::object_id_base and instance_object_id_base from the lists as read.
-void set_object_id_bases(const SceneDesc& desc, Scene& scene) {
+// Scene::object_id_base from the lists as read; returns the next object id.
+std::uint64_t set_object_id_bases(const SceneDesc& desc, Scene& scene) {
   std::uint64_t next = 0;
   for_each_kind([&]<class K>(K) {
     scene.object_id_base[kind_index(kind_tag<K>)] = next;
     next += (desc.*SceneEntries<K>::of).size();
   });
+  return next;
+}
+
+// Scene::instance_object_id_base, the placed instances' object ids from `next` on.
+void set_instance_object_id_bases(const SceneDesc& desc, std::uint64_t next, Scene& scene) {
   std::vector<std::uint64_t> by_input(desc.instances.size());
   for (std::size_t j = 0; j < desc.instances.size(); ++j) {
     by_input[j] = next;
@@ -375,7 +390,11 @@ void set_scene_view(Scene& scene, const SceneDesc& desc) {
   scene.lights = desc.lights;
 }
 
-Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
+namespace {
+
+// build_scene, releasing `release_triangles` (desc.triangles or null) as build_stores says.
+Scene build_scene_from(const SceneDesc& desc, const SceneBuildOptions& options,
+                       std::vector<SceneTriangle>* release_triangles) {
   Scene scene;
   set_scene_view(scene, desc);
   scene.materials = desc.materials;
@@ -399,11 +418,22 @@ Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
   };
   auto is_transmissive = [&](std::size_t material) { return desc.materials[material].kt > 0.f; };
   SceneInputs inputs = scene_inputs(desc, origin_of, is_transmissive);
-  const std::int32_t next_id = build_stores(inputs, options, scene);
+  const std::uint64_t next_object_id = set_object_id_bases(desc, scene);
+  const std::int32_t next_id = build_stores(inputs, options, scene, release_triangles);
   build_instancing(desc, options, origin_of, is_transmissive, next_id, scene);
-  set_object_id_bases(desc, scene);
+  set_instance_object_id_bases(desc, next_object_id, scene);
   set_bounds(scene);
   return scene;
+}
+
+}  // namespace
+
+Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options) {
+  return build_scene_from(desc, options, nullptr);
+}
+
+Scene build_scene_releasing_triangles(SceneDesc& desc, const SceneBuildOptions& options) {
+  return build_scene_from(desc, options, &desc.triangles);
 }
 
 }  // namespace quiver

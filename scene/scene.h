@@ -182,4 +182,11 @@ void set_scene_view(Scene& scene, const SceneDesc& desc);
 // range, and what build_texture throws for a bad texture.
 Scene build_scene(const SceneDesc& desc, const SceneBuildOptions& options);
 
+// build_scene for a program that keeps only what was built: desc.triangles
+// (what mesh readers make, a large mesh's largest part) is released as soon
+// as the triangle stores hold its triangles, before their BVH is built, and
+// is empty afterwards; the rest of desc is unchanged. The same scene as
+// build_scene(desc) before the call.
+Scene build_scene_releasing_triangles(SceneDesc& desc, const SceneBuildOptions& options);
+
 }  // namespace quiver

@@ -80,7 +80,7 @@ TEST(SceneInfo, CountRows) {
   const SceneDesc desc = mixed_scene();
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
   const std::string report = out.str();
   // read, kept, non-finite, degenerate, opaque, transmissive
   EXPECT_EQ(row(report, "spheres"), (std::vector<std::size_t>{4, 2, 1, 1, 1, 1}));
@@ -104,7 +104,7 @@ TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
   desc.polygons.push_back(corner);
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
   const std::string report = out.str();
   EXPECT_EQ(row(report, "triangles"), (std::vector<std::size_t>{1, 2, 0, 0, 1, 1}));
   EXPECT_EQ(row(report, "polygons"), (std::vector<std::size_t>{2, 1, 0, 0, 1, 0}));
@@ -146,7 +146,7 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   desc.face_tallies = {{"box.obj", 3, 1}, {"whole.ply", 2, 2}};
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
   const std::string report = out.str();
   for (const char* line :
        {"lights          5\n", "  0: point position (1 2 3) colour (1 1 1)\n",
@@ -169,10 +169,10 @@ TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
   const SceneDesc desc = mixed_scene();
   const Scene scene = build_scene(desc, {});
   std::ostringstream without;
-  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt});
+  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
   EXPECT_EQ(without.str().find("peak memory"), std::string::npos);
   std::ostringstream with;
-  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789});
+  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc)});
   const std::string line = "peak memory     123456789 bytes resident at most (loading and building), for " +
                            std::to_string(scene.memory_bytes() + scene.acceleration_bytes()) +
                            " kept (memory and acceleration totals)\n";

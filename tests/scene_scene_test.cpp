@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -157,7 +159,8 @@ TEST(Scene, ThreeVertexPolygonsAreBuiltAsTrianglesThatKeepTheirOrigin) {
 // triangle 3, the polygon 4, the cone 5), then each instance's mesh
 // triangles in the order the instances were read, whichever layer, store
 // order or BVH order the builders gave them.
-TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
+// Every kind in both layers, and instances of two meshes.
+SceneDesc every_kind_scene() {
   SceneDesc desc;
   desc.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 45.f, 0.f, 8, 8};
   desc.materials.resize(2);
@@ -181,6 +184,11 @@ TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
   AffineTransform moved{};
   moved.m = {1.f, 0.f, 0.f, 5.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f};
   desc.instances = {{1, AffineTransform{}}, {0, moved}, {1, moved}};
+  return desc;
+}
+
+TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
+  const SceneDesc desc = every_kind_scene();
   const Scene scene = build_scene(desc, {});
   // Every hit id: the stores' (material_of_id covers them), then each instance's.
   std::vector<std::int32_t> hit_ids;
@@ -205,6 +213,62 @@ TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
   // The first instance (of the large mesh) starts at 6, the second (small) at 11, the third at 14.
   std::sort(firsts.begin(), firsts.end());
   EXPECT_EQ(firsts, (std::vector<std::uint64_t>{6, 11, 14}));
+}
+
+template <class A, class B>
+bool same_bits(const A& a, const B& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); });
+}
+
+// Releasing the triangles' descriptions while building changes nothing built:
+// the same stores bit for bit in both layers (in leaf order, under the same
+// BVH), origins, object ids and tables; desc keeps everything else.
+TEST(Scene, ReleasingTheTrianglesBuildsTheSameScene) {
+  SceneDesc desc = every_kind_scene();
+  // Enough triangles in both layers for a BVH (their reorder reads the stores' columns only).
+  for (int k = 0; k < 300; ++k) {
+    SceneTriangle t;
+    const float x = float(k % 20), y = float(k / 20);
+    t.triangle.p = {Vec3<float>{x, y, 1.f}, Vec3<float>{x + 1.f, y, 1.f}, Vec3<float>{x, y + 1.f, 1.5f}};
+    t.triangle.normals = std::array{Vec3<float>{0.f, 0.f, 1.f}, Vec3<float>{0.f, 0.1f, 1.f}, Vec3<float>{0.1f, 0.f, 1.f}};
+    t.material = k % 3 == 0 ? 1 : 0;
+    desc.triangles.push_back(t);
+  }
+  ScenePolygon corner;  // built as a triangle
+  corner.polygon.vertices = {{0.f, 0.f, 2.f}, {1.f, 0.f, 2.f}, {0.f, 1.f, 2.f}};
+  corner.material = 1;
+  desc.polygons.push_back(corner);
+  const Scene kept = build_scene(desc, {});
+  ASSERT_FALSE(kept.bvh<TriangleKind>().empty());
+  const std::size_t polygons = desc.polygons.size(), instances = desc.instances.size();
+  const Scene released = build_scene_releasing_triangles(desc, {});
+  EXPECT_TRUE(desc.triangles.empty());
+  EXPECT_EQ(desc.triangles.capacity(), 0u);
+  EXPECT_EQ(desc.polygons.size(), polygons);
+  EXPECT_EQ(desc.instances.size(), instances);
+  for (bool transmissive : {false, true}) {
+    const auto& a = (transmissive ? kept.transmissive : kept.opaque).kinds.of<TriangleKind>();
+    const auto& b = (transmissive ? released.transmissive : released.opaque).kinds.of<TriangleKind>();
+    ASSERT_EQ(a.store.count, b.store.count);
+    EXPECT_GT(a.store.count, 100u);
+    EXPECT_EQ(a.store.source, b.store.source);
+    const auto columns_a = a.store.columns(), columns_b = b.store.columns();
+    ASSERT_EQ(columns_a.size(), columns_b.size());
+    for (std::size_t c = 0; c < columns_a.size(); ++c) EXPECT_TRUE(same_bits(*columns_a[c], *columns_b[c])) << c;
+    ASSERT_EQ(a.origins.size(), b.origins.size());
+    for (std::size_t i = 0; i < a.origins.size(); ++i) {
+      EXPECT_EQ(a.origins[i].material, b.origins[i].material);
+      EXPECT_EQ(a.origins[i].kind, b.origins[i].kind);
+      EXPECT_EQ(a.origins[i].index, b.origins[i].index);
+    }
+  }
+  EXPECT_TRUE(same_bits(kept.bvh<TriangleKind>().nodes, released.bvh<TriangleKind>().nodes));
+  EXPECT_EQ(kept.material_of_id, released.material_of_id);
+  EXPECT_EQ(kept.plain_of_id, released.plain_of_id);
+  EXPECT_EQ(kept.object_id_base, released.object_id_base);
+  EXPECT_EQ(kept.instance_object_id_base, released.instance_object_id_base);
+  EXPECT_EQ(kept.primitive_count(), released.primitive_count());
 }
 
 }  // namespace
