@@ -69,24 +69,8 @@ class RefineTile {
     return std::uint64_t(y) * std::uint64_t(target_.image.width) + std::uint64_t(x);
   }
 
-  // Stratum (i, j) at `side` of the pixel and its sample (header; the
-  // strata rule of anti_aliasing.h).
   StratumSample stratum(std::uint64_t pixel, int side, int i, int j) const {
-    if (target_.settings.aa.strata == AntiAliasing::Strata::grid) {
-      return StratumSample{i, j, (i + 0.5) / side, (j + 0.5) / side};
-    }
-    std::uint64_t number = 0;  // strata of sides 2, 4, ... before this side
-    for (int s = 2; s < side; s *= 2) number += std::uint64_t(s) * std::uint64_t(s);
-    number += std::uint64_t(j) * std::uint64_t(side) + std::uint64_t(i);
-    return StratumSample{i, j, (i + double(hash_uniform(seed_, pixel, 2 * number))) / side,
-                         (j + double(hash_uniform(seed_, pixel, 2 * number + 1))) / side};
-  }
-
-  bool too_uncertain(const RefinedPixel& px) const {
-    const Vec3<double> mean = mean_clamped(px);
-    const Vec3<double> variance = (px.clamped_squares - mul(mean, px.clamped_sum)) * (1.0 / (px.count - 1));
-    const double largest = largest_channel(variance);
-    return largest > 0.0 && largest / px.count > double(threshold_) * double(threshold_);
+    return refine_stratum(seed_, pixel, side, i, j, target_.settings.aa.strata);
   }
 
   // 2 x 2 strata for every pixel of the tile and its apron, traced.
@@ -148,7 +132,7 @@ class RefineTile {
     for (int y = y0_; y < y1_; ++y) {
       for (int x = x0_; x < x1_; ++x) {
         const RefinedPixel& px = b_.pixels[local(x, y)];
-        bool more = too_uncertain(px) || meets_several_surfaces(px);
+        bool more = too_uncertain(px, threshold_) || meets_several_surfaces(px);
         const Vec3<double> mean = mean_clamped(px);
         const auto differs = [&](int nx, int ny) {
           if (nx < ex0_ || nx >= ex1_ || ny < ey0_ || ny >= ey1_) return false;
@@ -188,7 +172,7 @@ class RefineTile {
     if (!any) return false;
     trace_new(false);
     for (std::size_t k = 0; k < b_.pixels.size(); ++k) {
-      b_.uncertain[k] = b_.uncertain[k] && b_.pixels[k].side == 2 * side && too_uncertain(b_.pixels[k]);
+      b_.uncertain[k] = b_.uncertain[k] && b_.pixels[k].side == 2 * side && too_uncertain(b_.pixels[k], threshold_);
     }
     return true;
   }
@@ -206,9 +190,7 @@ class RefineTile {
     }
     for (int k = 0; k < count; ++k) {
       const StratumSample& st = b_.strata[px.first + k];
-      // The sub-stratum holding this stratum's sample (clamped against rounding).
-      const int ci = std::clamp(int(st.x * child), 2 * st.i, 2 * st.i + 1);
-      const int cj = std::clamp(int(st.y * child), 2 * st.j, 2 * st.j + 1);
+      const auto [ci, cj] = sub_stratum_holding(st, child);
       for (int b = 0; b < 2; ++b) {
         for (int a = 0; a < 2; ++a) {
           const int i = 2 * st.i + a, j = 2 * st.j + b;
@@ -235,6 +217,28 @@ class RefineTile {
 };
 
 }  // namespace
+
+StratumSample refine_stratum(std::uint64_t seed, std::uint64_t pixel, int side, int i, int j,
+                             AntiAliasing::Strata strata) {
+  if (strata == AntiAliasing::Strata::grid) return StratumSample{i, j, (i + 0.5) / side, (j + 0.5) / side};
+  std::uint64_t number = 0;  // strata of sides 2, 4, ... before this side
+  for (int s = 2; s < side; s *= 2) number += std::uint64_t(s) * std::uint64_t(s);
+  number += std::uint64_t(j) * std::uint64_t(side) + std::uint64_t(i);
+  return StratumSample{i, j, (i + double(hash_uniform(seed, pixel, 2 * number))) / side,
+                       (j + double(hash_uniform(seed, pixel, 2 * number + 1))) / side};
+}
+
+std::array<int, 2> sub_stratum_holding(const StratumSample& st, int child) {
+  // Clamped: a sample that rounds onto the next stratum's edge stays in st.
+  return {std::clamp(int(st.x * child), 2 * st.i, 2 * st.i + 1), std::clamp(int(st.y * child), 2 * st.j, 2 * st.j + 1)};
+}
+
+bool too_uncertain(const RefinedPixel& px, float threshold) {
+  const Vec3<double> mean = mean_clamped(px);
+  const Vec3<double> variance = (px.clamped_squares - mul(mean, px.clamped_sum)) * (1.0 / (px.count - 1));
+  const double largest = largest_channel(variance);
+  return largest > 0.0 && largest / px.count > double(threshold) * double(threshold);
+}
 
 void render_refined(const TileTarget& target, const PixelTile& tile, SampleBatch& batch, RefineBuffers& buffers) {
   RefineTile(target, tile, batch, buffers).render();

@@ -9,11 +9,13 @@
 // v are 1/2, and a refined pixel's coarser rays are dropped.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "integrator/tile_sampling.h"
+#include "scene/anti_aliasing.h"
 
 namespace quiver {
 
@@ -37,6 +39,19 @@ struct StratumSample {
   int i, j;
   double x, y;
 };
+
+// Stratum (i, j) at `side` of pixel number `pixel` and its sample (the
+// strata rule above; grid strata: the centre).
+StratumSample refine_stratum(std::uint64_t seed, std::uint64_t pixel, int side, int i, int j,
+                             AntiAliasing::Strata strata);
+
+// The stratum at side `child` (twice st's side) that holds st's sample, as
+// {i, j}: one of st's four, whatever the sample's rounding.
+std::array<int, 2> sub_stratum_holding(const StratumSample& st, int child);
+
+// The pixel's mean's standard error exceeds `threshold` in some clamped
+// channel (its count at least 2).
+bool too_uncertain(const RefinedPixel& px, float threshold);
 
 // A worker's buffers, reused tile after tile.
 struct RefineBuffers {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include <gtest/gtest.h>
@@ -213,6 +214,26 @@ TEST(ConeKernel, NegativeRadiiMeanInsideVisible) {
 }
 
 // ---- builder ----------------------------------------------------------------
+
+// The texture footprint: v runs along the axis over the height (a step up
+// the wall of a quarter of it is a quarter of v), u around it (a step
+// around the rim of an eighth of its circumference is an eighth of u), each
+// unchanged by a step along the other.
+TEST(ConeMapping, TheFootprintOfVFollowsTheHeightAndOfUTheAngle) {
+  BuildReport report;
+  const std::vector<ConeDesc> descs{{{0.f, 0.f, 0.f}, 2.f, {0.f, 4.f, 0.f}, 2.f}};  // a cylinder 4 high, radius 2
+  const ConeSoA store = build_cones(descs, report);
+  ASSERT_EQ(store.count, 1u);
+  const Hit<float> hit{6.f, 0.5f, 0.f, {1.f, 0.f, 0.f}, 0};
+  const float arc = 2.f * std::numbers::pi_v<float> * 2.f / 8.f;
+  const MappingQuery query{hit, 0, true, true, {2.f, 2.f, 0.f}, {{0.f, 1.f, 0.f}, {0.f, 0.f, arc}}, nullptr, nullptr};
+  SurfaceMapping mapped{};
+  map_surface(store, query, mapped);
+  EXPECT_FLOAT_EQ(mapped.dv[0], 0.25f);
+  EXPECT_NEAR(mapped.dv[1], 0.f, 1e-6f);
+  EXPECT_NEAR(mapped.du[0], 0.f, 1e-6f);
+  EXPECT_NEAR(std::fabs(mapped.du[1]), 0.125f, 1e-5f);
+}
 
 TEST(ConeBuild, DropsDegenerateAndNonFinite) {
   BuildReport report;

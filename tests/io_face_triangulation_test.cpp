@@ -45,5 +45,35 @@ TEST(FaceTriangulation, AConcaveFaceIsClippedIntoEarsThatKeepItsWinding) {
   EXPECT_DOUBLE_EQ(area, 3.0);
 }
 
+// The same L, a dart (an arrowhead quad) and a band notched at its end
+// (whose turns, each taken from the corner two back, all look convex),
+// written from every corner, so that the reflex corner comes at each place
+// in the list: every triangle keeps the face's winding and together they
+// cover it.
+TEST(FaceTriangulation, AReflexCornerAnywhereInTheListIsFound) {
+  const std::vector<std::vector<Vec3<float>>> faces{
+      {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}},  // the L, area 3
+      {{0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {0.5f, 1, 0}},                     // the dart, area 1.5
+      {{4, 2, 0}, {0, 2, 0}, {0, 1, 0}, {4, 0, 0}, {3, 1, 0}}};            // a notched band, area 5
+  const double areas[] = {3.0, 1.5, 5.0};
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const std::size_t n = faces[f].size();
+    for (std::size_t start = 0; start < n; ++start) {
+      std::vector<Vec3<float>> face;
+      for (std::size_t k = 0; k < n; ++k) face.push_back(faces[f][(start + k) % n]);
+      Triples triples;
+      triangulate_face(face, triples);
+      EXPECT_EQ(triples.size(), n - 2);
+      double area = 0.0;
+      for (const auto& t : triples) {
+        const float z = cross(face[t[1]] - face[t[0]], face[t[2]] - face[t[0]]).z;
+        EXPECT_GT(z, 0.f) << "face " << f << " from corner " << start;
+        area += 0.5 * z;
+      }
+      EXPECT_DOUBLE_EQ(area, areas[f]) << "face " << f << " from corner " << start;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace quiver

@@ -113,6 +113,15 @@ TEST(Isa, ResolveNamesAndRejectsUnknown) {
   EXPECT_TRUE(isa_supported(Isa::scalar));
 }
 
+// auto is the widest choice this CPU runs.
+TEST(Isa, TheBestSupportedIsTheWidest) {
+  const Isa best = best_supported_isa();
+  EXPECT_TRUE(isa_supported(best));
+  for (const Isa isa : kIsas) {
+    if (isa_supported(isa)) EXPECT_GE(lane_width(best), lane_width(isa)) << isa_name(isa);
+  }
+}
+
 TEST(Isa, EveryUnitRunsAChoiceOfItsWidth) {
   for (KernelUnit unit : kKernelUnits) {
     EXPECT_EQ(lane_width(isa_of(unit)), lane_width(unit)) << kernel_unit_name(unit);
