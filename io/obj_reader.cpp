@@ -15,6 +15,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <span>
@@ -139,6 +140,7 @@ class LineScanner {
   // Where token stands, for errors found once what it names is read.
   FilePosition position_of(const Token& token) const { return {std::string(file_), line_, token.column}; }
   std::string_view file() const { return file_; }
+  std::string_view text() const { return text_; }
 
   // Once next_statement() returned false: the position past the last byte.
   [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
@@ -419,6 +421,33 @@ struct ObjCorner {
   std::size_t position = 0, uv = 0, normal = 0;
 };
 
+// How many lines start (after blanks) with each element statement: room to
+// reserve for what the reader will keep, so its lists are not regrown
+// (and their memory faulted in again) as the file is read. A guess only:
+// the reader checks each statement itself.
+struct ObjElementCounts {
+  std::size_t v = 0, vt = 0, vn = 0, f = 0;
+};
+
+ObjElementCounts count_elements(std::string_view text) {
+  ObjElementCounts counts;
+  for (std::size_t at = 0; at < text.size();) {
+    while (at < text.size() && is_blank(text[at])) ++at;
+    const char first = at < text.size() ? text[at] : '\0';
+    const char second = at + 1 < text.size() ? text[at + 1] : '\0';
+    if (first == 'v') {
+      if (is_blank(second)) ++counts.v;
+      if (second == 't') ++counts.vt;
+      if (second == 'n') ++counts.vn;
+    } else if (first == 'f' && is_blank(second)) {
+      ++counts.f;
+    }
+    const void* end = std::memchr(text.data() + at, '\n', text.size() - at);
+    at = end == nullptr ? text.size() : std::size_t(static_cast<const char*>(end) - text.data()) + 1;
+  }
+  return counts;
+}
+
 // A corner's form: which of vt and vn it gives (v alone is 0).
 constexpr int kCornerGivesUv = 1;
 constexpr int kCornerGivesNormal = 2;
@@ -434,6 +463,7 @@ class ObjReader {
         crease_angle_degrees_(crease_angle_degrees) {}
 
   SceneDesc run() {
+    reserve_for(count_elements(scan_.text()));
     while (scan_.next_statement()) {
       const Token keyword = scan_.take("an OBJ statement");
       const std::string_view k = keyword.text;
@@ -511,6 +541,16 @@ class ObjReader {
   }
 
  private:
+  // Room for the counted elements, within the reader's bounds (each face at least a triangle).
+  void reserve_for(const ObjElementCounts& counts) {
+    positions_.reserve(std::min(counts.v, kMaxObjVertices));
+    uvs_.reserve(std::min(counts.vt, kMaxObjVertices));
+    normals_.reserve(std::min(counts.vn, kMaxObjVertices));
+    const std::size_t triangles = std::min(counts.f, triangle_budget_);
+    scene_.triangles.reserve(triangles);
+    triangle_vertices_.reserve(triangles);
+  }
+
   // Triangles of faces without `vn` get angle-weighted vertex normals over
   // the triangles sharing each `v` (geometry/vertex_normals.h); those with
   // `vn` keep theirs, and still count as neighbours.
