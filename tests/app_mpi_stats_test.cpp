@@ -1,6 +1,7 @@
 // quiver-mpi's rank reports and merged stats (app/mpi_stats.h): a report
 // survives its bytes; idle time, efficiency and the tile counts add up.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -51,6 +52,17 @@ TEST(MpiStats, ARankReportSurvivesItsBytes) {
   bytes.resize(bytes.size() - 8);
   EXPECT_THROW(decode_rank_report(bytes), std::invalid_argument);
   EXPECT_THROW(decode_rank_report(std::vector<std::byte>(3)), std::invalid_argument);
+  // Shorter than its fixed part (a report without waves): the size is wrong, nothing past it is read.
+  const std::vector<std::byte> no_waves = encode_rank_report(RankReport{});
+  EXPECT_EQ(decode_rank_report(no_waves).stats.waves.size(), 0u);
+  for (std::size_t words = 0; words < no_waves.size() / 8; ++words) {
+    try {
+      decode_rank_report(std::span(no_waves).first(8 * words));
+      ADD_FAILURE() << words << " words were read as a report";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_STREQ(error.what(), "rank report: wrong size") << words << " words";
+    }
+  }
 }
 
 TEST(MpiStats, EfficiencyIsBusyTimeOverEveryThreadsTimeAndRaysAddUp) {

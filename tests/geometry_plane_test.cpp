@@ -81,11 +81,12 @@ TEST(PlaneBuild, DropsDegenerateAndNonFinite) {
                                   {{0, 0, 0}, {0, kInf, 0}},
                                   {{0, 0, 0}, {1e-30f, 0, 0}},
                                   {{0, 0, 0}, {3e38f, 3e38f, 0}},
-                                  {{0, 1, 0}, {0, 3, 0}}},
+                                  {{0, 1, 0}, {0, 3, 0}},
+                                  {{3e38f, 3e38f, 0}, {1, 1, 0}}},  // n.p = 4.2e38 overflows float
                                  &report);
   EXPECT_EQ(soa.size(), 1u);
   EXPECT_EQ(report.kept, 1u);
-  EXPECT_EQ(report.dropped_non_finite, 2u);
+  EXPECT_EQ(report.dropped_non_finite, 3u);
   // Zero normal; 1e-30 whose squared length underflows; finite components
   // whose length overflows (dividing by it would give a zero normal).
   EXPECT_EQ(report.dropped_degenerate, 3u);
@@ -93,6 +94,11 @@ TEST(PlaneBuild, DropsDegenerateAndNonFinite) {
   EXPECT_FLOAT_EQ(soa.d[0], -1.f);
   EXPECT_EQ(soa.py[0], 1.f);  // the point as given
   for (float v : soa.nx) EXPECT_TRUE(std::isfinite(v));
+  for (float v : soa.d) EXPECT_TRUE(std::isfinite(v));
+  // What the store holds counts every column and the source indices.
+  std::size_t held = bytes_of(soa.source);
+  for (const AlignedFloats* c : soa.columns()) held += bytes_of(*c);
+  EXPECT_EQ(soa.memory_bytes(), held);
 }
 
 // A tilted plane and rays toward it from near its point, the whole case

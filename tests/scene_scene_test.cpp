@@ -218,7 +218,9 @@ TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
 template <class A, class B>
 bool same_bits(const A& a, const B& b) {
   return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-                    [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); });
+                    [](float x, float y) {
+                      return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y);
+                    });
 }
 
 // Releasing the triangles' descriptions while building changes nothing built:
@@ -231,7 +233,8 @@ TEST(Scene, ReleasingTheTrianglesBuildsTheSameScene) {
     SceneTriangle t;
     const float x = float(k % 20), y = float(k / 20);
     t.triangle.p = {Vec3<float>{x, y, 1.f}, Vec3<float>{x + 1.f, y, 1.f}, Vec3<float>{x, y + 1.f, 1.5f}};
-    t.triangle.normals = std::array{Vec3<float>{0.f, 0.f, 1.f}, Vec3<float>{0.f, 0.1f, 1.f}, Vec3<float>{0.1f, 0.f, 1.f}};
+    t.triangle.normals =
+        std::array{Vec3<float>{0.f, 0.f, 1.f}, Vec3<float>{0.f, 0.1f, 1.f}, Vec3<float>{0.1f, 0.f, 1.f}};
     t.material = k % 3 == 0 ? 1 : 0;
     desc.triangles.push_back(t);
   }
