@@ -416,7 +416,10 @@ Scene build_scene_from(const SceneDesc& desc, const SceneBuildOptions& options,
     }
     return PrimitiveOrigin{static_cast<std::uint32_t>(material), kind, static_cast<std::uint32_t>(index)};
   };
-  auto is_transmissive = [&](std::size_t material) { return desc.materials[material].kt > 0.f; };
+  // Bounded: the layer is asked before origin_of checks the index.
+  auto is_transmissive = [&](std::size_t material) {
+    return material < desc.materials.size() && desc.materials[material].kt > 0.f;
+  };
   SceneInputs inputs = scene_inputs(desc, origin_of, is_transmissive);
   const std::uint64_t next_object_id = set_object_id_bases(desc, scene);
   const std::int32_t next_id = build_stores(inputs, options, scene, release_triangles);
