@@ -264,6 +264,11 @@ TEST(TomlReader, ASpotLightsConeInDegrees) {
   EXPECT_FLOAT_EQ(scene.lights[0].cone_outer_cos, float(std::cos(30.0 * std::numbers::pi / 180.0)));
   EXPECT_FLOAT_EQ(scene.lights[1].cone_inner_cos, 1.f);
   EXPECT_FLOAT_EQ(scene.lights[1].cone_outer_cos, float(std::cos(std::numbers::pi / 4.0)));
+  // The widest cone, a half-space: 90 degrees is in (0, 90].
+  const SceneDesc widest = parse("[[lights]]\ntype = \"spot\"\nposition = [0, 4, 0]\ndirection = [0, -1, 0]\n"
+                                 "outer_angle = 90\n" + std::string(kSphere));
+  ASSERT_EQ(widest.lights.size(), 1u);
+  EXPECT_NEAR(widest.lights[0].cone_outer_cos, 0.f, 1e-7f);
 }
 
 // ---- errors, each at its position ----
@@ -398,6 +403,13 @@ TEST(TomlReader, AntiAliasingModeIsCheckedAtItsValue) {
                        "found 'bogus') (aa in [render])",
                        "found '\"bogus\"'"));
   EXPECT_TRUE(error_at("[render]\naa = 'grid:0'\n", 2, 6, "rays per side: expected an integer in [1, 64], found '0'"));
+  // At most 64 bytes: a mode padded with zeros to exactly 64 is read, one byte more is not.
+  const std::string mode = "adaptive:0.1" + std::string(64 - 14, '0') + ":2";
+  ASSERT_EQ(mode.size(), 64u);
+  const SceneDesc padded = parse("[render]\naa = \"" + mode + "\"\n" + std::string(kSphere));
+  ASSERT_TRUE(padded.render.aa.has_value());
+  EXPECT_EQ(padded.render.aa->mode, AntiAliasing::Mode::adaptive);
+  EXPECT_TRUE(error_at("[render]\naa = \"" + mode + "0\"\n", 2, 6, "a non-empty string of at most 64 bytes"));
   EXPECT_TRUE(error_at("[render]\naa = \"adaptive:-1:2\"\n", 2, 6, "threshold: expected a finite number >= 0"));
   for (const char* mode : {"none", "grid:3", "jitter:2", "adaptive:0.05:3", "corners"}) {
     const SceneDesc scene = parse("[render]\naa = \"" + std::string(mode) + "\"\n" + std::string(kSphere));
