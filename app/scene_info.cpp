@@ -13,10 +13,6 @@ namespace quiver {
 
 namespace {
 
-// Per kind, in list order (geometry/kinds.h).
-template <class T>
-using ByKind = std::array<T, kKindCount>;
-
 ByKind<std::string_view> kind_plurals() {
   ByKind<std::string_view> names;
   for_each_kind([&]<class K>(K) { names[kind_index(kind_tag<K>)] = K::plural; });
@@ -100,7 +96,7 @@ void write_row(std::ostream& out, std::string_view name, std::initializer_list<s
   out << "\n";
 }
 
-void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene, const KindCounts& read) {
+void write_primitives(std::ostream& out, const SceneDesc& desc, const Scene& scene, const ByKind<std::size_t>& read) {
   const auto& reports = scene.counts.kinds;
   const auto names = kind_plurals();
   const auto opaque = layer_counts(scene.opaque);
@@ -285,14 +281,14 @@ void write_acceleration(std::ostream& out, const Scene& scene) {
 
 }  // namespace
 
-KindCounts read_counts(const SceneDesc& desc) {
-  KindCounts counts{};
+ByKind<std::size_t> read_counts(const SceneDesc& desc) {
+  ByKind<std::size_t> counts{};
   for_each_kind([&]<class K>(K) { counts[kind_index(kind_tag<K>)] = (desc.*SceneEntries<K>::of).size(); });
   return counts;
 }
 
-std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& g) {
-  std::array<std::size_t, kKindCount> bytes{};
+ByKind<std::size_t> memory_by_kind(const GeometryLayer& g) {
+  ByKind<std::size_t> bytes{};
   g.kinds.for_each([&]<class K>(K, const KindStore<K>& k) {
     bytes[kind_index(kind_tag<K>)] = k.store.memory_bytes() + bytes_of(k.origins);
   });

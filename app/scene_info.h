@@ -16,21 +16,23 @@
 
 namespace quiver {
 
-// Bytes of one layer's stores per kind, indexed by PrimitiveKind: the SoA
-// columns' capacity plus the source and origin arrays. Sums to
-// GeometryLayer::memory_bytes().
-std::array<std::size_t, kKindCount> memory_by_kind(const GeometryLayer& layer);
+// Per kind, in list order (geometry/kinds.h), indexed by PrimitiveKind.
+template <class T>
+using ByKind = std::array<T, kKindCount>;
 
-// Each kind's primitives as read (kind_index order).
-using KindCounts = std::array<std::size_t, kKindCount>;
-KindCounts read_counts(const SceneDesc& desc);
+// Bytes of one layer's stores per kind: the SoA columns' capacity plus the
+// source and origin arrays. Sums to GeometryLayer::memory_bytes().
+ByKind<std::size_t> memory_by_kind(const GeometryLayer& layer);
+
+// Each kind's primitives as read.
+ByKind<std::size_t> read_counts(const SceneDesc& desc);
 
 struct SceneInfoContext {
   std::string scene;  // the file as named on the command line
   double load_ms = 0.0, build_ms = 0.0;
   std::optional<DefaultView> default_view;  // the file had no camera: the view added
   std::optional<std::size_t> peak_resident_bytes;  // the process's most resident memory, after load and build
-  KindCounts read{};  // read_counts of the scene as read, taken before its build released its triangles
+  ByKind<std::size_t> read{};  // read_counts of the scene as read, taken before its build released its triangles
 };
 
 // The most memory the process has held resident so far (getrusage's

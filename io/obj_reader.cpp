@@ -140,7 +140,6 @@ class LineScanner {
   // Where token stands, for errors found once what it names is read.
   FilePosition position_of(const Token& token) const { return {std::string(file_), line_, token.column}; }
   std::string_view file() const { return file_; }
-  std::string_view text() const { return text_; }
 
   // Once next_statement() returned false: the position past the last byte.
   [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
@@ -460,10 +459,11 @@ class ObjReader {
         scan_(text, file, warnings_),
         find_library_(find_library),
         triangle_budget_(triangle_budget),
-        crease_angle_degrees_(crease_angle_degrees) {}
+        crease_angle_degrees_(crease_angle_degrees) {
+    reserve_for(count_elements(text));
+  }
 
   SceneDesc run() {
-    reserve_for(count_elements(scan_.text()));
     while (scan_.next_statement()) {
       const Token keyword = scan_.take("an OBJ statement");
       const std::string_view k = keyword.text;

@@ -26,6 +26,7 @@
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "scene/auto_view.h"
+#include "tests/support/same_bits.h"
 
 namespace quiver {
 namespace {
@@ -42,9 +43,7 @@ RenderSettings small_settings(int w, int h, const char* aa = "none") {
   return s;
 }
 
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
+using quiver::testing::same_bits;
 
 // A smooth octahedron with per-vertex normals and UVs, textured.
 void add_octahedron(SceneDesc& scene, const Vec3<float>& c, float r, std::size_t material) {

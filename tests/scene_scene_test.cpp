@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
-#include <cstdint>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -14,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/primitive_bounds.h"
+#include "tests/support/same_bits.h"
 
 namespace quiver {
 namespace {
@@ -215,13 +214,7 @@ TEST(Scene, ObjectIdsNumberEveryPrimitiveOnceOverTheWholeScene) {
   EXPECT_EQ(firsts, (std::vector<std::uint64_t>{6, 11, 14}));
 }
 
-template <class A, class B>
-bool same_bits(const A& a, const B& b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-                    [](float x, float y) {
-                      return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y);
-                    });
-}
+using quiver::testing::same_bits;
 
 // Releasing the triangles' descriptions while building changes nothing built:
 // the same stores bit for bit in both layers (in leaf order, under the same
