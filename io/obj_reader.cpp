@@ -1,12 +1,16 @@
-// OBJ/MTL reader: one strict pass over the text builds the scene. A line
-// scanner reads the OBJ text statement by statement (and each MTL library
-// when an `mtllib` first names it), checks each statement as it stores it
-// and reports the first bad one as ParseError with file:line:column (what
-// was expected, what was found): numbers (std::from_chars, finite, within
-// float range), indices against the elements defined so far, corner forms,
-// counts against the bounds of obj_reader.h (checked before each element is
-// stored, so nothing grows past them). Each face becomes triangles as soon
-// as it is read; materials and textures are added when a face first uses them.
+// OBJ/MTL reader: one strict pass over the text, in file order, builds the
+// scene. The plain vertex, uv, normal and face lines are parsed ahead in
+// chunks on the other threads (io/obj_lines.h) and stored here as they come;
+// every other statement (and all of a text with '\r' line ends) is read by
+// a line scanner (and each MTL library when an `mtllib` first names it),
+// which checks each statement as it stores it and reports the first bad one
+// as ParseError with file:line:column (what was expected, what was found):
+// numbers (std::from_chars, finite, within float range), indices against
+// the elements defined so far, corner forms, counts against the bounds of
+// obj_reader.h (checked before each element is stored, so nothing grows past
+// them). A parsed face whose indices or bounds fail goes to the scanner,
+// which reports it. Each face becomes triangles as soon as it is stored;
+// materials and textures are added when a face first uses them.
 // The text is read here rather than by an OBJ library, so that malformed
 // numbers are errors reported at file:line:column.
 #include "io/obj_reader.h"
@@ -25,10 +29,13 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "geometry/kinds/polygon.h"
 #include "geometry/vertex_normals.h"
 #include "io/creator_up_axis.h"
 #include "io/face_triangulation.h"
+#include "io/obj_lines.h"
 #include "io/parse_error.h"
 #include "io/reader_warnings.h"
 #include "io/text_file.h"
@@ -55,9 +62,9 @@ bool is_blank(char c) { return c == ' ' || c == '\t'; }
 // statement ends there; a NUL byte anywhere is an error.
 class LineScanner {
  public:
-  LineScanner(std::string_view text, std::string_view file, ReaderWarnings& warnings)
-      : text_(text), file_(file), warnings_(warnings) {
-    const std::size_t nul = text.find('\0');
+  // `nul` and `has_cr` as scan_obj_text finds them.
+  LineScanner(std::string_view text, std::string_view file, ReaderWarnings& warnings, std::size_t nul, bool has_cr)
+      : text_(text), file_(file), warnings_(warnings), has_cr_(has_cr) {
     if (nul != std::string_view::npos) {
       std::size_t line = 1, line_start = 0;
       for (std::size_t i = 0; i < nul; ++i) {
@@ -141,6 +148,29 @@ class LineScanner {
   FilePosition position_of(const Token& token) const { return {std::string(file_), line_, token.column}; }
   std::string_view file() const { return file_; }
 
+  // Lines may end at '\r': the text is scanned here alone, not in parallel.
+  bool has_cr() const { return has_cr_; }
+
+  // The next statement read is the one on the line starting at `offset`,
+  // line number `line`.
+  void seek(std::size_t offset, std::size_t line) {
+    next_ = offset;
+    line_ = line - 1;
+  }
+
+  // As after next_statement() returned false, `lines` lines read (text
+  // without '\r').
+  void finish_at_end(std::size_t lines) {
+    next_ = text_.size();
+    line_ = lines;
+    line_text_ = text_.substr(text_.rfind('\n') + 1);
+    scan_ = 0;
+    skip_blanks();
+    if (at_end_of_line() || line_text_[scan_] == '#') return;  // not a statement: kept whole
+    const std::size_t comment = trailing_comment();
+    if (comment != std::string_view::npos) line_text_ = line_text_.substr(0, statement_end(comment));
+  }
+
   // Once next_statement() returned false: the position past the last byte.
   [[noreturn]] void fail_at_end_of_file(std::string_view expected, std::string_view found) const {
     const bool ends_a_line = !text_.empty() && (text_.back() == '\n' || text_.back() == '\r');
@@ -148,46 +178,21 @@ class LineScanner {
     throw ParseError(file_, std::max<std::size_t>(line_, 1), line_text_.size() + 1, expected, found);
   }
 
-  // A finite float using the whole token (a leading '+' is allowed), the
-  // decimal value correctly rounded. A value too small for float becomes a
-  // signed zero; one too large, or of magnitude over 3.4e38, is an error.
+  // A number by read_obj_number's rules (io/obj_lines.h).
   float number(std::string_view what) {
     if (at_end_of_line()) fail_at_end_of_line(joined({"a number (", what, ")"}));
     const Token token = take({});
-    const char* first = token.text.data();
-    const char* last = first + token.text.size();
-    if (last - first > 1 && *first == '+' && first[1] != '-' && first[1] != '+') ++first;
-    float value = 0.f;
-    const auto [end, error] = std::from_chars(first, last, value);
-    if (error == std::errc::invalid_argument || end != last) fail_at(token, joined({"a number (", what, ")"}));
-    if (error == std::errc::result_out_of_range) {
-      double wide = 0.0;
-      const auto [wide_end, wide_error] = std::from_chars(first, last, wide);
-      if (wide_error != std::errc() || wide_end != last || std::fabs(wide) >= 1.0) {
-        fail_at(token, joined({"a number within float range (", what, ")"}));
-      }
-      value = std::signbit(wide) ? -0.f : 0.f;
+    const ObjNumber n = read_obj_number(token.text);
+    switch (n.fault) {
+      case ObjNumberFault::none: return n.value;
+      case ObjNumberFault::not_a_number: fail_at(token, joined({"a number (", what, ")"}));
+      case ObjNumberFault::outside_float_range: fail_at(token, joined({"a number within float range (", what, ")"}));
+      case ObjNumberFault::not_finite: fail_at(token, joined({"a finite number (", what, ")"}));
+      case ObjNumberFault::too_large: fail_at(token, joined({"a number from -3.4e38 to 3.4e38 (", what, ")"}));
+      case ObjNumberFault::long_exponent:
+        fail_at(token, joined({"a number with an exponent of at most 9 digits (", what, ")"}));
     }
-    if (!std::isfinite(value)) fail_at(token, joined({"a finite number (", what, ")"}));
-    if (std::fabs(value) > kLargestMeshCoordinate) {
-      fail_at(token, joined({"a number from -3.4e38 to 3.4e38 (", what, ")"}));
-    }
-    if (!exponent_has_at_most_9_digits(token.text)) {
-      fail_at(token, joined({"a number with an exponent of at most 9 digits (", what, ")"}));
-    }
-    return value;
-  }
-
-  // The decimal exponent, leading zeros aside, has at most 9 digits:
-  // longer ones are absurd whatever the value they give.
-  static bool exponent_has_at_most_9_digits(std::string_view token) {
-    std::size_t e = 0;  // a plain loop: most tokens are short and have no exponent
-    while (e < token.size() && token[e] != 'e' && token[e] != 'E') ++e;
-    if (e == token.size()) return true;
-    std::size_t i = e + 1;
-    if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
-    while (i < token.size() && token[i] == '0') ++i;
-    return token.size() - i <= 9;
+    fail_at(token, joined({"a number (", what, ")"}));
   }
 
   float number_in(std::string_view what, float min, float max, std::string_view range) {
@@ -213,25 +218,36 @@ class LineScanner {
     while (scan_ < line_text_.size() && is_blank(line_text_[scan_])) ++scan_;
   }
 
-  // Cuts the line before a '#' that follows a blank (and the blanks before it).
-  void end_at_trailing_comment() {
+  // Where a '#' that follows a blank starts a trailing comment, or npos.
+  std::size_t trailing_comment() const {
     for (std::size_t i = line_text_.find('#', scan_ + 1); i != std::string_view::npos;
          i = line_text_.find('#', i + 1)) {
-      if (!is_blank(line_text_[i - 1])) continue;
-      warnings_.warn(joined({"trailing comment in ", file_}), {std::string(file_), line_, i + 1},
-                     "end of line (in OBJ and MTL a comment is a line of its own)",
-                     quoted_token(line_text_.substr(i)), "the statement ends before it");
-      std::size_t end = i;
-      while (end > scan_ && is_blank(line_text_[end - 1])) --end;
-      line_text_ = line_text_.substr(0, end);
-      return;
+      if (is_blank(line_text_[i - 1])) return i;
     }
+    return std::string_view::npos;
+  }
+
+  // The statement's end: before the trailing comment at `comment` and the blanks before it.
+  std::size_t statement_end(std::size_t comment) const {
+    std::size_t end = comment;
+    while (end > scan_ && is_blank(line_text_[end - 1])) --end;
+    return end;
+  }
+
+  // Cuts the line before a trailing comment, with a warning.
+  void end_at_trailing_comment() {
+    const std::size_t i = trailing_comment();
+    if (i == std::string_view::npos) return;
+    warnings_.warn(joined({"trailing comment in ", file_}), {std::string(file_), line_, i + 1},
+                   "end of line (in OBJ and MTL a comment is a line of its own)", quoted_token(line_text_.substr(i)),
+                   "the statement ends before it");
+    line_text_ = line_text_.substr(0, statement_end(i));
   }
 
   std::string_view text_;
   std::string_view file_;
   ReaderWarnings& warnings_;
-  bool has_cr_ = text_.find('\r') != std::string_view::npos;  // else lines end at '\n' alone: found by memchr
+  bool has_cr_;  // else lines end at '\n' alone: found by memchr
   std::size_t next_ = 0;
   std::size_t line_ = 0;
   std::string_view line_text_;
@@ -317,7 +333,8 @@ void read_texture(LineScanner& scan, std::string_view keyword, const MtlLibrary&
 
 // Reads one MTL library into `materials`.
 void read_mtl(const MtlLibrary& library, MtlMaterials& materials, ReaderWarnings& warnings) {
-  LineScanner scan(library.text, library.file_name, warnings);
+  const ObjTextFacts facts = scan_obj_text(library.text);
+  LineScanner scan(library.text, library.file_name, warnings, facts.first_nul, facts.has_cr);
   MtlMaterial* current = nullptr;
   MtlMaterial repeated;  // a name defined before: checked, not kept
   constexpr float kNoLimit = std::numeric_limits<float>::max();
@@ -420,110 +437,25 @@ struct ObjCorner {
   std::size_t position = 0, uv = 0, normal = 0;
 };
 
-// How many lines start (after blanks) with each element statement: room to
-// reserve for what the reader will keep, so its lists are not regrown
-// (and their memory faulted in again) as the file is read. A guess only:
-// the reader checks each statement itself.
-struct ObjElementCounts {
-  std::size_t v = 0, vt = 0, vn = 0, f = 0;
-};
-
-ObjElementCounts count_elements(std::string_view text) {
-  ObjElementCounts counts;
-  for (std::size_t at = 0; at < text.size();) {
-    while (at < text.size() && is_blank(text[at])) ++at;
-    const char first = at < text.size() ? text[at] : '\0';
-    const char second = at + 1 < text.size() ? text[at + 1] : '\0';
-    if (first == 'v') {
-      if (is_blank(second)) ++counts.v;
-      if (second == 't') ++counts.vt;
-      if (second == 'n') ++counts.vn;
-    } else if (first == 'f' && is_blank(second)) {
-      ++counts.f;
-    }
-    const void* end = std::memchr(text.data() + at, '\n', text.size() - at);
-    at = end == nullptr ? text.size() : std::size_t(static_cast<const char*>(end) - text.data()) + 1;
-  }
-  return counts;
-}
-
-// A corner's form: which of vt and vn it gives (v alone is 0).
-constexpr int kCornerGivesUv = 1;
-constexpr int kCornerGivesNormal = 2;
-
 class ObjReader {
  public:
-  ObjReader(std::string_view text, std::string_view file, const MtlLookup& find_library, std::size_t triangle_budget,
-            double crease_angle_degrees, bool strict)
+  ObjReader(std::string_view text, const ObjTextFacts& facts, std::string_view file, const MtlLookup& find_library,
+            std::size_t triangle_budget, double crease_angle_degrees, bool strict)
       : warnings_(strict),
-        scan_(text, file, warnings_),
+        text_(text),
+        facts_(facts),
+        scan_(text, file, warnings_, facts.first_nul, facts.has_cr),
         find_library_(find_library),
         triangle_budget_(triangle_budget),
-        crease_angle_degrees_(crease_angle_degrees) {
-    reserve_for(count_elements(text));
-  }
+        crease_angle_degrees_(crease_angle_degrees) {}
 
   SceneDesc run() {
-    while (scan_.next_statement()) {
-      const Token keyword = scan_.take("an OBJ statement");
-      const std::string_view k = keyword.text;
-      if (k == "v") {
-        check_vertex_bound(positions_.size(), keyword, "vertices ('v')");
-        const Vec3<float> position = read_vec3("vertex x", "vertex y", "vertex z");
-        if (!scan_.at_end_of_line()) scan_.number("vertex w, or the red of a vertex colour");
-        if (!scan_.at_end_of_line()) {
-          scan_.number("vertex colour green");
-          scan_.number("vertex colour blue");
-        }
-        scan_.expect_end_of_line("the vertex (x y z, x y z w or x y z r g b)");
-        positions_.push_back(position);
-      } else if (k == "vt") {
-        check_vertex_bound(uvs_.size(), keyword, "texture coordinates ('vt')");
-        std::array<float, 2> uv{scan_.number("texture u"), 0.f};
-        if (!scan_.at_end_of_line()) uv[1] = scan_.number("texture v");
-        if (!scan_.at_end_of_line()) scan_.number("texture w");
-        scan_.expect_end_of_line("the texture coordinates (u [v [w]])");
-        uvs_.push_back(uv);
-      } else if (k == "vn") {
-        check_vertex_bound(normals_.size(), keyword, "normals ('vn')");
-        const Vec3<float> normal = read_vec3("normal x", "normal y", "normal z");
-        scan_.expect_end_of_line("the normal (x y z)");
-        normals_.push_back(normal);
-      } else if (k == "f") {
-        const int form = read_corners(keyword, 3, true);
-        add_face(form);
-        ++faces_;
-      } else if (k == "l") {
-        read_corners(keyword, 2, false);
-        undrawn_[0].add(scan_.position_of(keyword));
-      } else if (k == "p") {
-        read_corners(keyword, 1, false);
-        undrawn_[1].add(scan_.position_of(keyword));
-      } else if (k == "o" || k == "g" || one_of(k, kIgnoredObjStatements)) {
-        scan_.skip_rest_of_line();
-      } else if (k == "s") {
-        scan_.take("a smoothing group (a number or 'off')");
-        scan_.expect_end_of_line("the smoothing group");
-      } else if (k == "usemtl") {
-        const Token name = scan_.take("a material name");
-        scan_.expect_end_of_line("the material name");
-        const auto found = materials_.find(std::string(name.text));
-        const MtlMaterial* material = found != materials_.end() ? &found->second : nullptr;
-        if (material == nullptr) {
-          warnings_.warn(joined({"usemtl ", name.text}), scan_.position_of(name),
-                         "a material defined in a library named by an earlier 'mtllib'", quoted_token(name.text),
-                         "its faces get the default material");
-        }
-        if (material != material_) {
-          material_ = material;
-          scene_material_.reset();
-        }
-      } else if (k == "mtllib") {
-        if (scan_.at_end_of_line()) scan_.fail_at_end_of_line("an MTL library file name");
-        read_libraries();
-      } else {
-        scan_.fail_at(keyword, kObjStatementList);
-      }
+    reserve_for();
+    // Parsing ahead pays only on another thread; its chunks split lines at '\n' alone.
+    if (scan_.has_cr() || tbb::this_task_arena::max_concurrency() < 2) {
+      while (scan_.next_statement()) read_statement();
+    } else {
+      read_chunks();
     }
     // A mesh without faces draws nothing: almost always a mistake.
     if (scene_.triangles.empty()) {
@@ -541,12 +473,159 @@ class ObjReader {
   }
 
  private:
-  // Room for the counted elements, within the reader's bounds (each face at least a triangle).
-  void reserve_for(const ObjElementCounts& counts) {
-    positions_.reserve(std::min(counts.v, kMaxObjVertices));
-    uvs_.reserve(std::min(counts.vt, kMaxObjVertices));
-    normals_.reserve(std::min(counts.vn, kMaxObjVertices));
-    const std::size_t triangles = std::min(counts.f, triangle_budget_);
+  // The statement lines as parse_obj_lines read them, in file order: those
+  // it read whole are stored here (a face's indices checked as
+  // read_corners checks them), the others read by the line scanner, as is
+  // a face whose checks fail (which then reports the error).
+  void read_chunks() {
+    std::size_t line_base = 0;
+    for_each_obj_chunk(text_, [&](const ObjChunk& chunk) {
+      const float* number = chunk.numbers.data();
+      const std::int32_t* index = chunk.indices.data();
+      for (const ObjLine& line : chunk.lines) {
+        const std::size_t line_number = line_base + line.line;
+        switch (line.kind) {
+          case ObjLineKind::vertex:
+            if (positions_.size() < kMaxObjVertices) {
+              positions_.push_back({number[0], number[1], number[2]});
+            } else {
+              read_line_at(line.offset, line_number);  // reports the bound
+            }
+            number += 3;
+            break;
+          case ObjLineKind::uv:
+            if (uvs_.size() < kMaxObjVertices) {
+              uvs_.push_back({number[0], number[1]});
+            } else {
+              read_line_at(line.offset, line_number);
+            }
+            number += 2;
+            break;
+          case ObjLineKind::normal:
+            if (normals_.size() < kMaxObjVertices) {
+              normals_.push_back({number[0], number[1], number[2]});
+            } else {
+              read_line_at(line.offset, line_number);
+            }
+            number += 3;
+            break;
+          case ObjLineKind::face:
+            if (!add_read_face(line, index)) read_line_at(line.offset, line_number);
+            index += std::size_t(line.corners) * corner_parts(line.form);
+            break;
+          case ObjLineKind::other: read_line_at(line.offset, line_number); break;
+        }
+      }
+      line_base += chunk.line_count;
+    });
+    scan_.finish_at_end(line_base);
+  }
+
+  static std::size_t corner_parts(int form) {
+    return 1 + ((form & kCornerGivesUv) != 0 ? 1 : 0) + ((form & kCornerGivesNormal) != 0 ? 1 : 0);
+  }
+
+  // The statement on the line at `offset`, read by the line scanner.
+  void read_line_at(std::size_t offset, std::size_t line) {
+    scan_.seek(offset, line);
+    if (!scan_.next_statement()) throw std::logic_error("OBJ reader: no statement where one was found");
+    read_statement();
+  }
+
+  // A face parse_obj_lines read, if its indices are defined and it stays
+  // within the corner and triangle bounds; else false, nothing changed.
+  bool add_read_face(const ObjLine& line, const std::int32_t* index) {
+    const std::size_t parts = corner_parts(line.form);
+    corners_.clear();
+    for (std::size_t c = 0; c < line.corners; ++c, index += parts) {
+      ObjCorner corner;
+      const std::int64_t position = resolve_obj_index(index[0], positions_.size());
+      const std::int64_t uv = (line.form & kCornerGivesUv) != 0 ? resolve_obj_index(index[1], uvs_.size()) : 0;
+      const std::int64_t normal =
+          (line.form & kCornerGivesNormal) != 0 ? resolve_obj_index(index[parts - 1], normals_.size()) : 0;
+      if (position < 0 || uv < 0 || normal < 0) return false;
+      corners_.push_back({std::size_t(position), std::size_t(uv), std::size_t(normal)});
+    }
+    const std::size_t triangles = line.corners - 2u;
+    if (line.corners > kMaxObjCorners - corner_count_ || triangles > triangle_budget_ - triangle_count_) return false;
+    corner_count_ += line.corners;
+    triangle_count_ += triangles;
+    add_face(line.form);
+    ++faces_;
+    return true;
+  }
+
+  // One statement, its keyword next.
+  void read_statement() {
+    const Token keyword = scan_.take("an OBJ statement");
+    const std::string_view k = keyword.text;
+    if (k == "v") {
+      check_vertex_bound(positions_.size(), keyword, "vertices ('v')");
+      const Vec3<float> position = read_vec3("vertex x", "vertex y", "vertex z");
+      if (!scan_.at_end_of_line()) scan_.number("vertex w, or the red of a vertex colour");
+      if (!scan_.at_end_of_line()) {
+        scan_.number("vertex colour green");
+        scan_.number("vertex colour blue");
+      }
+      scan_.expect_end_of_line("the vertex (x y z, x y z w or x y z r g b)");
+      positions_.push_back(position);
+    } else if (k == "vt") {
+      check_vertex_bound(uvs_.size(), keyword, "texture coordinates ('vt')");
+      std::array<float, 2> uv{scan_.number("texture u"), 0.f};
+      if (!scan_.at_end_of_line()) uv[1] = scan_.number("texture v");
+      if (!scan_.at_end_of_line()) scan_.number("texture w");
+      scan_.expect_end_of_line("the texture coordinates (u [v [w]])");
+      uvs_.push_back(uv);
+    } else if (k == "vn") {
+      check_vertex_bound(normals_.size(), keyword, "normals ('vn')");
+      const Vec3<float> normal = read_vec3("normal x", "normal y", "normal z");
+      scan_.expect_end_of_line("the normal (x y z)");
+      normals_.push_back(normal);
+    } else if (k == "f") {
+      const int form = read_corners(keyword, 3, true);
+      add_face(form);
+      ++faces_;
+    } else if (k == "l") {
+      read_corners(keyword, 2, false);
+      undrawn_[0].add(scan_.position_of(keyword));
+    } else if (k == "p") {
+      read_corners(keyword, 1, false);
+      undrawn_[1].add(scan_.position_of(keyword));
+    } else if (k == "o" || k == "g" || one_of(k, kIgnoredObjStatements)) {
+      scan_.skip_rest_of_line();
+    } else if (k == "s") {
+      scan_.take("a smoothing group (a number or 'off')");
+      scan_.expect_end_of_line("the smoothing group");
+    } else if (k == "usemtl") {
+      const Token name = scan_.take("a material name");
+      scan_.expect_end_of_line("the material name");
+      const auto found = materials_.find(std::string(name.text));
+      const MtlMaterial* material = found != materials_.end() ? &found->second : nullptr;
+      if (material == nullptr) {
+        warnings_.warn(joined({"usemtl ", name.text}), scan_.position_of(name),
+                       "a material defined in a library named by an earlier 'mtllib'", quoted_token(name.text),
+                       "its faces get the default material");
+      }
+      if (material != material_) {
+        material_ = material;
+        scene_material_.reset();
+      }
+    } else if (k == "mtllib") {
+      if (scan_.at_end_of_line()) scan_.fail_at_end_of_line("an MTL library file name");
+      read_libraries();
+    } else {
+      scan_.fail_at(keyword, kObjStatementList);
+    }
+  }
+
+  // Room for the counted elements, within the reader's bounds (each face
+  // at least a triangle), so the lists are not regrown (and their memory
+  // faulted in again) as the file is read.
+  void reserve_for() {
+    positions_.reserve(std::min(facts_.v, kMaxObjVertices));
+    uvs_.reserve(std::min(facts_.vt, kMaxObjVertices));
+    normals_.reserve(std::min(facts_.vn, kMaxObjVertices));
+    const std::size_t triangles = std::min(facts_.f, triangle_budget_);
     scene_.triangles.reserve(triangles);
     triangle_vertices_.reserve(triangles);
   }
@@ -655,13 +734,8 @@ class ObjReader {
   // -defined..-1 counted back from the last one defined so far. Returns it
   // 0-based.
   std::size_t index(std::string_view text, std::size_t column, std::size_t defined, std::string_view what) {
-    std::int64_t value = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    const auto limit = static_cast<std::int64_t>(defined);
-    if (!text.empty() && error == std::errc() && end == text.data() + text.size() && value != 0 && value <= limit &&
-        value >= -limit) {
-      return static_cast<std::size_t>(value > 0 ? value - 1 : limit + value);
-    }
+    const std::int64_t resolved = resolve_obj_index(read_obj_index(text), defined);
+    if (resolved >= 0) return static_cast<std::size_t>(resolved);
     const std::string count = std::to_string(defined);
     scan_.fail_at({text, column}, defined == 0 ? joined({what, " (none is defined before this line)"})
                                                : joined({what, " from 1 to ", count, " or from -", count, " to -1"}));
@@ -756,6 +830,8 @@ class ObjReader {
   }
 
   ReaderWarnings warnings_;
+  std::string_view text_;
+  ObjTextFacts facts_;
   LineScanner scan_;
   const MtlLookup& find_library_;
   std::size_t triangle_budget_;
@@ -818,7 +894,8 @@ SceneDesc parse_obj(std::string_view text, std::string_view file, const MtlLooku
     throw ParseError::whole_file(file,
                                  joined({"larger than the OBJ limit of ", std::to_string(kMaxObjBytes), " bytes"}));
   }
-  SceneDesc scene = ObjReader(text, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
+  const ObjTextFacts facts = scan_obj_text(text);
+  SceneDesc scene = ObjReader(text, facts, file, find_library, triangle_budget, crease_angle_degrees, strict).run();
   scene.model_up = stated_up_of_leading_comments(text);
   return scene;
 }

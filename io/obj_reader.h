@@ -1,11 +1,12 @@
 // Reader for Wavefront OBJ meshes and their MTL material libraries: one
-// strict pass over the text that reports bad input as ParseError with
-// file:line:column (numbers, NaN/Inf, index ranges, counts) and builds the
-// scene as it reads. Faces become triangles (quads and convex n-gons as
-// fans, concave n-gons by ear clipping), with per-vertex normals and uvs
-// when the face gives them; faces without normals get angle-weighted vertex
-// normals with a crease angle (geometry/vertex_normals.h). The format rules, the MTL mapping and the
-// bounds are in io/README.md.
+// strict pass over the text (its plain lines parsed ahead on every thread)
+// that reports bad input as ParseError with file:line:column (numbers,
+// NaN/Inf, index ranges, counts) and builds the scene as it reads. Faces
+// become triangles (quads and convex n-gons as fans, concave n-gons by ear
+// clipping), with per-vertex normals and uvs when the face gives them;
+// faces without normals get angle-weighted vertex normals with a crease
+// angle (geometry/vertex_normals.h). The format rules, the MTL mapping and
+// the bounds are in io/README.md.
 #pragma once
 
 #include <array>

@@ -9,12 +9,16 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <tuple>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "io/mesh_append.h"
+#include "io/obj_lines.h"
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
 #include "tests/support/temporary_directory.h"
@@ -841,6 +845,111 @@ TEST(ObjReader, SharedMeshesLoad) {
   };
   EXPECT_GT(with_normals(teapot), std::ptrdiff_t(teapot.triangles.size() / 2));
   EXPECT_EQ(with_normals(read_obj_scene(meshes / "teapot.obj", 0.0)), 0);
+}
+
+}  // namespace
+}  // namespace quiver
+
+namespace quiver {
+namespace {
+
+std::string outcome_in_this_arena(std::string_view obj, const std::map<std::string, std::string>& mtl);
+
+// Everything the reader gives for a text, as text: each triangle's corners,
+// normals and uvs (exact, in hexadecimal), material, the materials, textures,
+// warnings and face tallies; or the ParseError's message. Read with two
+// threads (the reader parses ahead only when it has another).
+std::string outcome(std::string_view obj, const std::map<std::string, std::string>& mtl) {
+  tbb::task_arena two_threads(2);
+  return two_threads.execute([&] { return outcome_in_this_arena(obj, mtl); });
+}
+
+std::string outcome_in_this_arena(std::string_view obj, const std::map<std::string, std::string>& mtl) {
+  std::ostringstream out;
+  out << std::hexfloat;
+  try {
+    const SceneDesc scene = parse(obj, mtl);
+    for (const SceneTriangle& t : scene.triangles) {
+      for (const Vec3<float>& p : t.triangle.p) out << p.x << ' ' << p.y << ' ' << p.z << ' ';
+      if (t.triangle.normals) {
+        for (const Vec3<float>& n : *t.triangle.normals) out << n.x << ' ' << n.y << ' ' << n.z << ' ';
+      }
+      if (t.triangle.uvs) {
+        for (const auto& uv : *t.triangle.uvs) out << uv[0] << ' ' << uv[1] << ' ';
+      }
+      out << t.material << '\n';
+    }
+    for (const MaterialDesc& m : scene.materials) {
+      out << m.color.x << ' ' << m.color.y << ' ' << m.color.z << ' ' << m.kd << ' ' << m.ks << ' ' << m.kt << ' '
+          << (m.texture ? int(*m.texture) : -1) << '\n';
+    }
+    for (const TextureDesc& t : scene.textures) out << t.path << '\n';
+    for (const std::string& w : scene.warnings) out << w << '\n';
+    for (const FaceTally& f : scene.face_tallies) out << f.declared << ' ' << f.kept << '\n';
+  } catch (const ParseError& error) {
+    out << error.what();
+  }
+  return out.str();
+}
+
+std::string with_crlf(std::string_view text) {
+  std::string crlf;
+  for (const char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  return crlf;
+}
+
+// Text whose lines end at "\n" is read in chunks parsed ahead on another
+// thread; with a '\r' it is scanned line by line. Both give the same scene, warnings and errors.
+TEST(ObjReader, ChunksReadInParallelGiveWhatTheLineScannerGives) {
+  const std::map<std::string, std::string> mtl{{"m.mtl", "newmtl red\nKd 1 0 0\nnewmtl tex\nmap_Kd tex/checker.png\n"}};
+  const std::vector<std::string> texts{
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1\nvt 0 1 0\nvn 0 0 1\nf 1/1 2/2 4/3 3/1\nf -4//1 -3//1 -2//1\n"
+      "f 1/1/1 2/2/1 3/3/1\n",
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\nusemtl tex\nf 3 2 1\nusemtl none\nf 1 3 2\n",
+      "v 0 0 0 # first\nv 1 0 0 1\nv 0 1 0 1 0.5 0\n\tv 1 1 0\nf 1 2 3 # face\n  f 2 4 3\nl 1 2\np 1\ns off\no a\ng b\n",
+      "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 1 0.5 0\nv 0 2 0\nf 1 2 3 4 5\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2/1 3\n",
+      "v 0 0 0\nv 1 0 x\nv 0 1 0\nf 1 2 3\n",
+      "v 0 0 0\nv 1 0 1e39\n",
+      "v 0 0 0\nvn 0 0 1\nf 1//1 1//1 1//2\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nbogus\n",
+      "v 0 0 0\nv 1 0 0\n# only\n",
+      "v 0 0 0\nv 1 0 0  # last, no newline",
+      "v 0 0 0\nl 1 1   ",
+      "",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl\n",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nmtllib m.mtl absent.mtl\nusemtl red\nf 1 2 3\n",
+      std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 1\0 2 3\n", 40),
+  };
+  for (const std::string& text : texts) {
+    const std::string chunked = outcome(text, mtl);
+    EXPECT_EQ(chunked, outcome(with_crlf(text), mtl)) << text;
+    EXPECT_FALSE(chunked.empty()) << text;
+  }
+}
+
+// Many chunks: the line numbers of the later ones count the earlier ones'.
+TEST(ObjReader, AMeshOfManyChunksReadsAsScannedLineByLine) {
+  std::string text;
+  constexpr int kVertices = 100000;
+  for (int i = 0; i < kVertices; ++i) {
+    text += "v " + std::to_string(i % 97) + " " + std::to_string(i % 89) + ".5 " + std::to_string(i) + "\n";
+  }
+  for (int i = 3; i <= kVertices; ++i) text += "f " + std::to_string(i - 2) + " -2 " + std::to_string(i) + "\n";
+  ASSERT_GT(text.size(), 3 * kObjChunkBytes);
+  const std::string whole = outcome(text, {});
+  EXPECT_EQ(whole.find("expected"), std::string::npos) << whole.substr(0, 200);
+  EXPECT_EQ(whole, outcome(with_crlf(text), {}));
+  const std::string broken = text + "f 1 2 " + std::to_string(kVertices + 1) + "\n";
+  const std::string error = outcome(broken, {});
+  EXPECT_NE(error.find("test.obj:" + std::to_string(2 * kVertices - 1) + ":7: expected a vertex index"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error, outcome(with_crlf(broken), {}));
 }
 
 }  // namespace

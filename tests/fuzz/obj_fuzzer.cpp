@@ -12,12 +12,16 @@
 // position "FILE:LINE:COLUMN: expected " in the OBJ text (fuzz.obj) or the
 // MTL text (fuzz.mtl), lines ending at "\n", "\r\n" or a lone "\r". A
 // whole-file error (line 0) cannot come from text in memory and is a
-// finding too.
+// finding too. OBJ text without '\r' (read in parallel chunks) and the same
+// text with "\r\n" line ends (scanned line by line) give the same outcome:
+// the same triangles, materials and warnings, or the same error.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "io/obj_reader.h"
 #include "io/parse_error.h"
@@ -27,6 +31,51 @@ namespace {
 
 constexpr std::string_view kFileName = "fuzz.obj";
 constexpr std::string_view kMtlFileName = "fuzz.mtl";
+
+// The scene, or the error's message.
+using Outcome = std::variant<quiver::SceneDesc, std::string>;
+
+Outcome read(std::string_view obj, const quiver::MtlLookup& find_library) {
+  try {
+    return quiver::parse_obj_scene(obj, kFileName, find_library);
+  } catch (const quiver::ParseError& error) {
+    return std::string(error.what());
+  }
+}
+
+bool same_bits(const quiver::Vec3<float>& a, const quiver::Vec3<float>& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_outcome(const Outcome& a, const Outcome& b) {
+  if (a.index() != b.index()) return false;
+  if (a.index() == 1) return std::get<1>(a) == std::get<1>(b);
+  const quiver::SceneDesc& x = std::get<0>(a);
+  const quiver::SceneDesc& y = std::get<0>(b);
+  if (x.triangles.size() != y.triangles.size() || x.materials.size() != y.materials.size() ||
+      x.textures.size() != y.textures.size() || x.warnings != y.warnings) {
+    return false;
+  }
+  for (std::size_t i = 0; i < x.triangles.size(); ++i) {
+    const quiver::TriangleDesc& s = x.triangles[i].triangle;
+    const quiver::TriangleDesc& t = y.triangles[i].triangle;
+    if (x.triangles[i].material != y.triangles[i].material || s.normals.has_value() != t.normals.has_value() ||
+        s.uvs != t.uvs) {
+      return false;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (!same_bits(s.p[k], t.p[k]) || (s.normals && !same_bits((*s.normals)[k], (*t.normals)[k]))) return false;
+    }
+  }
+  return true;
+}
+
+std::string with_crlf(std::string_view text) {
+  std::string crlf;
+  for (const char c : text) {
+    if (c == '\n') crlf += '\r';
+    crlf += c;
+  }
+  return crlf;
+}
 
 }  // namespace
 
@@ -39,6 +88,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return quiver::MtlLibrary{std::string(mtl), std::string(kMtlFileName), QUIVER_FUZZ_FILES_DIR, {}};
   };
   using quiver::fuzz::check;
+  if (obj.find('\r') == std::string_view::npos) {
+    check(same_outcome(read(obj, find_library), read(with_crlf(obj), find_library)));
+  }
   try {
     const quiver::SceneDesc scene = quiver::parse_obj_scene(obj, kFileName, find_library);
     quiver::fuzz::check_scene(scene);
