@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <atomic>
 #include <exception>
 #include <memory>
@@ -258,31 +259,43 @@ void for_each_obj_chunk(std::string_view text, const std::function<void(const Ob
   std::vector<std::exception_ptr> errors(count);
   const std::unique_ptr<std::atomic<bool>[]> parsed(new std::atomic<bool>[count]);
   for (std::size_t c = 0; c < count; ++c) parsed[c].store(false, std::memory_order_relaxed);
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, reading{0};
   std::atomic<bool> stop{false};
-  // Parses the first chunk nobody has taken; false when none is left.
+  // A chunk is taken only within `window` chunks of the one being read, so
+  // however slowly the reader stores them, the lines parsed ahead are bounded.
+  const auto threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+  const std::size_t window = kObjChunksAheadPerThread * threads;
+  enum class Take { parsed, not_yet, none_left };
+  // Parses the first chunk nobody has taken.
   const auto parse_next = [&] {
-    const std::size_t c = next.fetch_add(1, std::memory_order_relaxed);
-    if (c >= count) return false;
+    std::size_t c = next.load(std::memory_order_relaxed);
+    do {
+      if (c >= count) return Take::none_left;
+      if (c >= reading.load(std::memory_order_acquire) + window) return Take::not_yet;
+    } while (!next.compare_exchange_weak(c, c + 1, std::memory_order_relaxed));
     try {
       parse_chunk(text, starts[c], starts[c + 1], chunks[c]);
     } catch (...) {
       errors[c] = std::current_exception();
     }
     parsed[c].store(true, std::memory_order_release);
-    return true;
+    return Take::parsed;
   };
   tbb::task_group helpers;
-  for (int h = 1; h < tbb::this_task_arena::max_concurrency(); ++h) {
+  for (std::size_t h = 1; h < threads; ++h) {
     helpers.run([&] {
-      while (!stop.load(std::memory_order_relaxed) && parse_next()) {
+      while (!stop.load(std::memory_order_relaxed)) {
+        const Take taken = parse_next();
+        if (taken == Take::none_left) break;
+        if (taken == Take::not_yet) std::this_thread::sleep_for(std::chrono::microseconds(100));
       }
     });
   }
   try {
     for (std::size_t c = 0; c < count; ++c) {
+      reading.store(c, std::memory_order_release);
       while (!parsed[c].load(std::memory_order_acquire)) {
-        if (!parse_next()) std::this_thread::yield();
+        if (parse_next() != Take::parsed) std::this_thread::yield();
       }
       if (errors[c]) std::rethrow_exception(errors[c]);
       consume(chunks[c]);

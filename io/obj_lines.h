@@ -84,11 +84,17 @@ struct ObjChunk {
   std::size_t line_count = 0;  // lines starting in the chunk, blank and comment ones too
 };
 
+// How many chunks per thread may be parsed ahead of the one being read:
+// enough to keep the threads busy, few enough that the parsed lines of a
+// file the reader stores slowly (long runs of statements it scans itself)
+// stay a few megabytes.
+inline constexpr std::size_t kObjChunksAheadPerThread = 4;
+
 // Cuts `text` (no '\r', less than 2^32 bytes) into chunks of about
 // chunk_bytes at line ends and calls consume with each chunk's statement
 // lines, in file order, on the calling thread, while the other threads
-// parse the chunks ahead; the calling thread parses too when the next
-// chunk is not ready. An exception from consume stops the parsing (the
+// parse the chunks ahead (at most kObjChunksAheadPerThread per thread);
+// the calling thread parses too when the next chunk is not ready. An exception from consume stops the parsing (the
 // other threads finish their chunk) and goes on to the caller.
 void for_each_obj_chunk(std::string_view text, const std::function<void(const ObjChunk&)>& consume,
                         std::size_t chunk_bytes = kObjChunkBytes);

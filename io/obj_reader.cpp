@@ -908,8 +908,8 @@ MtlLookup libraries_beside(const fs::path& obj_path, const PathRule& paths) {
     if (!rule.admits(path)) throw ParseError::whole_file(path.string(), "expected " + rule.expected());
     std::error_code error;
     if (!fs::is_regular_file(path, error)) return std::nullopt;
-    return MtlLibrary{read_text_file(path, kMaxMtlBytes, "an MTL material library"), path.string(), path.parent_path(),
-                      rule};
+    const FileBytes text = read_text_file(path, kMaxMtlBytes, "an MTL material library");
+    return MtlLibrary{std::string(text.view()), path.string(), path.parent_path(), rule};
   };
 }
 
@@ -922,7 +922,7 @@ SceneDesc parse_obj_scene(std::string_view text, std::string_view file_name, con
 
 SceneDesc read_obj_scene(const fs::path& path, double crease_angle_degrees, bool strict,
                          std::size_t triangle_budget, const PathRule& paths) {
-  const std::string text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
+  const FileBytes text = read_text_file(path, kMaxObjBytes, "an OBJ mesh");
   return parse_obj(text, path.string(), libraries_beside(path, paths), triangle_budget, crease_angle_degrees, strict);
 }
 

@@ -907,7 +907,7 @@ SceneDesc parse_toml_scene(std::string_view text, std::string_view file_name, co
 
 SceneDesc read_toml_scene(const fs::path& path, std::optional<double> crease_angle_override, bool strict,
                           const PathRule& paths) {
-  const std::string text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
+  const FileBytes text = read_text_file(path, kMaxTomlBytes, "a TOML scene", kTomlBoundsHint);
   return parse_toml_scene(text, path.string(), path.parent_path(), crease_angle_override, strict, paths);
 }
 

@@ -1,7 +1,7 @@
 // Tests of io/text_file.h: a file of exactly the bound reads whole, one byte
 // more is refused naming the file, the bound and its reason, also when the
-// content outgrows the stated size; files that are missing or not regular
-// files are refused naming the file.
+// content outgrows the stated size; a file of several blocks reads whole;
+// files that are missing or not regular files are refused naming the file.
 #include "io/text_file.h"
 
 #include <gtest/gtest.h>
@@ -34,7 +34,7 @@ TEST(TextFile, ReadsUpToTheBoundAndRefusesOneByteMore) {
   const fs::path path = temporary.path() / "bounded.txt";
   const std::string text(100'000, 'x');  // more than one read chunk
   std::ofstream(path, std::ios::binary) << text;
-  EXPECT_EQ(read_text_file(path, text.size(), "a test file"), text);
+  EXPECT_EQ(read_text_file(path, text.size(), "a test file").view(), text);
   EXPECT_EQ(refusal(path, text.size()), "");
   const std::string message = refusal(path, text.size() - 1, "the test's bound");
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
@@ -42,7 +42,7 @@ TEST(TextFile, ReadsUpToTheBoundAndRefusesOneByteMore) {
   // An empty file reads as empty, even with a bound of 0.
   const fs::path empty = temporary.path() / "empty.txt";
   std::ofstream(empty, std::ios::binary).flush();
-  EXPECT_EQ(read_text_file(empty, 0, "a test file"), "");
+  EXPECT_EQ(read_text_file(empty, 0, "a test file").view(), "");
 }
 
 // A file whose content outgrows its stated size (procfs states 0 bytes, a
@@ -65,6 +65,18 @@ TEST(TextFile, AFileLongerThanItsStatedSizeIsBoundedWhileRead) {
   const std::string message = refusal(kallsyms, bound);
   EXPECT_NE(message.find("larger than the limit of " + std::to_string(bound) + " bytes"), std::string::npos)
       << message;
+}
+
+// A file of several blocks, read on several threads, comes back byte for byte.
+TEST(TextFile, AFileOfManyBlocksReadsWhole) {
+  const testing::TemporaryDirectory temporary("quiver_text_file_test");
+  const fs::path path = temporary.path() / "blocks.bin";
+  std::string bytes(2 * kFileReadBlockBytes + 12345, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 2654435761u) >> 13);
+  std::ofstream(path, std::ios::binary) << bytes;
+  const FileBytes read = read_text_file(path, bytes.size(), "a test file");
+  EXPECT_TRUE(read.view() == bytes);
+  EXPECT_NE(refusal(path, bytes.size() - 1).find("larger than the limit"), std::string::npos);
 }
 
 TEST(TextFile, RefusesMissingFilesAndDirectories) {
