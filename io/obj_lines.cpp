@@ -8,15 +8,16 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <atomic>
-#include <exception>
-#include <memory>
-#include <thread>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
+#include <limits>
+#include <memory>
 #include <system_error>
+#include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -64,8 +65,9 @@ struct Tokens {
   }
 };
 
-// Appends count..max numbers read from the line's tokens (the first,
-// the keyword, skipped); false if any does not read or the count is off.
+// The tokens after the keyword: min to max numbers, each read whole; the
+// first `kept` appended (missing ones as 0). False, nothing appended, if a
+// token does not read or there are fewer or more.
 bool read_numbers(std::string_view rest, std::size_t min, std::size_t max, std::vector<float>& out, std::size_t kept) {
   const Tokens<3> tokens(rest);
   if (tokens.count < min || tokens.count > max) return false;
@@ -117,7 +119,10 @@ bool read_face(std::string_view rest, ObjChunk& chunk, ObjLine& line) {
     for (std::size_t p = 0; p < count; ++p) {
       if (p == 1 && (form & kCornerGivesUv) == 0) continue;
       const std::int64_t index = read_obj_index(parts[p]);
-      if (index == 0 || index < INT32_MIN || index > INT32_MAX) return refuse();
+      if (index == 0 || index < std::numeric_limits<std::int32_t>::min() ||
+          index > std::numeric_limits<std::int32_t>::max()) {
+        return refuse();
+      }
       chunk.indices.push_back(static_cast<std::int32_t>(index));
     }
   }

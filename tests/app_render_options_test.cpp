@@ -18,6 +18,7 @@
 #include "io/parse_error.h"
 #include "io/scene_loader.h"
 #include "scene/anti_aliasing.h"
+#include "scene/auto_view.h"
 
 namespace quiver {
 namespace {
@@ -165,6 +166,26 @@ TEST(RenderOptions, WithoutACameraTheDefaultIsSquare) {
   const RenderPlan plan = plan_render(options, SceneDesc{}, Isa::scalar);
   EXPECT_EQ(plan.settings.width, 77);
   EXPECT_EQ(plan.settings.height, 77);
+}
+
+// Without a camera in the scene, --fov frames the default view at that
+// angle (the eye nearer for a wider one), not only widens the lens.
+TEST(RenderOptions, TheFovFlagFramesTheDefaultViewAtItsAngle) {
+  SceneDesc scene;
+  scene.materials.push_back({});
+  scene.spheres.push_back({{{1.f, 2.f, 3.f}, 2.f}, 0});
+  for (const double fov : {20.0, 70.0}) {
+    SCOPED_TRACE(fov);
+    SceneDesc flagged = scene;
+    CameraFlags flags;
+    flags.fov = fov;
+    ASSERT_TRUE(set_view(flagged, flags, 64, 48).has_value());
+    SceneDesc framed = scene;
+    add_default_camera(framed, 64, 48, std::nullopt, static_cast<float>(fov));
+    ASSERT_TRUE(flagged.camera && framed.camera);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(flagged.camera->from[a], framed.camera->from[a]);
+    EXPECT_EQ(flagged.camera->angle_degrees, static_cast<float>(fov));
+  }
 }
 
 TEST(RenderOptions, ImageSizeBounds) {
@@ -443,7 +464,13 @@ TEST(RenderOptions, PresetSpdSetsTheProcedureAndOverridesTheScene) {
   EXPECT_EQ(plan.settings.aa.mode, AntiAliasing::Mode::corners);
   EXPECT_EQ(plan.settings.trace.max_depth, 4);
   EXPECT_EQ(plan.settings.trace.min_weight, 0.f);
+  EXPECT_TRUE(plan.settings.trace.spawn_every_ray);
   EXPECT_TRUE(plan.build.all_two_sided);
+  // Without the preset, the scene's settings, and rays of no weight are not spawned.
+  const RenderPlan own = plan_render({}, scene, Isa::scalar);
+  EXPECT_EQ(own.settings.aa.mode, AntiAliasing::Mode::grid);
+  EXPECT_EQ(own.settings.trace.max_depth, 9);
+  EXPECT_FALSE(own.settings.trace.spawn_every_ray);
 }
 
 TEST(RenderOptions, PresetSpdAcceptsAgreeingFlagsAndRejectsContradictions) {

@@ -161,13 +161,25 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
         "  box.obj: 3, 1 (2 not drawn: see the warnings)\n", "  whole.ply: 2, 2\n"}) {
     EXPECT_NE(report.find(line), std::string::npos) << "no '" << line << "' in\n" << report;
   }
+  // The instanced mesh's stores once, without its tree (an acceleration structure), and the table.
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_GT(scene.meshes[0].bvh.memory_bytes(), 0u);
+  for (const std::string& line :
+       {"instanced meshes (stores, once each)  " +
+            std::to_string(scene.meshes[0].memory_bytes() - scene.meshes[0].bvh.memory_bytes()) + "\n",
+        "instance table                        " + std::to_string(scene.instances.memory_bytes()) + "\n"}) {
+    EXPECT_NE(report.find(line), std::string::npos) << "no '" << line << "' in\n" << report;
+  }
 }
 
 // The peak resident memory against what the scene keeps, when given; the
 // process's peak covers memory it has touched.
 TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
-  const SceneDesc desc = mixed_scene();
+  SceneDesc desc = mixed_scene();
+  // Enough spheres for a tree: what the scene keeps counts its acceleration too.
+  for (int i = 0; i < 20; ++i) desc.spheres.push_back({{{float(i), 9.f, 0.f}, 0.25f}, 0});
   const Scene scene = build_scene(desc, {});
+  ASSERT_GT(scene.acceleration_bytes(), 0u);
   std::ostringstream without;
   write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
   EXPECT_EQ(without.str().find("peak memory"), std::string::npos);

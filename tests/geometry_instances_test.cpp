@@ -405,6 +405,40 @@ TEST(Instances, HitPointsLieWithinTheirErrorBoundOfTheTruePlane) {
   RecordProperty("worst_distance_over_bound", std::to_string(worst));
 }
 
+// A scene has transmissive surfaces when an instanced mesh has glass
+// triangles, even with none outside the meshes; opaque meshes give none.
+TEST(Instances, GlassInAnInstancedMeshMakesTheSceneTransmissive) {
+  const std::vector<AffineTransform> where{placement({0, 1, 0}, 0, {1, 1, 1}, {0, 0, 0})};
+  std::vector<SceneTriangle> glass = bumpy_sphere(6, false);
+  for (SceneTriangle& t : glass) t.material = 1;
+  const Scene all_glass = build_scene(instanced_scene(glass, where), {});
+  ASSERT_EQ(all_glass.meshes.at(0).stores[0].count, 0u);
+  EXPECT_TRUE(all_glass.has_transmissive());
+  EXPECT_TRUE(build_scene(instanced_scene(bumpy_sphere(6, true), where), {}).has_transmissive());
+  const Scene opaque = build_scene(instanced_scene(bumpy_sphere(6, false), where), {});
+  ASSERT_GT(opaque.meshes.at(0).stores[0].count, 0u);
+  EXPECT_FALSE(opaque.has_transmissive());
+}
+
+// A scene's bytes count each part once, an instanced mesh's stores (not
+// its tree, which counts as acceleration) and the origins of both stores.
+TEST(Instances, AScenesBytesCountEachInstancedMeshsStoresAndOrigins) {
+  const Scene scene =
+      build_scene(instanced_scene(bumpy_sphere(8, true), {placement({0, 1, 0}, 0, {1, 1, 1}, {0, 0, 0})}), {});
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const InstancedMesh& mesh = scene.meshes[0];
+  ASSERT_GT(mesh.stores[0].count, 0u);
+  ASSERT_GT(mesh.stores[1].count, 0u);
+  const std::size_t origins = bytes_of(scene.mesh_origins[0].of_store[0]) + bytes_of(scene.mesh_origins[0].of_store[1]);
+  EXPECT_EQ(origins, sizeof(PrimitiveOrigin) * (scene.mesh_origins[0].of_store[0].capacity() +
+                                                scene.mesh_origins[0].of_store[1].capacity()));
+  EXPECT_EQ(scene.memory_bytes(), scene.opaque.memory_bytes() + scene.transmissive.memory_bytes() +
+                                      bytes_of(scene.material_of_id) + bytes_of(scene.plain_of_id) +
+                                      scene.instances.memory_bytes() + mesh.memory_bytes() - mesh.bvh.memory_bytes() +
+                                      origins);
+  EXPECT_EQ(scene.acceleration_bytes(), scene.instance_bvh.memory_bytes() + mesh.bvh.memory_bytes());
+}
+
 // 200 instances store the mesh once: memory within 5% of one instance's
 // plus the table and top-level tree.
 TEST(Instances, ManyInstancesStoreTheirMeshOnce) {

@@ -344,6 +344,31 @@ TEST(PolygonBuild, DropsDegenerateNonPlanarAndNonFinite) {
   EXPECT_EQ(soa.vertex_count[7], 4);  // padding copies the last polygon
 }
 
+// Every triangle has area, whatever the outline: collinear corners are
+// dropped, not emitted, down to the last three (lattice outlines, many of
+// them folding back along an edge, as (2,2) (0,1) (0,2) (0,0) does).
+TEST(PolygonTriangulate, NeverEmitsATriangleWithoutArea) {
+  RaySampler s(41);
+  std::vector<PolygonDesc> outlines{{{{2, 2, 0}, {0, 1, 0}, {0, 2, 0}, {0, 0, 0}}}};
+  for (int k = 0; k < 20000; ++k) {
+    PolygonDesc d;
+    const int n = s.uniform_int(4, 8);
+    for (int i = 0; i < n; ++i) d.vertices.push_back({float(s.uniform_int(0, 2)), float(s.uniform_int(0, 2)), 0.f});
+    outlines.push_back(d);
+  }
+  std::size_t triangles = 0;
+  for (const PolygonDesc& d : outlines) {
+    for (const auto& t : triangulate_polygon(d)) {
+      const double twice_area = (double(t[1].x) - t[0].x) * (double(t[2].y) - t[0].y) -
+                                (double(t[1].y) - t[0].y) * (double(t[2].x) - t[0].x);
+      ASSERT_NE(twice_area, 0.0) << t[0].x << "," << t[0].y << " " << t[1].x << "," << t[1].y << " " << t[2].x << ","
+                                 << t[2].y;
+      ++triangles;
+    }
+  }
+  EXPECT_GT(triangles, 10000u);
+}
+
 TEST(PolygonTriangulate, CoversConcavePolygonsExactlyOnce) {
   RaySampler s(3);
   std::vector<std::vector<Point2>> outlines{l_shape(), comb(), star()};
@@ -622,6 +647,28 @@ TEST(PolygonBuild, EdgeBandsListEveryEdgeTheirRangeMeets) {
     }
   }
   EXPECT_LE(soa.band_count[descs.size() - 2], 4);  // the zigzag: at most 4 bands of 64 edges each
+}
+
+// What a store holds counts every column and list, named one by one here:
+// the per-polygon and per-vertex columns, the band lists and spans, the source.
+TEST(PolygonBuild, AStoresBytesCountEveryColumnBandListAndTheSource) {
+  RaySampler s(37);
+  const PolygonSoA soa = polygons_of(banded_polygon_descs(s));
+  ASSERT_GT(soa.band_spans.size(), 0u);
+  ASSERT_GT(soa.band_edges.size(), 0u);
+  std::size_t held = 0;
+  for (const AlignedFloats* c : {&soa.nx, &soa.ny, &soa.nz, &soa.origin_u, &soa.origin_v, &soa.umin, &soa.umax,
+                                 &soa.vmin, &soa.vmax, &soa.reach, &soa.plane_slack, &soa.band_scale, &soa.pu, &soa.pv,
+                                 &soa.px, &soa.py, &soa.pz}) {
+    held += bytes_of(*c);
+  }
+  for (const AlignedInts* c : {&soa.axis_u, &soa.axis_v, &soa.vertex_count, &soa.band_count}) held += bytes_of(*c);
+  for (const std::vector<std::size_t>* c : {&soa.first_vertex, &soa.band_start, &soa.band_first}) {
+    held += c->capacity() * sizeof(std::size_t);
+  }
+  held += soa.band_edges.capacity() * sizeof(std::uint32_t) + soa.band_spans.capacity() * sizeof(BandSpan) +
+          soa.source.capacity() * sizeof(std::uint32_t);
+  EXPECT_EQ(soa.memory_bytes(), held);
 }
 
 // Each band's span lies the margin clear of every edge it lists, and a

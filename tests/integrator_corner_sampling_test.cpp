@@ -7,10 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include "integrator/camera.h"
 #include "integrator/corner_sampling.h"
 #include "integrator/render.h"
+#include "integrator/scene_intersector.h"
+#include "integrator/tracer.h"
 #include "scene/anti_aliasing.h"
 #include "scene/scene.h"
+#include "tests/support/checker_floor.h"
 
 namespace quiver {
 namespace {
@@ -100,6 +104,62 @@ TEST(CornerSampling, AnAdaptivePixelIsAWeightedMeanOfItsSamples) {
   EXPECT_GT(finest, 0u);
   EXPECT_EQ(result.image.rgb[0], 1.f);                      // a corner of the image: background
   EXPECT_EQ(result.image.rgb[(12 * 24 + 12) * 3], 0.f);  // the sphere's middle
+}
+
+// A checker floor to the horizon, ambient light only, at adaptive depth 1
+// with threshold 0: each pixel is its corners' mean, or where they differ
+// the mean of its four half-size squares' corners. Every lattice point is
+// filtered over the side of the squares it was first asked for: a pixel
+// corner over a pixel, a point added by a split over half of one. The
+// image, recomputed here from those points traced one by one with those
+// footprints, is the renderer's.
+TEST(CornerSampling, LatticePointsFilterTexturesOverTheirSquaresSide) {
+  constexpr int kWidth = 24, kHeight = 16;
+  const SceneDesc desc = testing::checker_floor(false, kWidth, kHeight);
+  const Scene scene = build_scene(desc, {});
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.threads = 1;
+  settings.aa = parse_anti_aliasing("adaptive:0:1");
+  const Framebuffer image = render(scene, settings).image;
+
+  // The lattice at half-pixel steps, (2W + 1) x (2H + 1) points.
+  const int lw = 2 * kWidth + 1, lh = 2 * kHeight + 1;
+  FilmSamples film;
+  film.clear(true);
+  for (int Y = 0; Y < lh; ++Y) {
+    for (int X = 0; X < lw; ++X) {
+      const double x = X / 2.0, y = Y / 2.0;
+      film.push(x, y, x, y, X % 2 == 0 && Y % 2 == 0 ? 1.0 : 0.5);
+    }
+  }
+  const Camera camera(scene.camera, kWidth, kHeight);
+  const SceneIntersector intersector(kernel_unit_for(settings.isa), choose_sphere_method(scene, settings.methods));
+  Tracer tracer(scene, intersector, settings.trace);
+  std::vector<Vec3<float>> colors(film.size());
+  TraceStats stats;
+  tracer.trace(camera, film, colors, stats);
+  const auto at = [&](int X, int Y) { return colors[std::size_t(Y) * std::size_t(lw) + std::size_t(X)]; };
+  const auto corner_mean = [&](int X, int Y, int side) {
+    return (at(X, Y) + at(X + side, Y) + at(X, Y + side) + at(X + side, Y + side)) * 0.25f;
+  };
+  std::size_t split = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const int X = 2 * x, Y = 2 * y;
+      Vec3<float> expected = corner_mean(X, Y, 2);
+      if (corners_differ({at(X, Y), at(X + 2, Y), at(X, Y + 2), at(X + 2, Y + 2)}, 0.f)) {
+        ++split;
+        expected = (corner_mean(X, Y, 1) + corner_mean(X + 1, Y, 1) + corner_mean(X, Y + 1, 1) +
+                    corner_mean(X + 1, Y + 1, 1)) *
+                   0.25f;
+      }
+      const float* p = &image.rgb[(std::size_t(y) * kWidth + std::size_t(x)) * 3];
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], expected[c], 1e-5f) << "pixel " << x << ", " << y;
+    }
+  }
+  EXPECT_GT(split, std::size_t(kWidth * kHeight / 4));
 }
 
 }  // namespace

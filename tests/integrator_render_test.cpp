@@ -26,6 +26,7 @@
 #include "io/nff_reader.h"
 #include "io/obj_reader.h"
 #include "scene/auto_view.h"
+#include "tests/support/checker_floor.h"
 #include "tests/support/same_bits.h"
 
 namespace quiver {
@@ -628,6 +629,12 @@ TEST(Render, LaneStatisticsAddUp) {
   }
   EXPECT_EQ(secondary, r.stats.rays.reflection + r.stats.rays.refraction);
   EXPECT_EQ(r.stats.shadow.active, r.stats.rays.shadow);
+  // Shadow rays go out a light sample's slot at a time, each slot's padded to whole packets.
+  const WaveLanes& shadow = r.stats.shadow;
+  EXPECT_EQ(shadow.issued_compacted % lanes, 0u);
+  EXPECT_LE(shadow.active, shadow.issued_compacted);
+  EXPECT_LE(shadow.issued_compacted, shadow.issued_uncompacted);
+  ASSERT_NE(shadow.active % lanes, 0u) << "a ray count that pads differently is needed";
   // The shading packets are the waves' packets; a lane is active where it hit.
   std::uint64_t compacted = 0;
   for (const WaveLanes& w : r.stats.waves) compacted += w.issued_compacted;
@@ -974,34 +981,7 @@ TEST(Render, ASpotLightFallsOffBetweenItsConesAlike) {
 
 // ---- texture filtering ------------------------------------------------------
 
-// A fine checker floor running to the horizon, lit by the ambient term
-// alone; with `mirror`, a mirror wall across the view (tilted a little
-// down) shows the floor behind the camera at grazing angles, so its
-// footprint comes from differentials carried through a reflection.
-SceneDesc checker_floor(bool mirror) {
-  SceneDesc s;
-  s.camera = CameraDesc{{0.f, 1.f, 4.f}, {0.f, 0.6f, -10.f}, {0.f, 1.f, 0.f}, 40.f, 0.f, 96, 54};
-  s.background = {1.f, 1.f, 1.f};
-  s.ambient = {1.f, 1.f, 1.f};
-  TextureDesc checks;
-  checks.kind = TextureDesc::Kind::checker2d;
-  checks.scale = 2.f;
-  s.textures.push_back(checks);
-  MaterialDesc floor;
-  floor.ka = 1.f;
-  floor.kd = floor.ks = 0.f;
-  floor.texture = 0;
-  s.materials.push_back(floor);
-  s.planes.push_back({{{0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}}, 0});
-  if (mirror) {
-    MaterialDesc wall;
-    wall.ka = wall.kd = wall.ks = 0.f;
-    wall.kr = 1.f;
-    s.materials.push_back(wall);
-    s.planes.push_back({{{0.f, 0.f, -3.f}, {0.f, -0.05f, 1.f}}, 1});
-  }
-  return s;
-}
+using testing::checker_floor;
 
 double rmse(const Framebuffer& a, const Framebuffer& b) {
   double sum = 0.0;

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstdint>
+#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -204,6 +205,43 @@ TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
       const bool corner3 = t.triangle.p[k].x == 0.f && t.triangle.p[k].y == 1.f;
       EXPECT_FLOAT_EQ((*t.triangle.normals)[k].x, corner3 ? 0.6f : 0.f);
     }
+  }
+}
+
+// A triangle whose file normals are not all finite, at any corner, gets
+// computed ones instead; the others keep the file's. (PLY refuses such a
+// number; a glTF's normals come through Assimp as they are.)
+TEST(MeshImport, NormalsThatAreNotFiniteAtAnyCornerAreReplaced) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  for (int bad = 0; bad < 3; ++bad) {
+    SCOPED_TRACE(bad);
+    // Two triangles facing +z, (0, 1, 2) and (3, 4, 5); vertex 3 + bad's normal NaN.
+    std::vector<float> floats;
+    for (int v = 0; v < 6; ++v) floats.insert(floats.end(), {float(v % 3 == 1), float(v % 3 == 2), float(v / 3)});
+    for (int v = 0; v < 6; ++v) {
+      floats.insert(floats.end(), {v == 3 + bad ? std::numeric_limits<float>::quiet_NaN() : 0.f, 0.f, 1.f});
+    }
+    std::string buffer(reinterpret_cast<const char*>(floats.data()), floats.size() * sizeof(float));
+    for (const std::uint16_t index : {0, 1, 2, 3, 4, 5}) buffer.append(reinterpret_cast<const char*>(&index), 2);
+    write_file(temporary.path() / "two.bin", buffer);
+    const fs::path path = temporary.path() / "two.gltf";
+    write_file(path, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+      "buffers": [{"uri": "two.bin", "byteLength": 156}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72}, {"buffer": 0, "byteOffset": 72, "byteLength": 72},
+                      {"buffer": 0, "byteOffset": 144, "byteLength": 12}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+                    {"bufferView": 1, "componentType": 5126, "count": 6, "type": "VEC3"},
+                    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})");
+    const SceneDesc scene = read_imported_mesh(path);
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    for (const SceneTriangle& t : scene.triangles) {
+      if (!t.triangle.normals) continue;  // faceted: the geometric normal
+      for (const Vec3<float>& n : *t.triangle.normals) {
+        EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+      }
+    }
+    EXPECT_TRUE(scene.triangles[0].triangle.normals.has_value());  // the file's, all finite
   }
 }
 
