@@ -473,10 +473,10 @@ class ObjReader {
   }
 
  private:
-  // The statement lines as parse_obj_lines read them, in file order: those
-  // it read whole are stored here (a face's indices checked as
+  // The statement lines as for_each_obj_chunk hands them, in file order:
+  // those it read whole are stored here (a face's indices checked as
   // read_corners checks them), the others read by the line scanner, as is
-  // a face whose checks fail (which then reports the error).
+  // a line whose checks fail here (the scanner then reports the error).
   void read_chunks() {
     std::size_t line_base = 0;
     for_each_obj_chunk(text_, [&](const ObjChunk& chunk) {
@@ -486,27 +486,15 @@ class ObjReader {
         const std::size_t line_number = line_base + line.line;
         switch (line.kind) {
           case ObjLineKind::vertex:
-            if (positions_.size() < kMaxObjVertices) {
-              positions_.push_back({number[0], number[1], number[2]});
-            } else {
-              read_line_at(line.offset, line_number);  // reports the bound
-            }
+            store_read(positions_, Vec3<float>{number[0], number[1], number[2]}, line.offset, line_number);
             number += 3;
             break;
           case ObjLineKind::uv:
-            if (uvs_.size() < kMaxObjVertices) {
-              uvs_.push_back({number[0], number[1]});
-            } else {
-              read_line_at(line.offset, line_number);
-            }
+            store_read(uvs_, std::array<float, 2>{number[0], number[1]}, line.offset, line_number);
             number += 2;
             break;
           case ObjLineKind::normal:
-            if (normals_.size() < kMaxObjVertices) {
-              normals_.push_back({number[0], number[1], number[2]});
-            } else {
-              read_line_at(line.offset, line_number);
-            }
+            store_read(normals_, Vec3<float>{number[0], number[1], number[2]}, line.offset, line_number);
             number += 3;
             break;
           case ObjLineKind::face:
@@ -521,6 +509,16 @@ class ObjReader {
     scan_.finish_at_end(line_base);
   }
 
+  // A v, vt or vn read whole, within kMaxObjVertices; past it, the scanner reports the bound.
+  template <class T>
+  void store_read(std::vector<T>& list, const T& value, std::size_t offset, std::size_t line) {
+    if (list.size() < kMaxObjVertices) {
+      list.push_back(value);
+    } else {
+      read_line_at(offset, line);
+    }
+  }
+
   static std::size_t corner_parts(int form) {
     return 1 + ((form & kCornerGivesUv) != 0 ? 1 : 0) + ((form & kCornerGivesNormal) != 0 ? 1 : 0);
   }
@@ -532,13 +530,12 @@ class ObjReader {
     read_statement();
   }
 
-  // A face parse_obj_lines read, if its indices are defined and it stays
+  // A face for_each_obj_chunk read, if its indices are defined and it stays
   // within the corner and triangle bounds; else false, nothing changed.
   bool add_read_face(const ObjLine& line, const std::int32_t* index) {
     const std::size_t parts = corner_parts(line.form);
     corners_.clear();
     for (std::size_t c = 0; c < line.corners; ++c, index += parts) {
-      ObjCorner corner;
       const std::int64_t position = resolve_obj_index(index[0], positions_.size());
       const std::int64_t uv = (line.form & kCornerGivesUv) != 0 ? resolve_obj_index(index[1], uvs_.size()) : 0;
       const std::int64_t normal =

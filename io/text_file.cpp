@@ -21,10 +21,12 @@ namespace quiver {
 
 namespace {
 
-// Closes a file descriptor when it goes.
+// Closes a file descriptor, if one was opened, when it goes.
 struct OpenFile {
   int fd;
-  ~OpenFile() { ::close(fd); }
+  ~OpenFile() {
+    if (fd >= 0) ::close(fd);
+  }
 };
 
 // Reads up to `count` bytes at `offset` into `out`, retrying short reads;

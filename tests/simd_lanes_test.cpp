@@ -118,7 +118,9 @@ TEST(Isa, TheBestSupportedIsTheWidest) {
   const Isa best = best_supported_isa();
   EXPECT_TRUE(isa_supported(best));
   for (const Isa isa : kIsas) {
-    if (isa_supported(isa)) EXPECT_GE(lane_width(best), lane_width(isa)) << isa_name(isa);
+    if (isa_supported(isa)) {
+      EXPECT_GE(lane_width(best), lane_width(isa)) << isa_name(isa);
+    }
   }
 }
 
