@@ -128,26 +128,47 @@ struct TriangleArea {
   double twice_area() const { return std::sqrt(dot(n, n)); }
 };
 
-// The faces' area (in total, and on a flat base facing -axis at the box's
-// lowest side along axis), for the triangles of a mesh.
-double base_area(const SceneDesc& scene, int axis, const Bounds& bounds) {
-  const double tolerance = 0.01 * (bounds.hi[axis] - bounds.lo[axis]);
-  const double flat = std::cos(2.0 * std::numbers::pi / 180.0);
-  double area = 0.0;
-  for (const SceneTriangle& t : scene.triangles) {
-    const TriangleArea f(t);
-    bool low = true;
-    for (const Vec3<double>& p : {f.a, f.b, f.c}) low = low && p[axis] - bounds.lo[axis] <= tolerance;
-    const double twice_area = f.twice_area();
-    if (low && twice_area > 0.0 && std::fabs(f.n[axis]) >= flat * twice_area) area += 0.5 * twice_area;
-  }
-  return area;
+// Folds the scene's triangles (fold(state, triangle)) in fixed blocks on
+// every thread, the blocks' states joined in a fixed tree: the same sums,
+// to the bit, for every thread count.
+template <class State, class Fold, class Join>
+State fold_triangles(const SceneDesc& scene, const State& none, const Fold& fold, const Join& join) {
+  constexpr std::size_t kTrianglesPerBlock = 4096;
+  const auto fold_block = [&](const tbb::blocked_range<std::size_t>& block, State state) {
+    for (std::size_t i = block.begin(); i != block.end(); ++i) fold(state, scene.triangles[i]);
+    return state;
+  };
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<std::size_t>(0, scene.triangles.size(), kTrianglesPerBlock), none, fold_block, join);
 }
 
-double mesh_area(const SceneDesc& scene) {
-  double area = 0.0;
-  for (const SceneTriangle& t : scene.triangles) area += 0.5 * TriangleArea(t).twice_area();
-  return area;
+// The faces' area in total, and on a flat base facing -axis at the box's
+// lowest side along each axis (y and z), for the triangles of a mesh.
+struct MeshAreas {
+  double total = 0.0;
+  std::array<double, 3> base{};
+};
+
+MeshAreas mesh_areas(const SceneDesc& scene, const Bounds& bounds) {
+  const double flat = std::cos(2.0 * std::numbers::pi / 180.0);
+  std::array<double, 3> tolerance{};
+  for (const int axis : {1, 2}) tolerance[axis] = 0.01 * (bounds.hi[axis] - bounds.lo[axis]);
+  const auto fold = [&](MeshAreas& areas, const SceneTriangle& t) {
+    const TriangleArea f(t);
+    const double twice_area = f.twice_area();
+    areas.total += 0.5 * twice_area;
+    for (const int axis : {1, 2}) {
+      bool low = true;
+      for (const Vec3<double>& p : {f.a, f.b, f.c}) low = low && p[axis] - bounds.lo[axis] <= tolerance[axis];
+      if (low && twice_area > 0.0 && std::fabs(f.n[axis]) >= flat * twice_area) areas.base[axis] += 0.5 * twice_area;
+    }
+  };
+  const auto join = [](MeshAreas a, const MeshAreas& b) {
+    a.total += b.total;
+    for (const int axis : {1, 2}) a.base[axis] += b.base[axis];
+    return a;
+  };
+  return fold_triangles(scene, MeshAreas{}, fold, join);
 }
 
 // The mesh's top (vertices in the upper two fifths along up, each weighted by
@@ -155,42 +176,47 @@ double mesh_area(const SceneDesc& scene) {
 // extent of the vertices along each of the two axes across up.
 std::pair<double, double> top_lean(const SceneDesc& scene, const Vec3<double>& up, const Vec3<double>& front,
                                    const Vec3<double>& side) {
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  double extent[2][2] = {{low, high}, {low, high}};
-  for (const SceneTriangle& t : scene.triangles) {
+  // The vertices' range along up, front and side.
+  const auto extend = [&](Ranges<3>& range, const SceneTriangle& t) {
     for (const Vec3<float>& p : t.triangle.p) {
       const Vec3<double> q = to_double(p);
-      low = std::min(low, dot(q, up));
-      high = std::max(high, dot(q, up));
-      const double along[2] = {dot(q, front), dot(q, side)};
-      for (int k = 0; k < 2; ++k) {
-        extent[k][0] = std::min(extent[k][0], along[k]);
-        extent[k][1] = std::max(extent[k][1], along[k]);
-      }
+      const double along[3] = {dot(q, up), dot(q, front), dot(q, side)};
+      for (std::size_t k = 0; k < 3; ++k) range.include(k, along[k], along[k]);
     }
-  }
-  const double top_from = low + 0.6 * (high - low);
-  Vec3<double> centre{0.0, 0.0, 0.0}, top{0.0, 0.0, 0.0};
-  double weight = 0.0, top_weight = 0.0;
-  for (const SceneTriangle& t : scene.triangles) {
+  };
+  const Ranges<3> range = fold_triangles(scene, Ranges<3>{}, extend, joined<Ranges<3>>);
+  const double top_from = range.lo[0] + 0.6 * (range.hi[0] - range.lo[0]);
+  struct Weighted {
+    Vec3<double> centre{0.0, 0.0, 0.0}, top{0.0, 0.0, 0.0};
+    double weight = 0.0, top_weight = 0.0;
+  };
+  const auto weigh = [&](Weighted& w, const SceneTriangle& t) {
     const TriangleArea f(t);
-    const double w = f.twice_area() / 6.0;  // a third of the area to each corner
+    const double share = f.twice_area() / 6.0;  // a third of the area to each corner
     for (const Vec3<double>& p : {f.a, f.b, f.c}) {
-      centre = centre + p * w;
-      weight += w;
+      w.centre = w.centre + p * share;
+      w.weight += share;
       if (dot(p, up) >= top_from) {
-        top = top + p * w;
-        top_weight += w;
+        w.top = w.top + p * share;
+        w.top_weight += share;
       }
     }
-  }
-  if (!(weight > 0.0) || !(top_weight > 0.0)) return {0.0, 0.0};
-  const Vec3<double> lean = top * (1.0 / top_weight) - centre * (1.0 / weight);
-  const auto share = [](double d, const double range[2]) {
-    const double half = 0.5 * (range[1] - range[0]);
+  };
+  const auto join = [](Weighted a, const Weighted& b) {
+    a.centre = a.centre + b.centre;
+    a.top = a.top + b.top;
+    a.weight += b.weight;
+    a.top_weight += b.top_weight;
+    return a;
+  };
+  const Weighted w = fold_triangles(scene, Weighted{}, weigh, join);
+  if (!(w.weight > 0.0) || !(w.top_weight > 0.0)) return {0.0, 0.0};
+  const Vec3<double> lean = w.top * (1.0 / w.top_weight) - w.centre * (1.0 / w.weight);
+  const auto share = [&](double d, std::size_t k) {
+    const double half = 0.5 * (range.hi[k] - range.lo[k]);
     return half > 0.0 ? d / half : 0.0;
   };
-  return {share(dot(lean, front), extent[0]), share(dot(lean, side), extent[1])};
+  return {share(dot(lean, front), 1), share(dot(lean, side), 2)};
 }
 
 std::string axis_name(const Vec3<double>& v) {
@@ -204,7 +230,11 @@ std::string axis_name(const Vec3<double>& v) {
 
 }  // namespace
 
-DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up) {
+namespace {
+
+// choose_default_view, with the bounds of the scene's balls when they are
+// known already (else found here, if needed).
+DefaultView choose_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up, const Bounds* known_bounds) {
   const Vec3<double> y{0.0, 1.0, 0.0}, z{0.0, 0.0, 1.0};
   bool only_triangles = true;
   for_each_kind([&]<class K>(K) {
@@ -219,9 +249,9 @@ DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3
     view.up = unit(to_double(scene.model_up->axis));
     view.up_reason = axis_name(view.up) + ", " + scene.model_up->convention;
   } else if (mesh) {
-    const Bounds bounds = ExtentBalls(scene).bounds();
-    const double least = 0.02 * mesh_area(scene);
-    if (base_area(scene, 2, bounds) >= least && base_area(scene, 1, bounds) < least) {
+    const MeshAreas areas = mesh_areas(scene, known_bounds != nullptr ? *known_bounds : ExtentBalls(scene).bounds());
+    const double least = 0.02 * areas.total;
+    if (areas.base[2] >= least && areas.base[1] < least) {
       view.up = z;
       view.up_reason = "+z: the mesh stands on a flat base at its lowest z";
     }
@@ -241,6 +271,12 @@ DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3
     }
   }
   return view;
+}
+
+}  // namespace
+
+DefaultView choose_default_view(const SceneDesc& scene, const std::optional<Vec3<double>>& up) {
+  return choose_view(scene, up, nullptr);
 }
 
 namespace {
@@ -330,7 +366,9 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
     throw std::invalid_argument("add_default_view: the angle must lie in (0, 180) degrees");
   }
   if (scene.camera) return std::nullopt;
-  const DefaultView view = choose_default_view(scene, up);
+  const ExtentBalls primitives(scene);
+  const Bounds bounds = primitives.bounds();
+  const DefaultView view = choose_view(scene, up, &bounds);
   // Three-quarter view: 35 degrees round from the front towards the model's
   // left (+x for the default front +z and up +y), 25 degrees up.
   const double azimuth = 35.0 * std::numbers::pi / 180.0, elevation = 25.0 * std::numbers::pi / 180.0;
@@ -346,8 +384,6 @@ std::optional<DefaultView> add_default_camera(SceneDesc& scene, int width, int h
   axes.tangent_across = longest * double(std::max(width - 1, 1)) / longer;
   axes.tangent_up = longest * double(std::max(height - 1, 1)) / longer;
 
-  const ExtentBalls primitives(scene);
-  const Bounds bounds = primitives.bounds();
   Vec3<double> target{0.0, 0.0, 0.0};
   double distance = 0.0;
   if (bounds.empty()) {
