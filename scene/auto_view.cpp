@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "scene/camera_frame.h"
@@ -57,36 +58,90 @@ struct Bounds : Ranges<3> {
   bool empty() const { return lo[0] > hi[0]; }
 };
 
+// Corner `bits` of a box (bit k: the high side along axis k).
+Vec3<double> box_corner(const Bounds& box, int bits) {
+  return {bits & 1 ? box.hi[0] : box.lo[0], bits & 2 ? box.hi[1] : box.lo[1], bits & 4 ? box.hi[2] : box.lo[2]};
+}
+
 // Balls that together cover every bounded primitive: each kind's extent,
 // and the corners of each instance's placed mesh box (the meshes' boxes
 // found once, as the default camera visits the balls several times).
 class ExtentBalls {
  public:
-  explicit ExtentBalls(const SceneDesc& scene) : scene_(scene), mesh_bounds_(scene.meshes.size()) {
+  static constexpr std::size_t kEntriesPerTask = 4096;
+  // Triangles per block with a box of its own: small, so that a block of a
+  // mesh stored ring by ring still spans a small part of it.
+  static constexpr std::size_t kTrianglesPerBox = 256;
+
+  explicit ExtentBalls(const SceneDesc& scene)
+      : scene_(scene),
+        mesh_bounds_(scene.meshes.size()),
+        triangle_blocks_((scene.triangles.size() + kTrianglesPerBox - 1) / kTrianglesPerBox) {
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
       for (const SceneTriangle& t : scene.meshes[m].triangles) {
         for (const Vec3<float>& p : t.triangle.p) mesh_bounds_[m].add(p);
       }
     }
+    tbb::parallel_for(std::size_t{0}, triangle_blocks_.size(), [&](std::size_t b) {
+      for (std::size_t i = b * kTrianglesPerBox; i < std::min((b + 1) * kTrianglesPerBox, scene.triangles.size()); ++i) {
+        for (const Vec3<float>& p : scene.triangles[i].triangle.p) triangle_blocks_[b].add(p);
+      }
+    });
   }
 
   // Folds every ball (fold(state, p, margin)) into a state that starts as
   // `none`, each kind's entries in parallel blocks joined by combine: for
   // minima and maxima only, whose bits do not depend on the order or the
-  // thread count.
+  // thread count. A block of triangles whose box settled(state, box) says
+  // no point inside could change the state is passed over: a sample of the
+  // blocks (every kSampleStride-th) is folded first, and the state it gives
+  // judges the others; the result is the whole fold's for a `settled` that
+  // holds only where that is certain.
+  template <class State, class Fold, class Combine, class Settled>
+  State reduce_pruned(const State& none, const Fold& fold, const Combine& combine, const Settled& settled) const {
+    constexpr std::size_t kSampleStride = 16;
+    const auto fold_blocks = [&](bool sample, const State& judge) {
+      return tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, triangle_blocks_.size()), none,
+          [&](const tbb::blocked_range<std::size_t>& range, State state) {
+            const auto add = [&](const Vec3<float>& p, double margin) { fold(state, p, margin); };
+            for (std::size_t b = range.begin(); b != range.end(); ++b) {
+              if ((b % kSampleStride == 0) != sample || (!sample && settled(judge, triangle_blocks_[b]))) continue;
+              const std::size_t end = std::min((b + 1) * kTrianglesPerBox, scene_.triangles.size());
+              for (std::size_t i = b * kTrianglesPerBox; i < end; ++i) TriangleKind::extent(scene_.triangles[i].triangle, add);
+            }
+            return state;
+          },
+          combine);
+    };
+    const State sampled = combine(reduce_others(none, fold, combine), fold_blocks(true, none));
+    return combine(sampled, fold_blocks(false, sampled));
+  }
+
+  // The box of every ball; the triangles' from their blocks' boxes.
+  Bounds bounds() const {
+    Bounds b = reduce_others(Bounds{}, [](Bounds& s, const Vec3<float>& p, double margin) { s.add(p, margin); },
+                             joined<Bounds>);
+    for (const Bounds& block : triangle_blocks_) b = joined(b, block);
+    return b;
+  }
+
+ private:
+  // reduce over every kind but triangles, and the instances' placed boxes.
   template <class State, class Fold, class Combine>
-  State reduce(const State& none, const Fold& fold, const Combine& combine) const {
-    constexpr std::size_t kEntriesPerTask = 4096;
+  State reduce_others(const State& none, const Fold& fold, const Combine& combine) const {
     State total = none;
     for_each_kind([&]<class K>(K) {
-      const auto& entries = scene_.*SceneEntries<K>::of;
-      const auto fold_block = [&](const tbb::blocked_range<std::size_t>& block, State state) {
-        const auto add = [&](const Vec3<float>& p, double margin) { fold(state, p, margin); };
-        for (std::size_t i = block.begin(); i != block.end(); ++i) K::extent(entries[i].*SceneEntries<K>::desc, add);
-        return state;
-      };
-      total = combine(total, tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, entries.size(), kEntriesPerTask),
-                                                  none, fold_block, combine));
+      if constexpr (!std::is_same_v<K, TriangleKind>) {
+        const auto& entries = scene_.*SceneEntries<K>::of;
+        const auto fold_block = [&](const tbb::blocked_range<std::size_t>& block, State state) {
+          const auto add = [&](const Vec3<float>& p, double margin) { fold(state, p, margin); };
+          for (std::size_t i = block.begin(); i != block.end(); ++i) K::extent(entries[i].*SceneEntries<K>::desc, add);
+          return state;
+        };
+        total = combine(total, tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, entries.size(), kEntriesPerTask),
+                                                    none, fold_block, combine));
+      }
     });
     for (const SceneInstance& instance : scene_.instances) {
       if (instance.mesh >= mesh_bounds_.size() || mesh_bounds_[instance.mesh].empty()) continue;
@@ -101,14 +156,9 @@ class ExtentBalls {
     return total;
   }
 
-  Bounds bounds() const {
-    return reduce(Bounds{}, [](Bounds& b, const Vec3<float>& p, double margin) { b.add(p, margin); },
-                  joined<Bounds>);
-  }
-
- private:
   const SceneDesc& scene_;
   std::vector<Bounds> mesh_bounds_;
+  std::vector<Bounds> triangle_blocks_;  // the box of each block of kTrianglesPerBox triangles
 };
 
 Vec3<float> to_float(const Vec3<double>& v) {
@@ -316,7 +366,20 @@ double fitting_distance(const Balls& balls, const Vec3<double>& target, const Vi
     distance = greatest(greatest(distance, h + (std::fabs(dot(q, axes.right)) + margin * sx) / tx),
                         h + (std::fabs(dot(q, axes.up)) + margin * sy) / ty);
   };
-  return balls.reduce(0.0, fold, greatest);
+  // A box of points (margin 0) settles a distance it stays below: h + |x| / t
+  // is convex, so its largest is at a corner; the pad, a billionth of the
+  // terms' size, is far above their rounding.
+  const auto settled = [&](const double& distance, const Bounds& box) {
+    double bound = -std::numeric_limits<double>::infinity(), size = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3<double> q = box_corner(box, corner) - target;
+      const double h = dot(q, axes.toward_eye), x = std::fabs(dot(q, axes.right)), y = std::fabs(dot(q, axes.up));
+      bound = std::max(bound, std::max(h + x / tx, h + y / ty));
+      size = std::max(size, std::fabs(h) + x / tx + y / ty);
+    }
+    return std::isfinite(size) && bound + 1e-9 * size < distance;
+  };
+  return balls.reduce_pruned(0.0, fold, greatest, settled);
 }
 
 // The target moved across the view to the middle of the balls' image seen
@@ -336,7 +399,30 @@ Vec3<double> centred_target(const Balls& balls, const Vec3<double>& target, cons
       span.include(k, (x * z - spread) * scale, (x * z + spread) * scale);
     }
   };
-  const Span span = balls.reduce(Span{}, fold, joined<Span>);
+  // A box of points (margin 0) in front of the eye settles a span holding
+  // its tangents x / z: on a box with z > 0 they are largest and smallest at
+  // corners; the pad is far above their rounding.
+  const auto settled = [&](const Span& span, const Bounds& box) {
+    if (!(span.lo[0] <= span.hi[0]) || !(span.lo[1] <= span.hi[1])) return false;
+    Span here;
+    double reach = 0.0, nearest = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3<double> q = box_corner(box, corner) - target;
+      const double z = distance - dot(q, axes.toward_eye);
+      if (!(z > 0.0)) return false;
+      const double across[2] = {dot(q, axes.right), dot(q, axes.up)};
+      for (std::size_t k = 0; k < 2; ++k) here.include(k, across[k] / z, across[k] / z);
+      reach = std::max(reach, std::sqrt(dot(q, q)));
+      nearest = std::min(nearest, z);
+    }
+    const double pad = 1e-9 * (reach + std::fabs(distance)) / nearest;
+    if (!std::isfinite(pad)) return false;
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (!(here.lo[k] - pad > span.lo[k] && here.hi[k] + pad < span.hi[k])) return false;
+    }
+    return true;
+  };
+  const Span span = balls.reduce_pruned(Span{}, fold, joined<Span>, settled);
   if (!(span.lo[0] <= span.hi[0]) || !(span.lo[1] <= span.hi[1])) return target;
   return target + axes.right * (0.5 * (span.lo[0] + span.hi[0]) * distance) +
          axes.up * (0.5 * (span.lo[1] + span.hi[1]) * distance);
@@ -344,8 +430,8 @@ Vec3<double> centred_target(const Balls& balls, const Vec3<double>& target, cons
 
 // The unit ball at the origin, for a scene without a bounded primitive.
 struct UnitBall {
-  template <class State, class Fold, class Combine>
-  State reduce(const State& none, const Fold& fold, const Combine&) const {
+  template <class State, class Fold, class Combine, class Settled>
+  State reduce_pruned(const State& none, const Fold& fold, const Combine&, const Settled&) const {
     State state = none;
     fold(state, Vec3<float>{0.f, 0.f, 0.f}, 1.0);
     return state;

@@ -175,6 +175,52 @@ TEST(AutoView, AMeshFoldedOverThreadsGetsTheSameViewOnOneThread) {
   }
 }
 
+// A mesh of many triangles is framed by its extreme vertices whatever the
+// order of its triangles: stored ring by ring (each block of triangles a
+// band around it) or shuffled, the default camera is the same to the bit,
+// every vertex is in the image and the fit fills kDefaultViewFill.
+TEST(AutoView, AMeshIsFramedByItsExtremeVerticesInAnyOrder) {
+  constexpr int kRings = 120, kSegments = 240;
+  const auto vertex = [](int i, int j) {
+    const double theta = std::numbers::pi * i / kRings, phi = 2.0 * std::numbers::pi * j / kSegments;
+    const double r = 1.0 + 0.05 * std::sin(7.0 * theta) * std::sin(5.0 * phi);
+    return Vec3<float>{float(2.0 + r * std::sin(theta) * std::cos(phi)), float(r * std::cos(theta)),
+                       float(-1.0 + 1.5 * r * std::sin(theta) * std::sin(phi))};
+  };
+  SceneDesc rings;
+  rings.materials.emplace_back();
+  std::vector<std::array<double, 3>> points;
+  for (int i = 0; i < kRings; ++i) {
+    for (int j = 0; j < kSegments; ++j) {
+      const Vec3<float> a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1), d = vertex(i, j + 1);
+      for (const std::array<Vec3<float>, 3>& t : {std::array{a, b, c}, std::array{a, c, d}}) {
+        SceneTriangle triangle{};
+        triangle.triangle.p = t;
+        rings.triangles.push_back(triangle);
+      }
+      points.push_back({a.x, a.y, a.z});
+    }
+  }
+  SceneDesc shuffled = rings;
+  std::uint32_t state = 7;
+  for (std::size_t i = shuffled.triangles.size(); i > 1; --i) {  // Fisher-Yates with a fixed LCG
+    state = state * 1664525u + 1013904223u;
+    std::swap(shuffled.triangles[i - 1], shuffled.triangles[(state >> 8) % i]);
+  }
+  add_default_view(rings, 640, 480);
+  add_default_view(shuffled, 640, 480);
+  const CameraDesc& c = *rings.camera;
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(c.from[a]), std::bit_cast<std::uint32_t>(shuffled.camera->from[a])) << a;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(c.at[a]), std::bit_cast<std::uint32_t>(shuffled.camera->at[a])) << a;
+  }
+  const FilmBox box = film_box(c, 640, 480, points);
+  expect_inside_image(box, 640, 480);
+  const double fill = std::max((box.max_x - box.min_x) / 639.0, (box.max_y - box.min_y) / 479.0);
+  EXPECT_NEAR(fill, kDefaultViewFill, 0.01);
+  EXPECT_LE(fill, kDefaultViewFill + 1e-6);  // the farthest vertex sets the distance
+}
+
 // A different field of view frames the same way; a ball fills the shorter
 // side, across or up, as its silhouette (not its centre) reaches it.
 TEST(AutoView, FramesForTheAngleGiven) {
