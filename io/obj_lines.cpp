@@ -30,8 +30,6 @@ namespace quiver {
 
 namespace {
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-
 bool exponent_has_at_most_9_digits(std::string_view token) {
   std::size_t e = 0;  // a plain loop: most tokens are short and have no exponent
   while (e < token.size() && token[e] != 'e' && token[e] != 'E') ++e;
@@ -42,41 +40,28 @@ bool exponent_has_at_most_9_digits(std::string_view token) {
   return token.size() - i <= 9;
 }
 
-// Up to kMax blank-separated tokens of a line; more give count kMax + 1.
-template <std::size_t kMax>
-struct Tokens {
-  std::array<std::string_view, kMax> text;
-  std::size_t count = 0;
-
-  explicit Tokens(std::string_view line) {
-    std::size_t at = 0;
-    while (true) {
-      while (at < line.size() && is_blank(line[at])) ++at;
-      if (at == line.size()) return;
-      if (count == kMax) {
-        ++count;
-        return;
-      }
-      std::size_t end = at;
-      while (end < line.size() && !is_blank(line[end])) ++end;
-      text[count++] = line.substr(at, end - at);
-      at = end;
-    }
-  }
-};
+// The token of `line` from `at` on (blanks before it skipped), `at` moved
+// past it; empty at the end of the line.
+std::string_view next_token(std::string_view line, std::size_t& at) {
+  while (at < line.size() && is_obj_blank(line[at])) ++at;
+  const std::size_t first = at;
+  while (at < line.size() && !is_obj_blank(line[at])) ++at;
+  return line.substr(first, at - first);
+}
 
 // The tokens after the keyword: min to max numbers, each read whole; the
 // first `kept` appended (missing ones as 0). False, nothing appended, if a
 // token does not read or there are fewer or more.
 bool read_numbers(std::string_view rest, std::size_t min, std::size_t max, std::vector<float>& out, std::size_t kept) {
-  const Tokens<3> tokens(rest);
-  if (tokens.count < min || tokens.count > max) return false;
   std::array<float, 3> values{};
-  for (std::size_t k = 0; k < tokens.count; ++k) {
-    const ObjNumber n = read_obj_number(tokens.text[k]);
+  std::size_t count = 0, at = 0;
+  for (std::string_view token = next_token(rest, at); !token.empty(); token = next_token(rest, at)) {
+    if (count == max) return false;
+    const ObjNumber n = read_obj_number(token);
     if (n.fault != ObjNumberFault::none) return false;
-    values[k] = n.value;
+    values[count++] = n.value;
   }
+  if (count < min) return false;
   out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(kept));
   return true;
 }
@@ -92,13 +77,7 @@ bool read_face(std::string_view rest, ObjChunk& chunk, ObjLine& line) {
   std::size_t corners = 0;
   int face_form = -1;
   std::size_t at = 0;
-  while (true) {
-    while (at < rest.size() && is_blank(rest[at])) ++at;
-    if (at == rest.size()) break;
-    std::size_t end = at;
-    while (end < rest.size() && !is_blank(rest[end])) ++end;
-    std::string_view corner = rest.substr(at, end - at);
-    at = end;
+  for (std::string_view corner = next_token(rest, at); !corner.empty(); corner = next_token(rest, at)) {
     std::array<std::string_view, 3> parts;
     std::size_t count = 0;
     while (true) {
@@ -135,8 +114,7 @@ bool read_face(std::string_view rest, ObjChunk& chunk, ObjLine& line) {
 // One statement line (blanks before it skipped): its kind and values.
 void read_line(std::string_view text, ObjChunk& chunk, ObjLine& line) {
   std::size_t keyword_end = 0;
-  while (keyword_end < text.size() && !is_blank(text[keyword_end])) ++keyword_end;
-  const std::string_view keyword = text.substr(0, keyword_end);
+  const std::string_view keyword = next_token(text, keyword_end);
   const std::string_view rest = text.substr(keyword_end);
   if (keyword == "v") {
     if (read_numbers(rest, 3, 3, chunk.numbers, 3)) line.kind = ObjLineKind::vertex;
@@ -155,7 +133,7 @@ void parse_chunk(std::string_view text, std::size_t begin, std::size_t end, ObjC
     const std::size_t line_end = newline == nullptr ? end : std::size_t(static_cast<const char*>(newline) - text.data());
     ++chunk.line_count;
     std::size_t first = at;
-    while (first < line_end && is_blank(text[first])) ++first;
+    while (first < line_end && is_obj_blank(text[first])) ++first;
     if (first < line_end && text[first] != '#') {
       ObjLine line;
       line.offset = static_cast<std::uint32_t>(at);
@@ -183,14 +161,14 @@ ObjTextFacts scan_block(std::string_view text, std::size_t begin, std::size_t en
     at = newline == nullptr ? end : std::size_t(static_cast<const char*>(newline) - text.data()) + 1;
   }
   while (at < end) {
-    while (at < text.size() && is_blank(text[at])) ++at;
+    while (at < text.size() && is_obj_blank(text[at])) ++at;
     const char first = at < text.size() ? text[at] : '\0';
     const char second = at + 1 < text.size() ? text[at + 1] : '\0';
     if (first == 'v') {
-      if (is_blank(second)) ++facts.v;
+      if (is_obj_blank(second)) ++facts.v;
       if (second == 't') ++facts.vt;
       if (second == 'n') ++facts.vn;
-    } else if (first == 'f' && is_blank(second)) {
+    } else if (first == 'f' && is_obj_blank(second)) {
       ++facts.f;
     }
     const void* newline = std::memchr(text.data() + at, '\n', text.size() - at);

@@ -17,6 +17,9 @@
 
 namespace quiver {
 
+// OBJ and MTL separate tokens by spaces and tabs.
+inline bool is_obj_blank(char c) { return c == ' ' || c == '\t'; }
+
 // A corner's form: which of vt and vn it gives (v alone is 0).
 inline constexpr int kCornerGivesUv = 1;
 inline constexpr int kCornerGivesNormal = 2;

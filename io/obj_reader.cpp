@@ -53,8 +53,6 @@ struct Token {
   std::size_t column;  // 1-based byte column
 };
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-
 // Lines and tokens: a line ends at "\n", "\r\n" or a lone "\r"; tokens are
 // separated by spaces and tabs; a line whose first token starts with '#' is
 // a comment; a '#' after a blank later on a statement's line starts a
@@ -106,7 +104,7 @@ class LineScanner {
 
   Token peek() const {
     std::size_t end = scan_;
-    while (end < line_text_.size() && !is_blank(line_text_[end])) ++end;
+    while (end < line_text_.size() && !is_obj_blank(line_text_[end])) ++end;
     return {line_text_.substr(scan_, end - scan_), scan_ + 1};
   }
 
@@ -123,7 +121,7 @@ class LineScanner {
   Token take_rest_of_line(std::string_view expected) {
     if (at_end_of_line()) fail_at_end_of_line(expected);
     std::size_t end = line_text_.size();
-    while (end > scan_ && is_blank(line_text_[end - 1])) --end;
+    while (end > scan_ && is_obj_blank(line_text_[end - 1])) --end;
     const Token rest{line_text_.substr(scan_, end - scan_), scan_ + 1};
     scan_ = line_text_.size();
     taken_end_ = end;
@@ -215,14 +213,14 @@ class LineScanner {
 
  private:
   void skip_blanks() {
-    while (scan_ < line_text_.size() && is_blank(line_text_[scan_])) ++scan_;
+    while (scan_ < line_text_.size() && is_obj_blank(line_text_[scan_])) ++scan_;
   }
 
   // Where a '#' that follows a blank starts a trailing comment, or npos.
   std::size_t trailing_comment() const {
     for (std::size_t i = line_text_.find('#', scan_ + 1); i != std::string_view::npos;
          i = line_text_.find('#', i + 1)) {
-      if (is_blank(line_text_[i - 1])) return i;
+      if (is_obj_blank(line_text_[i - 1])) return i;
     }
     return std::string_view::npos;
   }
@@ -230,7 +228,7 @@ class LineScanner {
   // The statement's end: before the trailing comment at `comment` and the blanks before it.
   std::size_t statement_end(std::size_t comment) const {
     std::size_t end = comment;
-    while (end > scan_ && is_blank(line_text_[end - 1])) --end;
+    while (end > scan_ && is_obj_blank(line_text_[end - 1])) --end;
     return end;
   }
 
@@ -443,14 +441,14 @@ class ObjReader {
             std::size_t triangle_budget, double crease_angle_degrees, bool strict)
       : warnings_(strict),
         text_(text),
-        facts_(facts),
         scan_(text, file, warnings_, facts.first_nul, facts.has_cr),
         find_library_(find_library),
         triangle_budget_(triangle_budget),
-        crease_angle_degrees_(crease_angle_degrees) {}
+        crease_angle_degrees_(crease_angle_degrees) {
+    reserve_for(facts);
+  }
 
   SceneDesc run() {
-    reserve_for();
     // Parsing ahead pays only on another thread; its chunks split lines at '\n' alone.
     if (scan_.has_cr() || tbb::this_task_arena::max_concurrency() < 2) {
       while (scan_.next_statement()) read_statement();
@@ -618,11 +616,11 @@ class ObjReader {
   // Room for the counted elements, within the reader's bounds (each face
   // at least a triangle), so the lists are not regrown (and their memory
   // faulted in again) as the file is read.
-  void reserve_for() {
-    positions_.reserve(std::min(facts_.v, kMaxObjVertices));
-    uvs_.reserve(std::min(facts_.vt, kMaxObjVertices));
-    normals_.reserve(std::min(facts_.vn, kMaxObjVertices));
-    const std::size_t triangles = std::min(facts_.f, triangle_budget_);
+  void reserve_for(const ObjTextFacts& counts) {
+    positions_.reserve(std::min(counts.v, kMaxObjVertices));
+    uvs_.reserve(std::min(counts.vt, kMaxObjVertices));
+    normals_.reserve(std::min(counts.vn, kMaxObjVertices));
+    const std::size_t triangles = std::min(counts.f, triangle_budget_);
     scene_.triangles.reserve(triangles);
     triangle_vertices_.reserve(triangles);
   }
@@ -828,7 +826,6 @@ class ObjReader {
 
   ReaderWarnings warnings_;
   std::string_view text_;
-  ObjTextFacts facts_;
   LineScanner scan_;
   const MtlLookup& find_library_;
   std::size_t triangle_budget_;

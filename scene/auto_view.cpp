@@ -58,6 +58,10 @@ struct Bounds : Ranges<3> {
   bool empty() const { return lo[0] > hi[0]; }
 };
 
+Vec3<float> to_float(const Vec3<double>& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+}
+
 // Corner `bits` of a box (bit k: the high side along axis k).
 Vec3<double> box_corner(const Bounds& box, int bits) {
   return {bits & 1 ? box.hi[0] : box.lo[0], bits & 2 ? box.hi[1] : box.lo[1], bits & 4 ? box.hi[2] : box.lo[2]};
@@ -83,7 +87,7 @@ class ExtentBalls {
       }
     }
     tbb::parallel_for(std::size_t{0}, triangle_blocks_.size(), [&](std::size_t b) {
-      for (std::size_t i = b * kTrianglesPerBox; i < std::min((b + 1) * kTrianglesPerBox, scene.triangles.size()); ++i) {
+      for (std::size_t i = b * kTrianglesPerBox; i < block_end(b); ++i) {
         for (const Vec3<float>& p : scene.triangles[i].triangle.p) triangle_blocks_[b].add(p);
       }
     });
@@ -107,8 +111,9 @@ class ExtentBalls {
             const auto add = [&](const Vec3<float>& p, double margin) { fold(state, p, margin); };
             for (std::size_t b = range.begin(); b != range.end(); ++b) {
               if ((b % kSampleStride == 0) != sample || (!sample && settled(judge, triangle_blocks_[b]))) continue;
-              const std::size_t end = std::min((b + 1) * kTrianglesPerBox, scene_.triangles.size());
-              for (std::size_t i = b * kTrianglesPerBox; i < end; ++i) TriangleKind::extent(scene_.triangles[i].triangle, add);
+              for (std::size_t i = b * kTrianglesPerBox; i < block_end(b); ++i) {
+                TriangleKind::extent(scene_.triangles[i].triangle, add);
+              }
             }
             return state;
           },
@@ -127,6 +132,9 @@ class ExtentBalls {
   }
 
  private:
+  // One past the last triangle of block b.
+  std::size_t block_end(std::size_t b) const { return std::min((b + 1) * kTrianglesPerBox, scene_.triangles.size()); }
+
   // reduce over every kind but triangles, and the instances' placed boxes.
   template <class State, class Fold, class Combine>
   State reduce_others(const State& none, const Fold& fold, const Combine& combine) const {
@@ -147,10 +155,7 @@ class ExtentBalls {
       if (instance.mesh >= mesh_bounds_.size() || mesh_bounds_[instance.mesh].empty()) continue;
       const Bounds& m = mesh_bounds_[instance.mesh];
       for (int corner = 0; corner < 8; ++corner) {
-        const Vec3<float> p{static_cast<float>(corner & 1 ? m.hi[0] : m.lo[0]),
-                            static_cast<float>(corner & 2 ? m.hi[1] : m.lo[1]),
-                            static_cast<float>(corner & 4 ? m.hi[2] : m.lo[2])};
-        fold(total, apply_point(instance.object_to_world, p), 0.0);
+        fold(total, apply_point(instance.object_to_world, to_float(box_corner(m, corner))), 0.0);
       }
     }
     return total;
@@ -160,10 +165,6 @@ class ExtentBalls {
   std::vector<Bounds> mesh_bounds_;
   std::vector<Bounds> triangle_blocks_;  // the box of each block of kTrianglesPerBox triangles
 };
-
-Vec3<float> to_float(const Vec3<double>& v) {
-  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-}
 
 Vec3<double> to_double(const Vec3<float>& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
