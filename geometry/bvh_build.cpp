@@ -20,6 +20,7 @@
 
 #include <oneapi/tbb/parallel_invoke.h>
 
+#include "geometry/parallel_indices.h"
 #include "simd/lanes.h"
 
 namespace quiver {
@@ -81,9 +82,8 @@ struct RangeBounds {
 class BinaryBuilder {
  public:
   BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options, std::span<const std::uint8_t> store_of)
-      : options_(options), store_of_(store_of), nodes_(new BinaryNode[2 * boxes.size()]) {
-    refs_.reserve(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) refs_.push_back({boxes[i], static_cast<std::uint32_t>(i)});
+      : options_(options), store_of_(store_of), refs_(boxes.size()), nodes_(new BinaryNode[2 * boxes.size()]) {
+    for_each_index(boxes.size(), [&](std::size_t i) { refs_[i] = {boxes[i], static_cast<std::uint32_t>(i)}; });
   }
 
   std::int32_t build() {
@@ -140,8 +140,12 @@ class BinaryBuilder {
 
     std::uint32_t middle = begin;
     const bool fits_leaf = n <= static_cast<std::uint32_t>(options_.max_leaf_size);
+    // Every split costs at least the traversal (the sum of a non-negative
+    // term to it), so a range that fits a leaf and costs no more as one
+    // is a leaf without binning: the tree best_split would have chosen.
+    const bool leaf_at_least_as_cheap = fits_leaf && leaf_cost <= options_.traversal_cost;
     if (depth < kSahDepthLimit) {
-      const Split split = best_split(begin, end, bounds);
+      const Split split = leaf_at_least_as_cheap ? Split{} : best_split(begin, end, bounds);
       if (fits_leaf && (split.axis < 0 || split.cost >= leaf_cost)) {
         middle = split_by_store(begin, end);
         if (middle == end) return make_leaf(node, begin, n);

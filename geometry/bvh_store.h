@@ -17,6 +17,7 @@
 #include "geometry/build_report.h"
 #include "geometry/bvh.h"
 #include "geometry/desc_refs.h"
+#include "geometry/parallel_indices.h"
 #include "geometry/primitive_bounds.h"
 #include "geometry/soa.h"
 
@@ -36,12 +37,12 @@ void gather(Store& store, std::span<const std::uint32_t> positions) {
     AlignedFloats out;
     out.reserve(padded_size(positions.size()));  // exactly: padding grows no further
     out.resize(positions.size());
-    for (std::size_t k = 0; k < positions.size(); ++k) out[k] = (*column)[positions[k]];
+    for_each_index(positions.size(), [&](std::size_t k) { out[k] = (*column)[positions[k]]; });
     pad_column(out, positions.size());
     *column = std::move(out);
   }
   std::vector<std::uint32_t> source(positions.size());
-  for (std::size_t k = 0; k < positions.size(); ++k) source[k] = store.source[positions[k]];
+  for_each_index(positions.size(), [&](std::size_t k) { source[k] = store.source[positions[k]]; });
   store.source = std::move(source);
   store.count = positions.size();
 }

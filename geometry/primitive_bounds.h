@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/box.h"
+#include "geometry/parallel_indices.h"
 
 namespace quiver {
 
@@ -25,9 +26,8 @@ Box store_box(const Store& store) {
 // The boxes of primitives [0, store.count).
 template <class Store>
 std::vector<Box> primitive_boxes(const Store& store) {
-  std::vector<Box> boxes;
-  boxes.reserve(store.count);
-  for (std::size_t i = 0; i < store.count; ++i) boxes.push_back(primitive_box(store, i));
+  std::vector<Box> boxes(store.count);
+  for_each_index(store.count, [&](std::size_t i) { boxes[i] = primitive_box(store, i); });
   return boxes;
 }
 

@@ -12,8 +12,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "geometry/parallel_indices.h"
 
 namespace quiver {
 
@@ -50,16 +49,6 @@ Face face_of(const std::array<Vec3<double>, 3>& p) {
   return face;
 }
 
-// visit(t) for every face t, in parallel blocks.
-template <class Visit>
-void for_each_face(std::size_t count, const Visit& visit) {
-  constexpr std::size_t kFacesPerTask = 4096;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kFacesPerTask),
-                    [&](const tbb::blocked_range<std::size_t>& block) {
-                      for (std::size_t t = block.begin(); t != block.end(); ++t) visit(t);
-                    });
-}
-
 }  // namespace
 
 bool valid_crease_angle(double crease_angle_degrees) {
@@ -81,7 +70,7 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
   if (crease_angle_degrees == 0.0) return result;
 
   std::vector<Face> faces(triangles.size());
-  for_each_face(triangles.size(), [&](std::size_t t) {
+  for_each_index(triangles.size(), [&](std::size_t t) {
     const TriangleIndices& v = triangles[t];
     faces[t] = face_of({widened(positions[v[0]]), widened(positions[v[1]]), widened(positions[v[2]])});
   });
@@ -108,7 +97,7 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
   const double min_cosine = crease_angle_degrees >= kMaxCreaseAngleDegrees
                                 ? -std::numeric_limits<double>::infinity()
                                 : std::cos(crease_angle_degrees * (std::numbers::pi / 180.0));
-  for_each_face(triangles.size(), [&](std::size_t t) {
+  for_each_index(triangles.size(), [&](std::size_t t) {
     const Face& face = faces[t];
     if (!face.valid) return;
     const Vec3<float> flat = narrowed(face.normal);

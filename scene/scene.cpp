@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "geometry/bvh_store.h"
+#include "geometry/parallel_indices.h"
 #include "geometry/primitive_bounds.h"
 
 namespace quiver {
@@ -29,9 +30,8 @@ struct KindInput {
 // The origins of the primitives a builder kept, in store order.
 std::vector<PrimitiveOrigin> kept_origins(const std::vector<std::uint32_t>& source,
                                           const std::vector<PrimitiveOrigin>& origins) {
-  std::vector<PrimitiveOrigin> kept;
-  kept.reserve(source.size());
-  for (std::uint32_t s : source) kept.push_back(origins[s]);
+  std::vector<PrimitiveOrigin> kept(source.size());
+  for_each_index(source.size(), [&](std::size_t k) { kept[k] = origins[source[k]]; });
   return kept;
 }
 

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/parallel_indices.h"
+
 namespace quiver {
 
 namespace {
@@ -81,12 +83,14 @@ std::array<float, 2> TriangleSoA::uv(std::size_t i, int k) const {
 }
 
 TriangleSoA build_triangles(const DescRefs<TriangleDesc>& triangles, BuildReport& report) {
+  std::vector<Shape> shapes(triangles.size());
+  for_each_index(triangles.size(), [&](std::size_t i) { shapes[i] = classify(triangles[i]); });
   std::vector<std::uint32_t> kept;
   kept.reserve(triangles.size());
   bool any_normals = false, any_uvs = false;
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const TriangleDesc& t = triangles[i];
-    switch (classify(t)) {
+    switch (shapes[i]) {
       case Shape::non_finite: ++report.dropped_non_finite; break;
       case Shape::degenerate: ++report.dropped_degenerate; break;
       case Shape::ok:
@@ -119,7 +123,7 @@ TriangleSoA build_triangles(const DescRefs<TriangleDesc>& triangles, BuildReport
   }
 
   constexpr float kDefaultUv[3][2] = {{0.f, 0.f}, {1.f, 0.f}, {0.f, 1.f}};
-  for (std::size_t i = 0; i < kept.size(); ++i) {
+  for_each_index(kept.size(), [&](std::size_t i) {
     const TriangleDesc& t = triangles[kept[i]];
     const Vec3<float> geometric = unit_or(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), {0.f, 0.f, 1.f});
     for (int k = 0; k < 3; ++k) {
@@ -132,7 +136,7 @@ TriangleSoA build_triangles(const DescRefs<TriangleDesc>& triangles, BuildReport
         for (int j = 0; j < 2; ++j) (*uv_columns[k][j])[i] = t.uvs ? (*t.uvs)[k][j] : kDefaultUv[k][j];
       }
     }
-  }
+  });
   for (AlignedFloats* c : soa.columns()) {
     if (!c->empty()) pad_column(*c, soa.count);
   }
