@@ -20,6 +20,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -115,6 +116,10 @@ struct BvhNodes {
 // the primitives of that store, in order).
 Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order,
               std::span<const std::uint8_t> store_of = {});
+// The same over `count` primitives whose boxes box_of(i) gives, each asked
+// for once, from any thread.
+Bvh build_bvh(std::size_t count, const std::function<Box(std::size_t)>& box_of, const BvhBuildOptions& options,
+              std::vector<std::uint32_t>& order, std::span<const std::uint8_t> store_of = {});
 
 // Deepest tree the build makes: past kSahDepthLimit it splits at the object
 // median, which halves the count per level (kMaxBvhPrimitives = 2^26: 26

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <bit>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -81,9 +82,10 @@ struct RangeBounds {
 
 class BinaryBuilder {
  public:
-  BinaryBuilder(std::span<const Box> boxes, const BvhBuildOptions& options, std::span<const std::uint8_t> store_of)
-      : options_(options), store_of_(store_of), refs_(boxes.size()), nodes_(new BinaryNode[2 * boxes.size()]) {
-    for_each_index(boxes.size(), [&](std::size_t i) { refs_[i] = {boxes[i], static_cast<std::uint32_t>(i)}; });
+  BinaryBuilder(std::size_t count, const std::function<Box(std::size_t)>& box_of, const BvhBuildOptions& options,
+                std::span<const std::uint8_t> store_of)
+      : options_(options), store_of_(store_of), refs_(count), nodes_(new BinaryNode[2 * count]) {
+    for_each_index(count, [&](std::size_t i) { refs_[i] = {box_of(i), static_cast<std::uint32_t>(i)}; });
   }
 
   std::int32_t build() {
@@ -359,27 +361,32 @@ class Collapser {
 
 Bvh build_bvh(std::span<const Box> boxes, const BvhBuildOptions& options, std::vector<std::uint32_t>& order,
               std::span<const std::uint8_t> store_of) {
+  return build_bvh(boxes.size(), [&](std::size_t i) { return boxes[i]; }, options, order, store_of);
+}
+
+Bvh build_bvh(std::size_t count, const std::function<Box(std::size_t)>& box_of, const BvhBuildOptions& options,
+              std::vector<std::uint32_t>& order, std::span<const std::uint8_t> store_of) {
   if (options.width != 2 && options.width != 4 && options.width != 8) {
     throw std::invalid_argument("BVH width must be 2, 4 or 8");
   }
   if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxLeafSize) {
     throw std::invalid_argument("BVH leaf size must be 1 to " + std::to_string(kMaxLeafSize));
   }
-  if (boxes.size() > kMaxBvhPrimitives) {
+  if (count > kMaxBvhPrimitives) {
     throw std::length_error("a BVH indexes at most 2^26 primitives");
   }
-  if (!store_of.empty() && store_of.size() != boxes.size()) {
+  if (!store_of.empty() && store_of.size() != count) {
     throw std::invalid_argument("BVH store list and box list differ in length");
   }
   if (std::any_of(store_of.begin(), store_of.end(), [](std::uint8_t s) { return s > 1; })) {
     throw std::invalid_argument("a BVH indexes stores 0 and 1 only");
   }
-  order.resize(boxes.size());
+  order.resize(count);
   Bvh bvh;
-  if (boxes.empty()) return bvh;
+  if (count == 0) return bvh;
   bvh.width = options.width;
 
-  BinaryBuilder builder(boxes, options, store_of);
+  BinaryBuilder builder(count, box_of, options, store_of);
   const std::int32_t root = builder.build();
   builder.write_order(order);
   bvh.bounds = builder.nodes()[root].box;

@@ -29,17 +29,23 @@ concept ColumnsHoldEveryField = Store::kColumnsHoldEveryField;
 
 // Puts the store's primitives at `positions` (indices into it) in that
 // order, columns padded as a builder pads them; source gathered alike. One
-// column at a time, so the store is not held twice.
+// column at a time, so the store is not held twice, each gathered into the
+// memory of the column before it (fresh pages cost more than the copy).
 template <ColumnsHoldEveryField Store>
 void gather(Store& store, std::span<const std::uint32_t> positions) {
+  const std::size_t padded = padded_size(positions.size());
+  AlignedFloats spare;
   for (AlignedFloats* column : store.columns()) {
     if (column->empty()) continue;  // an optional column left out
-    AlignedFloats out;
-    out.reserve(padded_size(positions.size()));  // exactly: padding grows no further
-    out.resize(positions.size());
-    for_each_index(positions.size(), [&](std::size_t k) { out[k] = (*column)[positions[k]]; });
-    pad_column(out, positions.size());
-    *column = std::move(out);
+    spare.clear();
+    if (spare.capacity() != padded) {
+      AlignedFloats().swap(spare);
+      spare.reserve(padded);  // exactly: padding grows no further
+    }
+    spare.resize(positions.size());
+    for_each_index(positions.size(), [&](std::size_t k) { spare[k] = (*column)[positions[k]]; });
+    pad_column(spare, positions.size());
+    column->swap(spare);
   }
   std::vector<std::uint32_t> source(positions.size());
   for_each_index(positions.size(), [&](std::size_t k) { source[k] = store.source[positions[k]]; });
@@ -81,16 +87,17 @@ Bvh reorder_for_bvh(const DescRefs<Desc>& descs, Builder builder, const BvhBuild
 template <class Store, class Desc, class Builder>
 Bvh reorder_for_bvh(const DescRefs<Desc>& first_descs, Store& first, const DescRefs<Desc>& second_descs,
                     Store& second, Builder builder, const BvhBuildOptions& options) {
-  std::vector<Box> boxes = primitive_boxes(first);
-  const std::vector<Box> second_boxes = primitive_boxes(second);
-  boxes.insert(boxes.end(), second_boxes.begin(), second_boxes.end());
+  const std::size_t count = first.count + second.count;
+  const auto box_of = [&](std::size_t i) {
+    return i < first.count ? primitive_box(first, i) : primitive_box(second, i - first.count);
+  };
   std::vector<std::uint8_t> store_of;
   if (second.count > 0) {
     store_of.assign(first.count, 0);
-    store_of.resize(boxes.size(), 1);
+    store_of.resize(count, 1);
   }
   std::vector<std::uint32_t> order;
-  Bvh bvh = build_bvh(boxes, options, order, store_of);
+  Bvh bvh = build_bvh(count, box_of, options, order, store_of);
   const std::array<Store*, 2> stores{&first, &second};
   const std::array<const DescRefs<Desc>*, 2> descs{&first_descs, &second_descs};
   for (std::size_t s = 0; s < 2; ++s) {

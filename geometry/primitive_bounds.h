@@ -5,10 +5,8 @@
 #pragma once
 
 #include <cstddef>
-#include <vector>
 
 #include "geometry/box.h"
-#include "geometry/parallel_indices.h"
 
 namespace quiver {
 
@@ -21,14 +19,6 @@ Box store_box(const Store& store) {
   Box bounds = empty_box();
   for (std::size_t i = 0; i < store.count; ++i) grow(bounds, primitive_box(store, i));
   return bounds;
-}
-
-// The boxes of primitives [0, store.count).
-template <class Store>
-std::vector<Box> primitive_boxes(const Store& store) {
-  std::vector<Box> boxes(store.count);
-  for_each_index(store.count, [&](std::size_t i) { boxes[i] = primitive_box(store, i); });
-  return boxes;
 }
 
 }  // namespace quiver
