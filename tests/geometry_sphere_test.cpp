@@ -223,6 +223,46 @@ TEST(SphereBuild, DropsDegenerateAndNonFinite) {
   }
 }
 
+// The texture footprint is the change of (u, v) itself: at points all
+// round the sphere (away from the seam at -x and the poles), du and dv per
+// film axis agree, sign included, with the change of the mapped (u, v) over
+// a small step along that axis's dp, taken back onto the sphere.
+TEST(SphereMapping, TheFootprintIsTheChangeOfTheCoordinatesWithItsSign) {
+  const SphereSoA store = spheres_of({{{1.f, -2.f, 0.5f}, 2.f}});
+  ASSERT_EQ(store.size(), 1u);
+  const Vec3<float> centre{1.f, -2.f, 0.5f};
+  const Hit<float> hit{1.f, 0.f, 0.f, {0.f, 0.f, 0.f}, 0};
+  const auto mapped_at = [&](const Vec3<float>& p, const Vec3<float> (&dp)[2]) {
+    const MappingQuery query{hit, 0, true, true, p, {dp[0], dp[1]}, nullptr, nullptr};
+    SurfaceMapping out{};
+    map_surface(store, query, out);
+    return out;
+  };
+  constexpr float kStep = 1e-3f;
+  int checked = 0;
+  for (const float longitude : {-2.5f, -1.2f, -0.3f, 0.4f, 1.5f, 2.6f}) {
+    for (const float latitude : {-1.f, -0.2f, 0.5f, 1.1f}) {
+      const Vec3<float> d{std::cos(latitude) * std::cos(longitude), std::sin(latitude),
+                          -std::cos(latitude) * std::sin(longitude)};
+      const Vec3<float> p = centre + d * 2.f;
+      const Vec3<float> east{-std::sin(longitude), 0.f, -std::cos(longitude)};
+      const Vec3<float> north = cross(east, d);
+      const Vec3<float> dp[2] = {east * 0.3f + north * 0.1f, east * -0.05f + north * 0.4f};
+      const SurfaceMapping at = mapped_at(p, dp);
+      for (int a = 0; a < 2; ++a) {
+        const Vec3<float> moved = centre + normalize(p + dp[a] * kStep - centre) * 2.f;
+        const SurfaceMapping next = mapped_at(moved, dp);
+        const float du = (next.u - at.u) / kStep, dv = (next.v - at.v) / kStep;
+        EXPECT_NEAR(at.du[a], du, 2e-3f + 0.02f * std::fabs(du)) << "longitude " << longitude << " latitude " << latitude;
+        EXPECT_NEAR(at.dv[a], dv, 2e-3f + 0.02f * std::fabs(dv)) << "longitude " << longitude << " latitude " << latitude;
+        EXPECT_GT(std::fabs(du), 1e-3f);  // the step turns round the axis: a sign to get wrong
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 48);
+}
+
 TEST(SphereBuild, EmptyInputGivesEmptyStore) {
   BuildReport report;
   const SphereSoA soa = spheres_of({{{kNaN, 0, 0}, 1.f}}, &report);
