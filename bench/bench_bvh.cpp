@@ -6,9 +6,12 @@
 //                                           of N and L);
 //   bvh/<scene>/<traversal>/<rays>/w<W>:    packets, single or automatic at
 //                                           the default N and L (the choice
-//                                           of the per-packet switch).
+//                                           of the per-packet switch);
+//   build/<scene>:                          build_scene at the defaults on
+//                                           every thread (stores and BVH).
 // items_per_second is rays per second; closest hits for primary,
-// reflection and diffuse rays, any hit for shadow rays.
+// reflection and diffuse rays, any hit for shadow rays; for builds, the
+// scene's primitives per second.
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -105,6 +108,16 @@ void register_scene(const std::string& name, const std::filesystem::path& path) 
     });
   };
   const auto default_scene = build(defaults.bvh.width, defaults.bvh.max_leaf_size);
+  benchmark::RegisterBenchmark(("build/" + name).c_str(), [=](benchmark::State& state) {
+    loaded->get();
+    std::size_t primitives = 0;
+    for (auto _ : state) {
+      const Scene scene = build_scene(*desc, defaults);
+      primitives = scene.primitive_count();
+      benchmark::DoNotOptimize(scene.kind_bvhs.data());
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * primitives));
+  })->Unit(benchmark::kMillisecond)->UseRealTime();
   const auto rays = std::make_shared<Lazy<SceneRays>>(
       [=] { return make_scene_rays(default_scene->get(), kImageSide, kImageSide, 7); });
   const char* kinds[] = {"primary", "reflection", "diffuse", "shadow"};
