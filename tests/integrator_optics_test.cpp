@@ -106,6 +106,42 @@ TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
   }
 }
 
+// The error bound grows with the distance travelled (|t d|) on every axis,
+// not only with |o|: from the origin (|o| = 0) to an axis-aligned plane at
+// a = s, the hit p = o + t d (float, as hit_position computes it) can land
+// an ulp or two past the plane, and the offset back toward the origin must
+// clear the plane at every scale s and for every direction reaching it.
+TEST(Optics, OffsetClearsAPlaneReachedFromTheOriginOnEachAxis) {
+  const Vec3<float> o{0.f, 0.f, 0.f};
+  constexpr int kDirections = 512;
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    Vec3<float> toward_origin{0.f, 0.f, 0.f};
+    toward_origin[axis] = -1.f;
+    int crossed = 0;
+    for (float s : {1e-3f, 1.f, 1e3f, 1e6f}) {
+      for (int i = 0; i < kDirections; ++i) {
+        // Unit directions with d[axis] spread over [0.3, 1], turning about the axis.
+        const double along = 0.3 + 0.7 * (i + 0.5) / kDirections;
+        const double across = std::sqrt(1.0 - along * along), phi = golden_angle * i;
+        Vec3<float> d{0.f, 0.f, 0.f};
+        d[axis] = float(along);
+        d[u] = float(across * std::cos(phi));
+        d[v] = float(across * std::sin(phi));
+        const float t = s / d[axis];
+        const Vec3<float> p = o + d * t;
+        if (p[axis] > s) ++crossed;
+        const Vec3<float> moved = offset_origin(p, hit_point_error(o, d, t), toward_origin);
+        EXPECT_LT(moved[axis], s) << "axis " << axis << " plane " << s << " direction " << i;
+      }
+    }
+    // Some hits overshoot their plane in float (not at s = 1, a power of two,
+    // where d (1 / d) never rounds above 1), so the bound is what clears them.
+    EXPECT_GT(crossed, 0) << "axis " << axis;
+  }
+}
+
 TEST(Optics, NextFloatAwayIsNextafterTowardTheSign) {
   const float inf = std::numeric_limits<float>::infinity();
   for (float x : {0.f, -0.f, 1.f, -1.f, 1e-38f, -3e38f, std::numeric_limits<float>::max(), inf, -inf}) {
