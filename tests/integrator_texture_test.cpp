@@ -179,6 +179,39 @@ TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
   EXPECT_FLOAT_EQ(evaluate_filtered(texture, u, v, p, unbounded).x, 0.5f);
 }
 
+// Between two levels the lookup is the linear blend of both at every
+// fraction of a level, not only past the middle: a footprint of
+// 2^blend sqrt 3 texels (level = log2(texels / sqrt 3) = blend) gives
+// level 0 + blend (level 1 - level 0), on a 1 texel and a 0 texel whose next
+// level is 0.5, along either footprint axis.
+TEST(TextureImageFiltered, FractionalLevelsBlendInTheLevelsProportion) {
+  std::vector<float> values;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) values.push_back(float((x + y) % 2));
+  }
+  TextureDesc desc;
+  desc.kind = TextureDesc::Kind::image;
+  desc.width = desc.height = 4;
+  for (float value : values) desc.rgb.insert(desc.rgb.end(), {value, value, value});
+  const Texture texture = build_texture(desc);
+  const Vec3<float> p{0.f, 0.f, 0.f};
+  const float v = 0.625f;
+  for (float u : {0.125f, 0.375f}) {  // texel centres of value 1 and 0
+    const float level0 = evaluate(texture, u, v, p).x, level1 = 0.5f;
+    ASSERT_EQ(std::fabs(level0 - level1), 0.5f) << u;
+    for (double blend : {0.125, 0.25, 0.375, 0.625, 0.75, 0.875}) {
+      SCOPED_TRACE(::testing::Message() << "u=" << u << " blend " << blend);
+      const float length = float(0.25 * std::sqrt(3.0) * std::exp2(blend));  // in u (or v) per pixel
+      TextureFootprint along_x, along_y;
+      along_x.du_dx = length;
+      along_y.dv_dy = length;
+      const double expected = level0 + (level1 - level0) * blend;
+      EXPECT_NEAR(evaluate_filtered(texture, u, v, p, along_x).x, expected, 1e-5);
+      EXPECT_NEAR(evaluate_filtered(texture, u, v, p, along_y).x, expected, 1e-5);
+    }
+  }
+}
+
 // ---- bilinear lookups and wrap modes ----
 
 TEST(TextureImageLookup, TexelCentresGiveTexelValuesAndMidpointsTheAverage) {
