@@ -540,6 +540,41 @@ TEST(AutoView, AMeshOnAFlatBaseAtItsLowestZStandsOnIt) {
   EXPECT_EQ(choose_default_view(both).up.y, 1.0);
 }
 
+// AMeshOnAFlatBaseAtItsLowestZStandsOnIt's column without its base: a top
+// at z = 3 and walls of x = +-1 (y in [-1, 1], z in [0.5, 2.5]); no face of
+// it lies within 1% of the extent of its lowest y or lowest z.
+SceneDesc open_column() {
+  SceneDesc column;
+  add_square(column, {0.f, 0.f, 3.f}, 0, 1, 1.f, 4);
+  add_square(column, {1.f, 0.f, 1.5f}, 1, 2, 1.f, 4);
+  add_square(column, {-1.f, 0.f, 1.5f}, 1, 2, 1.f, 4);
+  return column;
+}
+
+// A base counts only within 1% of the z extent of the mesh's lowest point:
+// under the column's flat base at z = 0, a downward spike (four faces to an
+// apex below the base's centre) 0.5% of the column's height deep leaves the
+// base within reach and the column stands on +z; one 3% deep puts the base
+// out of reach (0.09 > 1% of 3.09), so up stays +y.
+TEST(AutoView, ABaseCountsOnlyWithinAHundredthOfTheLowestZ) {
+  for (const auto& [depth, stands] : {std::pair{0.005f * 3.f, true}, std::pair{0.03f * 3.f, false}}) {
+    SceneDesc column = open_column();
+    add_square(column, {0.f, 0.f, 0.f}, 0, 1, 1.f, 4);
+    const Vec3<float> apex{0.f, 0.f, -depth}, corners[4] = {{-0.1f, -0.1f, 0.f}, {0.1f, -0.1f, 0.f},
+                                                              {0.1f, 0.1f, 0.f}, {-0.1f, 0.1f, 0.f}};
+    for (int k = 0; k < 4; ++k) {
+      SceneTriangle t{};
+      t.triangle.p = {corners[k], apex, corners[(k + 1) % 4]};
+      column.triangles.push_back(t);
+    }
+    ASSERT_GE(column.triangles.size(), kViewMeshTriangles);
+    const DefaultView view = choose_default_view(column);
+    SCOPED_TRACE(::testing::Message() << "spike " << depth << " deep: " << view.up_reason);
+    EXPECT_EQ(view.up.z, stands ? 1.0 : 0.0);
+    EXPECT_EQ(view.up.y, stands ? 0.0 : 1.0);
+  }
+}
+
 TEST(AutoView, AGivenUpAxisPlacesTheView) {
   SceneDesc scene;
   add_square(scene, {0.f, 0.f, 0.f}, 1, 2, 1.f, 6);
