@@ -551,6 +551,20 @@ SceneDesc open_column() {
   return column;
 }
 
+// The area of the triangles from `first` on, and of all of them.
+std::pair<double, double> area_from(const SceneDesc& scene, std::size_t first) {
+  double part = 0.0, total = 0.0;
+  for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+    const auto& p = scene.triangles[i].triangle.p;
+    const Vec3<double> a{p[0].x, p[0].y, p[0].z}, b{p[1].x, p[1].y, p[1].z}, c{p[2].x, p[2].y, p[2].z};
+    const Vec3<double> n = cross(b - a, c - a);
+    const double area = 0.5 * std::sqrt(dot(n, n));
+    total += area;
+    if (i >= first) part += area;
+  }
+  return {part, total};
+}
+
 // A base counts only within 1% of the z extent of the mesh's lowest point:
 // under the column's flat base at z = 0, a downward spike (four faces to an
 // apex below the base's centre) 0.5% of the column's height deep leaves the
@@ -572,6 +586,40 @@ TEST(AutoView, ABaseCountsOnlyWithinAHundredthOfTheLowestZ) {
     SCOPED_TRACE(::testing::Message() << "spike " << depth << " deep: " << view.up_reason);
     EXPECT_EQ(view.up.z, stands ? 1.0 : 0.0);
     EXPECT_EQ(view.up.y, stands ? 0.0 : 1.0);
+  }
+}
+
+// A base is flat (faces within 2 degrees of facing along z), not only low:
+// a floor of 64 teeth along x whose faces slope at 45 degrees, 1/64 high
+// (every vertex within 1% of the column's height of the lowest z, the floor
+// well over 2% of the area), is no base and up stays +y; the same floor
+// flat stands on +z.
+TEST(AutoView, ALowFloorOfSteepFacesIsNoBase) {
+  constexpr int kTeeth = 64;
+  for (const bool ridged : {true, false}) {
+    SceneDesc column = open_column();
+    const std::size_t floor_from = column.triangles.size();
+    const float width = 2.f / kTeeth, rise = ridged ? 0.5f * width : 0.f;  // 45 degrees when ridged
+    ASSERT_LE(rise, 0.01f * 3.f);
+    for (int k = 0; k < kTeeth; ++k) {
+      const float x0 = -1.f + width * float(k), xs[3] = {x0, x0 + 0.5f * width, x0 + width};
+      const float zs[3] = {0.f, rise, 0.f};
+      for (int face = 0; face < 2; ++face) {
+        const Vec3<float> near0{xs[face], -1.f, zs[face]}, near1{xs[face + 1], -1.f, zs[face + 1]};
+        const Vec3<float> far0{xs[face], 1.f, zs[face]}, far1{xs[face + 1], 1.f, zs[face + 1]};
+        SceneTriangle t{};
+        t.triangle.p = {near0, near1, far1};
+        column.triangles.push_back(t);
+        t.triangle.p = {near0, far1, far0};
+        column.triangles.push_back(t);
+      }
+    }
+    const auto [floor_area, total_area] = area_from(column, floor_from);
+    ASSERT_GE(floor_area, 0.02 * total_area);
+    const DefaultView view = choose_default_view(column);
+    SCOPED_TRACE(::testing::Message() << (ridged ? "ridged" : "flat") << " floor: " << view.up_reason);
+    EXPECT_EQ(view.up.z, ridged ? 0.0 : 1.0);
+    EXPECT_EQ(view.up.y, ridged ? 1.0 : 0.0);
   }
 }
 
