@@ -18,6 +18,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/mesh_append.h"
@@ -754,6 +755,31 @@ TEST(MeshFileCheck, HeadersAtTheirExactSizesAndOneByteShort) {
     ADD_FAILURE() << "an 11-byte GLB was accepted";
   } catch (const ParseError& error) {
     EXPECT_EQ(std::string(error.what()), "h.glb: byte 0: expected a GLB header starting 'glTF', found 'glTF'");
+  }
+}
+
+// A GLB's header states the file's length exactly: one whose stated length
+// is short of the file (the last bytes of its binary chunk, or a whole chunk
+// after it, beyond the length) is refused at byte 8, naming the file's size
+// and the length found, even though its chunks read well to the file's end.
+TEST(MeshFileCheck, AGlbLongerThanItsStatedLengthIsRefused) {
+  const std::string whole = glb_of_triangle();
+  EXPECT_NO_THROW(check_gltf(whole, "t.glb", ".", PathRule{}, true, 1u << 20, 1000));
+  std::string extra_chunk = whole;  // an empty chunk past the stated length
+  put<std::uint32_t>(extra_chunk, 0);
+  put<std::uint32_t>(extra_chunk, 0x004E4942);
+  const std::string short_by_four = glb_of_triangle(static_cast<std::uint32_t>(-4));
+  const std::pair<const std::string*, std::size_t> cases[] = {{&short_by_four, whole.size() - 4},
+                                                              {&extra_chunk, whole.size()}};
+  for (const auto& [bytes, stated] : cases) {
+    ASSERT_LT(stated, bytes->size());
+    try {
+      check_gltf(*bytes, "t.glb", ".", PathRule{}, true, 1u << 20, 1000);
+      ADD_FAILURE() << "a GLB of " << bytes->size() << " bytes stating " << stated << " was accepted";
+    } catch (const ParseError& error) {
+      EXPECT_EQ(std::string(error.what()), "t.glb: byte 8: expected the GLB length " + std::to_string(bytes->size()) +
+                                               ", the file's size, found " + std::to_string(stated));
+    }
   }
 }
 
