@@ -335,6 +335,36 @@ TEST(TriangleBuild, DropsDegenerateAndNonFiniteWithCounts) {
   EXPECT_EQ(soa.v2y[7], soa.v2y[2]);
 }
 
+// The sliver rule weighs twice the area against the longest of all three
+// edges, whichever place it takes in the vertex order: with b = (-1, 0, 0),
+// c = (1, 0, 0) and the apex a = (0, h, 0), the longest edge is b-c
+// (length^2 4) and twice the area 2h, so the triangle is dropped for
+// 2h <= 4 kMinTriangleRelativeHeight, in each rotation of (a, b, c), even
+// at h = kMinTriangleRelativeHeight, where either edge from a alone
+// (length^2 1 + h^2) would keep it. Just above the bound all three
+// rotations are kept.
+TEST(TriangleBuild, SliverIsJudgedByItsLongestEdgeInEveryVertexOrder) {
+  const float k = float(kMinTriangleRelativeHeight);
+  const float bound = 2.f * k;  // 2h = 4k, the least height kept is just above
+  ASSERT_EQ(double(bound), 2.0 * kMinTriangleRelativeHeight);
+  const Vec3<float> b{-1.f, 0.f, 0.f}, c{1.f, 0.f, 0.f};
+  struct Case {
+    float h;
+    bool kept;
+  };
+  for (const Case& sliver : {Case{k, false}, Case{bound, false}, Case{std::nextafter(bound, 1.f), true}}) {
+    const Vec3<float> a{0.f, sliver.h, 0.f};
+    const std::array<std::array<Vec3<float>, 3>, 3> rotations{{{a, b, c}, {b, c, a}, {c, a, b}}};
+    for (std::size_t r = 0; r < rotations.size(); ++r) {
+      SCOPED_TRACE(::testing::Message() << "h = " << sliver.h << ", rotation " << r);
+      BuildReport report;
+      const TriangleSoA soa = triangles_of({tri(rotations[r][0], rotations[r][1], rotations[r][2])}, &report);
+      EXPECT_EQ(report.dropped_degenerate, sliver.kept ? 0u : 1u);
+      EXPECT_EQ(soa.size(), sliver.kept ? 1u : 0u);
+    }
+  }
+}
+
 TEST(TriangleBuild, OptionalColumnsEmptyWhenAbsentAndDefaultUvsWhenMixed) {
   const TriangleSoA bare = triangles_of({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0})});
   EXPECT_FALSE(bare.has_normals());
