@@ -1,9 +1,9 @@
 // for_each_index: a loop over [0, count) run in blocks on oneTBB's threads,
 // for loops whose iteration i writes only its own outputs (slot i of the
 // arrays it fills), so that the result is the serial loop's, bit for bit,
-// for any thread count. oneTBB stays in parallel_indices.cpp: this header
-// reaches the kernel units, whose objects must hold no code of a library's
-// headers built with their flags (simd/kernel_units.h).
+// for any thread count. oneTBB stays in parallel_indices.cpp, so that a
+// header using this one may reach the kernel units, whose objects must hold
+// no code of a library's headers built with their flags (simd/kernel_units.h).
 #pragma once
 
 #include <cstddef>

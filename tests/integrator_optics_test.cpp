@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -114,7 +115,7 @@ TEST(Optics, OffsetMovesClearOfTheErrorOnTheChosenSide) {
 TEST(Optics, OffsetClearsAPlaneReachedFromTheOriginOnEachAxis) {
   const Vec3<float> o{0.f, 0.f, 0.f};
   constexpr int kDirections = 512;
-  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     Vec3<float> toward_origin{0.f, 0.f, 0.f};

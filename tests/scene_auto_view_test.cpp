@@ -540,7 +540,7 @@ TEST(AutoView, AMeshOnAFlatBaseAtItsLowestZStandsOnIt) {
   EXPECT_EQ(choose_default_view(both).up.y, 1.0);
 }
 
-// AMeshOnAFlatBaseAtItsLowestZStandsOnIt's column without its base: a top
+// The column of AMeshOnAFlatBaseAtItsLowestZStandsOnIt without its base: a top
 // at z = 3 and walls of x = +-1 (y in [-1, 1], z in [0.5, 2.5]); no face of
 // it lies within 1% of the extent of its lowest y or lowest z.
 SceneDesc open_column() {
