@@ -5,6 +5,12 @@
 
 namespace quiver {
 
+namespace {
+
+constexpr std::size_t kIndicesPerTask = 4096;
+
+}  // namespace
+
 void for_each_block(std::size_t count, const std::function<void(std::size_t, std::size_t)>& visit_block) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kIndicesPerTask),
                     [&](const tbb::blocked_range<std::size_t>& block) { visit_block(block.begin(), block.end()); });

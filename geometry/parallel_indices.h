@@ -11,10 +11,8 @@
 
 namespace quiver {
 
-// Indices per task: enough work to outweigh a task's scheduling.
-inline constexpr std::size_t kIndicesPerTask = 4096;
-
-// visit_block(begin, end) for blocks covering [0, count), in parallel.
+// visit_block(begin, end) for blocks covering [0, count), in parallel (a few
+// thousand indices a block: enough work to outweigh a task's scheduling).
 void for_each_block(std::size_t count, const std::function<void(std::size_t, std::size_t)>& visit_block);
 
 template <class Visit>

@@ -1,6 +1,6 @@
 // OBJ text's plain statement lines parsed ahead of the reader, in chunks on
-// the other threads while the reader stores the chunks before them: each `v x y z`, `vn x y z`, `vt u [v [w]]` and `f` line
-// whose tokens all read (numbers by read_obj_number, indices as non-zero
+// the other threads while the reader stores the chunks before them: each
+// `v x y z`, `vn x y z`, `vt u [v [w]]` and `f` line whose tokens all read (numbers by read_obj_number, indices as non-zero
 // integers) becomes its values; every other statement line (and any such
 // line with a '#' in it, a token that does not read, or more or fewer
 // tokens) is kept by position only, for the reader's own line scanner,
@@ -97,8 +97,9 @@ inline constexpr std::size_t kObjChunksAheadPerThread = 4;
 // chunk_bytes at line ends and calls consume with each chunk's statement
 // lines, in file order, on the calling thread, while the other threads
 // parse the chunks ahead (at most kObjChunksAheadPerThread per thread);
-// the calling thread parses too when the next chunk is not ready. An exception from consume stops the parsing (the
-// other threads finish their chunk) and goes on to the caller.
+// the calling thread parses too when the next chunk is not ready. An
+// exception from consume stops the parsing (the other threads finish their
+// chunk) and goes on to the caller.
 void for_each_obj_chunk(std::string_view text, const std::function<void(const ObjChunk&)>& consume,
                         std::size_t chunk_bytes = kObjChunkBytes);
 

@@ -147,17 +147,22 @@ TEST(TextureCheckerFiltered, HalfACellAcrossAnEdgeMixesTheTwoCellsByTheirShares)
   EXPECT_NEAR(d.z, 0.7f, 1e-6f);
 }
 
-TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
-  // 4 x 4 texels in a 2 x 2 pattern of 0 and 1 (level 1: all 0.5).
-  std::vector<float> values;
-  for (int y = 0; y < 4; ++y) {
-    for (int x = 0; x < 4; ++x) values.push_back(float((x + y) % 2));
-  }
+// 4 x 4 texels alternating 0 and 1 (level 1: every texel 0.5).
+Texture alternating_texels() {
   TextureDesc desc;
   desc.kind = TextureDesc::Kind::image;
   desc.width = desc.height = 4;
-  for (float value : values) desc.rgb.insert(desc.rgb.end(), {value, value, value});
-  const Texture texture = build_texture(desc);
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      const float value = float((x + y) % 2);
+      desc.rgb.insert(desc.rgb.end(), {value, value, value});
+    }
+  }
+  return build_texture(desc);
+}
+
+TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
+  const Texture texture = alternating_texels();
   const Vec3<float> p{0.f, 0.f, 0.f};
   const float u = 0.375f, v = 0.625f;  // a texel centre
   // Up to sqrt 3 texels: the bilinear lookup's bits.
@@ -185,15 +190,7 @@ TEST(TextureImageFiltered, MipLevelsFollowTheFootprintInTexels) {
 // level 0 + blend (level 1 - level 0), on a 1 texel and a 0 texel whose next
 // level is 0.5, along either footprint axis.
 TEST(TextureImageFiltered, FractionalLevelsBlendInTheLevelsProportion) {
-  std::vector<float> values;
-  for (int y = 0; y < 4; ++y) {
-    for (int x = 0; x < 4; ++x) values.push_back(float((x + y) % 2));
-  }
-  TextureDesc desc;
-  desc.kind = TextureDesc::Kind::image;
-  desc.width = desc.height = 4;
-  for (float value : values) desc.rgb.insert(desc.rgb.end(), {value, value, value});
-  const Texture texture = build_texture(desc);
+  const Texture texture = alternating_texels();
   const Vec3<float> p{0.f, 0.f, 0.f};
   const float v = 0.625f;
   for (float u : {0.125f, 0.375f}) {  // texel centres of value 1 and 0
