@@ -30,14 +30,17 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// No initializers: build_range sets every field of the nodes it allocates,
-// so the node array (up to 2n - 1 nodes) is not written twice.
+// No initializers: build_range sets both fields of the nodes it allocates,
+// so the node array (up to 2n - 1 nodes) is not written twice. Children are
+// allocated in pairs, so an inner node names only its left child.
 struct BinaryNode {
   Box box;
-  std::int32_t left, right;    // -1 for a leaf
-  std::uint32_t first, count;  // leaf range in the build order
-  std::int32_t store;          // of a leaf's primitives
-  bool leaf() const { return left < 0; }
+  // Inner: the left child's index (the right child's is one more); leaf:
+  // encode_leaf(first, count, store) of its range in the build order.
+  std::int32_t link;
+  bool leaf() const { return is_leaf(link); }
+  std::int32_t left() const { return link; }
+  std::int32_t right() const { return link + 1; }
 };
 
 // A primitive's box and input index. The build partitions these in place, so
@@ -90,15 +93,21 @@ class BinaryBuilder {
 
   std::int32_t build() {
     const auto n = static_cast<std::uint32_t>(refs_.size());
-    return build_range(0, n, 1, bounds_of(0, n));
+    const std::int32_t root = allocate(1);
+    build_range(0, n, 1, bounds_of(0, n), root);
+    return root;
   }
   const BinaryNode* nodes() const { return nodes_.get(); }
+  // Frees the references once the order is written: the collapse reads only the nodes.
+  void release_references() { std::vector<PrimRef>().swap(refs_); }
   // order[k]: the input index of the primitive at leaf position k.
   void write_order(std::vector<std::uint32_t>& order) const {
     for (std::size_t k = 0; k < refs_.size(); ++k) order[k] = refs_[k].id;
   }
-  // store_position[k]: leaf position k counted within its store's primitives.
+  // store_position[k]: leaf position k counted within its store's primitives;
+  // empty for one store (where it is k).
   std::vector<std::uint32_t> store_positions() const {
+    if (store_of_.empty()) return {};
     std::vector<std::uint32_t> position(refs_.size());
     std::array<std::uint32_t, 2> next{};
     for (std::size_t k = 0; k < refs_.size(); ++k) position[k] = next[store(refs_[k])]++;
@@ -112,7 +121,7 @@ class BinaryBuilder {
     float cost = kInf;
   };
 
-  std::int32_t allocate() { return next_node_.fetch_add(1, std::memory_order_relaxed); }
+  std::int32_t allocate(std::int32_t nodes) { return next_node_.fetch_add(nodes, std::memory_order_relaxed); }
   std::uint8_t store(const PrimRef& r) const { return store_of_.empty() ? 0 : store_of_[r.id]; }
   // The first position of store 1 after partitioning a range by store, or
   // `end` when the range holds one store only.
@@ -133,10 +142,10 @@ class BinaryBuilder {
     return bounds;
   }
 
-  std::int32_t build_range(std::uint32_t begin, std::uint32_t end, int depth, const RangeBounds& bounds) {
-    const std::int32_t index = allocate();
+  // Builds the subtree of a range into the node at `index`.
+  void build_range(std::uint32_t begin, std::uint32_t end, int depth, const RangeBounds& bounds, std::int32_t index) {
     BinaryNode& node = nodes_[index];
-    node = {bounds.box, -1, -1, 0, 0, 0};
+    node.box = bounds.box;
     const std::uint32_t n = end - begin;
     const float leaf_cost = static_cast<float>(n);
 
@@ -162,24 +171,19 @@ class BinaryBuilder {
     }
     if (middle == begin || middle == end) middle = median_split(begin, end, bounds.centroids);
 
-    std::int32_t left = -1, right = -1;
+    const std::int32_t left = allocate(2);
+    node.link = left;
     if (n >= options_.parallel_threshold) {
-      oneapi::tbb::parallel_invoke([&] { left = build_range(begin, middle, depth + 1, bounds_of(begin, middle)); },
-                                   [&] { right = build_range(middle, end, depth + 1, bounds_of(middle, end)); });
+      oneapi::tbb::parallel_invoke([&] { build_range(begin, middle, depth + 1, bounds_of(begin, middle), left); },
+                                   [&] { build_range(middle, end, depth + 1, bounds_of(middle, end), left + 1); });
     } else {
-      left = build_range(begin, middle, depth + 1, bounds_of(begin, middle));
-      right = build_range(middle, end, depth + 1, bounds_of(middle, end));
+      build_range(begin, middle, depth + 1, bounds_of(begin, middle), left);
+      build_range(middle, end, depth + 1, bounds_of(middle, end), left + 1);
     }
-    nodes_[index].left = left;
-    nodes_[index].right = right;
-    return index;
   }
 
-  std::int32_t make_leaf(BinaryNode& node, std::uint32_t begin, std::uint32_t n) {
-    node.first = begin;
-    node.count = n;
-    node.store = store(refs_[begin]);
-    return static_cast<std::int32_t>(&node - nodes_.get());
+  void make_leaf(BinaryNode& node, std::uint32_t begin, std::uint32_t n) {
+    node.link = encode_leaf(static_cast<std::int32_t>(begin), static_cast<std::int32_t>(n), store(refs_[begin]));
   }
 
   // Object median along the widest centroid axis, ties by input index, so
@@ -297,7 +301,7 @@ class Collapser {
  private:
   // The binary node's children, opened by largest area until `width` slots.
   std::vector<std::int32_t> open_children(std::int32_t index) const {
-    std::vector<std::int32_t> slots{nodes_[index].left, nodes_[index].right};
+    std::vector<std::int32_t> slots{nodes_[index].left(), nodes_[index].right()};
     while (static_cast<int>(slots.size()) < width_) {
       int widest = -1;
       float widest_area = -1.f;
@@ -310,8 +314,8 @@ class Collapser {
       }
       if (widest < 0) break;
       const BinaryNode& open = nodes_[slots[widest]];
-      slots[widest] = open.left;
-      slots.insert(slots.begin() + widest + 1, open.right);
+      slots[widest] = open.left();
+      slots.insert(slots.begin() + widest + 1, open.right());
     }
     return slots;
   }
@@ -332,10 +336,7 @@ class Collapser {
       if (s < slots.size()) {
         const BinaryNode& n = nodes_[slots[s]];
         box = n.box;
-        if (n.leaf()) {
-          child = encode_leaf(static_cast<std::int32_t>(store_position_[n.first]), static_cast<std::int32_t>(n.count),
-                              n.store);
-        }
+        if (n.leaf()) child = leaf_in_its_store(n.link);
       }
       for (int a = 0; a < 3; ++a) {
         block[static_cast<std::size_t>(a) * w + s] = box.lo[a];
@@ -349,6 +350,13 @@ class Collapser {
       bvh_.nodes[index * bvh_.node_floats() + child_slot(w, static_cast<int>(s))] = std::bit_cast<float>(child);
     }
     return static_cast<std::int32_t>(index * bvh_.node_floats());
+  }
+
+  // A leaf's range renumbered within its store's primitives.
+  std::int32_t leaf_in_its_store(std::int32_t leaf) const {
+    if (store_position_.empty()) return leaf;
+    const auto first = static_cast<std::size_t>(leaf_first(leaf));
+    return encode_leaf(static_cast<std::int32_t>(store_position_[first]), leaf_count(leaf), leaf_store(leaf));
   }
 
   const BinaryNode* nodes_;
@@ -389,8 +397,10 @@ Bvh build_bvh(std::size_t count, const std::function<Box(std::size_t)>& box_of, 
   BinaryBuilder builder(count, box_of, options, store_of);
   const std::int32_t root = builder.build();
   builder.write_order(order);
+  std::vector<std::uint32_t> store_positions = builder.store_positions();
+  builder.release_references();
   bvh.bounds = builder.nodes()[root].box;
-  Collapser(builder.nodes(), builder.store_positions(), bvh).collapse_root(root);
+  Collapser(builder.nodes(), std::move(store_positions), bvh).collapse_root(root);
   bvh.nodes.shrink_to_fit();
   return bvh;
 }
