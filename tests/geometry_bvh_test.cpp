@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <span>
@@ -203,6 +204,56 @@ TEST(BvhBuild, SahSplitsAcrossEmptyBins) {
     const Box box = child_box(bvh, 0, c);
     EXPECT_EQ(box.hi.x - box.lo.x, 1.f) << "root child " << c << " spans both clusters";
   }
+}
+
+// The number of primitives in the subtree of a child slot.
+std::size_t primitives_under(const Bvh& bvh, std::size_t node, int c) {
+  const std::int32_t child = bvh.child(node, c);
+  if (is_leaf(child)) return static_cast<std::size_t>(leaf_count(child));
+  std::size_t count = 0;
+  for (int k = 0; k < bvh.width; ++k) count += primitives_under(bvh, bvh.node_of(child), k);
+  return count;
+}
+
+// The root's split (a 2-wide tree's two children) costs no more, by the SAH,
+// than any split at a bin boundary of the centroids on any axis, counted
+// and bounded here independently of the builder's bin sweeps.
+TEST(BvhBuild, RootSplitHasTheLeastSahCostOfEveryBinBoundary) {
+  RaySampler s(11);
+  const std::vector<Box> boxes = random_boxes(s, 1000);
+  BvhBuildOptions options;
+  options.width = 2;
+  std::vector<std::uint32_t> order;
+  const Bvh bvh = build_bvh(boxes, options, order);
+  const double root_area = half_area(bvh.bounds);
+  const auto cost = [&](const Box& left, std::size_t n_left, const Box& right, std::size_t n_right) {
+    return options.traversal_cost +
+           (double(half_area(left)) * double(n_left) + double(half_area(right)) * double(n_right)) / root_area;
+  };
+  const double built = cost(child_box(bvh, 0, 0), primitives_under(bvh, 0, 0), child_box(bvh, 0, 1),
+                            primitives_under(bvh, 0, 1));
+  Box centroids = empty_box();
+  for (const Box& b : boxes) grow(centroids, centroid(b));
+  double least = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const float lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
+    for (int boundary = 1; boundary < options.bins; ++boundary) {
+      Box left = empty_box(), right = empty_box();
+      std::size_t n_left = 0;
+      for (const Box& b : boxes) {
+        const int bin = std::min(static_cast<int>((centroid(b)[axis] - lo) * (float(options.bins) / extent)),
+                                 options.bins - 1);
+        if (bin < boundary) {
+          grow(left, b);
+          ++n_left;
+        } else {
+          grow(right, b);
+        }
+      }
+      if (n_left > 0 && n_left < boxes.size()) least = std::min(least, cost(left, n_left, right, boxes.size() - n_left));
+    }
+  }
+  EXPECT_LE(built, least * (1.0 + 1e-5)) << "the root split costs " << built << ", a bin boundary " << least;
 }
 
 TEST(BvhBuild, SameTreeForAnyThreadCount) {
