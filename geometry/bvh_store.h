@@ -83,10 +83,13 @@ Bvh reorder_for_bvh(const DescRefs<Desc>& descs, Builder builder, const BvhBuild
 
 // Rebuilds two stores of one kind (each built by builder from its descs) in
 // the leaf order of one new BVH over both, which it returns: its leaves
-// index store `first` as store 0 and `second` as store 1.
+// index store `first` as store 0 and `second` as store 1. With
+// leaf_positions, (*leaf_positions)[s][k] is the position in store s before
+// the reorder of its primitive k after.
 template <class Store, class Desc, class Builder>
 Bvh reorder_for_bvh(const DescRefs<Desc>& first_descs, Store& first, const DescRefs<Desc>& second_descs,
-                    Store& second, Builder builder, const BvhBuildOptions& options) {
+                    Store& second, Builder builder, const BvhBuildOptions& options,
+                    std::array<std::vector<std::uint32_t>, 2>* leaf_positions = nullptr) {
   const std::size_t count = first.count + second.count;
   const auto box_of = [&](std::size_t i) {
     return i < first.count ? primitive_box(first, i) : primitive_box(second, i - first.count);
@@ -114,6 +117,7 @@ Bvh reorder_for_bvh(const DescRefs<Desc>& first_descs, Store& first, const DescR
     } else {
       store = rebuilt(store, *descs[s], positions, builder);
     }
+    if (leaf_positions != nullptr) (*leaf_positions)[s] = std::move(positions);
   }
   return bvh;
 }

@@ -27,12 +27,14 @@ struct KindInput {
   LayerInput<typename K::Desc>& layer(bool t) { return t ? transmissive : opaque; }
 };
 
-// The origins of the primitives a builder kept, in store order.
-std::vector<PrimitiveOrigin> kept_origins(const std::vector<std::uint32_t>& source,
-                                          const std::vector<PrimitiveOrigin>& origins) {
-  std::vector<PrimitiveOrigin> kept(source.size());
-  for_each_index(source.size(), [&](std::size_t k) { kept[k] = origins[source[k]]; });
-  return kept;
+// origins[at[k]] for every k: the origins of the primitives a builder kept
+// (at: the store's source), or a store's origins in leaf order (at: the
+// positions before the reorder).
+std::vector<PrimitiveOrigin> picked_origins(const std::vector<std::uint32_t>& at,
+                                            const std::vector<PrimitiveOrigin>& origins) {
+  std::vector<PrimitiveOrigin> picked(at.size());
+  for_each_index(at.size(), [&](std::size_t k) { picked[k] = origins[at[k]]; });
+  return picked;
 }
 
 // The triangles the triangle kernel renders a polygon as: every NFF `pp`
@@ -76,7 +78,7 @@ template <class K>
 void build_store(const LayerInput<typename K::Desc>& input, BuildReport& report, typename K::Store& store,
                  std::vector<PrimitiveOrigin>& origins) {
   store = K::build(input.descs, report);
-  origins = kept_origins(store.source, input.origins);
+  origins = picked_origins(store.source, input.origins);
 }
 
 // With options.acceleration == bvh and enough primitives in both layers
@@ -89,9 +91,11 @@ void index_stores(const KindInput<K>& input, const SceneBuildOptions& options, t
   if (options.acceleration != Acceleration::bvh || opaque.count + transmissive.count < options.bvh_min_primitives) {
     return;
   }
-  bvh = reorder_for_bvh(input.opaque.descs, opaque, input.transmissive.descs, transmissive, K::build, options.bvh);
-  opaque_origins = kept_origins(opaque.source, input.opaque.origins);
-  transmissive_origins = kept_origins(transmissive.source, input.transmissive.origins);
+  std::array<std::vector<std::uint32_t>, 2> positions;
+  bvh = reorder_for_bvh(input.opaque.descs, opaque, input.transmissive.descs, transmissive, K::build, options.bvh,
+                        &positions);
+  opaque_origins = picked_origins(positions[0], opaque_origins);
+  transmissive_origins = picked_origins(positions[1], transmissive_origins);
 }
 
 // The instanced meshes (each in its two stores, ids from 0, under one BVH
@@ -301,6 +305,9 @@ std::int32_t build_stores(SceneInputs& inputs, const SceneBuildOptions& options,
     BuildReport& report = scene.counts.kinds[kind_index(kind_tag<K>)];
     build_store<K>(input.opaque, report, o.store, o.origins);
     build_store<K>(input.transmissive, report, t.store, t.origins);
+    // The stores' origins are picked: the inputs' are not read again.
+    std::vector<PrimitiveOrigin>().swap(input.opaque.origins);
+    std::vector<PrimitiveOrigin>().swap(input.transmissive.origins);
     if constexpr (std::is_same_v<K, TriangleKind>) {
       static_assert(ColumnsHoldEveryField<typename K::Store>, "the BVH reorder would read the released descriptions");
       input.opaque.descs = {};
