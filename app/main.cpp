@@ -219,7 +219,12 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     quiver::SceneInfoContext context;
     context.read = quiver::read_counts(desc);
     double build_ms = 0.0;
+    const std::size_t load_peak = quiver::peak_resident_bytes();
+    if (quiver::restart_resident_high_water()) {
+      context.build_start_resident_bytes = quiver::process_status_bytes("VmRSS");
+    }
     const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
+    if (context.build_start_resident_bytes) context.build_peak_resident_bytes = quiver::process_status_bytes("VmHWM");
     desc.camera = camera_as_read;
     desc.lights = lights_as_read;
     desc.ambient = ambient_as_read;
@@ -228,7 +233,7 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     context.load_ms = load_ms;
     context.build_ms = build_ms;
     context.default_view = default_view;
-    context.peak_resident_bytes = quiver::peak_resident_bytes();
+    context.peak_resident_bytes = std::max(load_peak, quiver::peak_resident_bytes());
     quiver::write_scene_info(std::cout, desc, scene, context);
     std::cout.flush();
     if (!std::cout) return report("cannot write to standard output", kExitFailure);
@@ -449,7 +454,7 @@ int main(int argc, char** argv) {
   CLI::App* info = app.add_subcommand(
       "info", "Report a scene: primitives as read and as built (kept, dropped), opaque and transmissive, bounds, "
               "camera (the view the camera flags give), lights, materials, textures, memory (bytes) per "
-              "structure against the process's peak resident memory, load and build times (ms)");
+              "structure against the process's peak resident memory and the build's own, load and build times (ms)");
   add_info_flags(*info, info_args);
 
   TraceArgs trace_args;

@@ -7,6 +7,7 @@
 #include <charconv>
 #include <initializer_list>
 #include <cstdio>
+#include <fstream>
 #include <string_view>
 
 namespace quiver {
@@ -312,6 +313,31 @@ std::size_t peak_resident_bytes() {
   return std::size_t(usage.ru_maxrss) * 1024;
 }
 
+bool restart_resident_high_water() {
+  std::ofstream clear_refs("/proc/self/clear_refs");
+  clear_refs << "5";  // 5: reset the peak resident set size
+  clear_refs.flush();
+  return clear_refs.good();
+}
+
+std::optional<std::size_t> process_status_bytes(std::string_view key) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    const std::string_view text = line;
+    if (!text.starts_with(key) || text.size() <= key.size() || text[key.size()] != ':') continue;
+    const std::size_t digits = text.find_first_not_of(" \t", key.size() + 1);
+    if (digits == std::string_view::npos) return std::nullopt;
+    std::size_t kib = 0;
+    const auto [end, error] = std::from_chars(text.data() + digits, text.data() + text.size(), kib);
+    if (error != std::errc() || std::string_view(end, std::size_t(text.data() + text.size() - end)) != " kB") {
+      return std::nullopt;
+    }
+    return kib * 1024;
+  }
+  return std::nullopt;
+}
+
 void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& scene, const SceneInfoContext& context) {
   out << "scene           " << context.scene << "\n"
       << "load            " << milliseconds(context.load_ms) << "\n"
@@ -328,6 +354,11 @@ void write_scene_info(std::ostream& out, const SceneDesc& desc, const Scene& sce
   if (context.peak_resident_bytes) {
     out << "peak memory     " << *context.peak_resident_bytes << " bytes resident at most (loading and building), for "
         << scene.memory_bytes() + scene.acceleration_bytes() << " kept (memory and acceleration totals)\n";
+  }
+  if (context.build_peak_resident_bytes && context.build_start_resident_bytes) {
+    out << "build peak      " << *context.build_peak_resident_bytes
+        << " bytes resident at most while the scene was built, from " << *context.build_start_resident_bytes
+        << " when it began (the scene as read)\n";
   }
 }
 

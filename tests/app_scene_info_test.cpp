@@ -80,7 +80,7 @@ TEST(SceneInfo, CountRows) {
   const SceneDesc desc = mixed_scene();
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
   const std::string report = out.str();
   // read, kept, non-finite, degenerate, opaque, transmissive
   EXPECT_EQ(row(report, "spheres"), (std::vector<std::size_t>{4, 2, 1, 1, 1, 1}));
@@ -104,7 +104,7 @@ TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
   desc.polygons.push_back(corner);
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
   const std::string report = out.str();
   EXPECT_EQ(row(report, "triangles"), (std::vector<std::size_t>{1, 2, 0, 0, 1, 1}));
   EXPECT_EQ(row(report, "polygons"), (std::vector<std::size_t>{2, 1, 0, 0, 1, 0}));
@@ -146,7 +146,7 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   desc.face_tallies = {{"box.obj", 3, 1}, {"whole.ply", 2, 2}};
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
+  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
   const std::string report = out.str();
   for (const char* line :
        {"lights          5\n", "  0: point position (1 2 3) colour (1 1 1)\n",
@@ -181,10 +181,10 @@ TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
   const Scene scene = build_scene(desc, {});
   ASSERT_GT(scene.acceleration_bytes(), 0u);
   std::ostringstream without;
-  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc)});
+  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
   EXPECT_EQ(without.str().find("peak memory"), std::string::npos);
   std::ostringstream with;
-  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc)});
+  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc), std::nullopt, std::nullopt});
   const std::string line = "peak memory     123456789 bytes resident at most (loading and building), for " +
                            std::to_string(scene.memory_bytes() + scene.acceleration_bytes()) +
                            " kept (memory and acceleration totals)\n";
@@ -193,6 +193,38 @@ TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
   for (std::size_t i = 0; i < touched.size(); i += 4096) touched[i] = 1;
   asm volatile("" : : "r"(touched.data()) : "memory");  // the stores happen before the measurement
   EXPECT_GE(peak_resident_bytes(), touched.size());
+
+  EXPECT_EQ(with.str().find("build peak"), std::string::npos);
+  SceneInfoContext building{"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc), 23456789, 3456789};
+  std::ostringstream build_peak;
+  write_scene_info(build_peak, desc, scene, building);
+  EXPECT_NE(build_peak.str().find(line + "build peak      23456789 bytes resident at most while the scene was built, "
+                                         "from 3456789 when it began (the scene as read)\n"),
+            std::string::npos)
+      << build_peak.str();
+}
+
+// A restarted high-water mark forgets memory touched and freed before, and
+// counts what is touched after.
+TEST(SceneInfo, ResidentHighWaterRestartsAtTheMemoryResidentNow) {
+  constexpr std::size_t kMiB = std::size_t(1) << 20;
+  {
+    std::vector<char> freed(128 * kMiB, 1);  // a block of its own (mmap): its pages go back when freed
+    asm volatile("" : : "r"(freed.data()) : "memory");
+  }
+  const std::optional<std::size_t> with_freed = process_status_bytes("VmHWM");
+  ASSERT_TRUE(with_freed.has_value()) << "/proc/self/status gives no VmHWM";
+  const std::optional<std::size_t> resident = process_status_bytes("VmRSS");
+  ASSERT_TRUE(resident.has_value()) << "/proc/self/status gives no VmRSS";
+  EXPECT_LT(*resident + 64 * kMiB, *with_freed);
+  EXPECT_FALSE(process_status_bytes("VmHW").has_value()) << "a key is matched whole";
+  EXPECT_GE(*with_freed, 128 * kMiB);
+  if (!restart_resident_high_water()) GTEST_SKIP() << "/proc/self/clear_refs refuses to restart the high-water mark";
+  const std::size_t restarted = process_status_bytes("VmHWM").value();
+  EXPECT_LT(restarted + 64 * kMiB, *with_freed);
+  std::vector<char> touched(32 * kMiB, 1);
+  asm volatile("" : : "r"(touched.data()) : "memory");
+  EXPECT_GE(process_status_bytes("VmHWM").value(), restarted + 30 * kMiB);
 }
 
 }  // namespace
