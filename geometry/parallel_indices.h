@@ -15,6 +15,10 @@ namespace quiver {
 // thousand indices a block: enough work to outweigh a task's scheduling).
 void for_each_block(std::size_t count, const std::function<void(std::size_t, std::size_t)>& visit_block);
 
+// visit(i) for every i in [0, count), in parallel, each index a task of its
+// own: for a few large items.
+void for_each_task(std::size_t count, const std::function<void(std::size_t)>& visit);
+
 template <class Visit>
 void for_each_index(std::size_t count, const Visit& visit) {
   for_each_block(count, [&](std::size_t begin, std::size_t end) {

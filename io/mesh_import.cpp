@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +14,8 @@
 #include <vector>
 
 #include "geometry/box.h"
+#include "geometry/parallel_indices.h"
+#include "geometry/position_welding.h"
 #include "io/assimp_loader.h"
 #include "io/file_extension.h"
 #include "io/mesh_file_check.h"
@@ -47,57 +48,6 @@ struct ImportDeleter {
   void operator()(void* handle) const { api->free_import(handle); }
 };
 using ImportHandle = std::unique_ptr<void, ImportDeleter>;
-
-// Welds vertices by exact position (-0 as +0), for the normals of meshes
-// whose files share no vertices (STL) or split them at seams: an open
-// addressing table (linear probing, at most half full) of indices into the
-// positions, which are numbered in the order first seen.
-class PositionWelder {
- public:
-  explicit PositionWelder(std::size_t expected) { rehash(std::bit_ceil(std::max<std::size_t>(2 * expected, 16))); }
-
-  std::uint32_t index_of(const Vec3<float>& p) {
-    const Vec3<float> q{p.x + 0.f, p.y + 0.f, p.z + 0.f};
-    const Key key = key_of(q);
-    std::size_t slot = hash(key) & mask_;
-    for (; slots_[slot] != kEmpty; slot = (slot + 1) & mask_) {
-      if (key_of(positions_[slots_[slot]]) == key) return slots_[slot];
-    }
-    const auto index = static_cast<std::uint32_t>(positions_.size());
-    slots_[slot] = index;
-    positions_.push_back(q);
-    if (2 * positions_.size() > slots_.size()) rehash(2 * slots_.size());
-    return index;
-  }
-  const std::vector<Vec3<float>>& positions() const { return positions_; }
-
- private:
-  using Key = std::array<std::uint32_t, 3>;
-  static constexpr std::uint32_t kEmpty = ~std::uint32_t{0};
-
-  static Key key_of(const Vec3<float>& q) { return {std::bit_cast<std::uint32_t>(q.x), std::bit_cast<std::uint32_t>(q.y),
-                                                     std::bit_cast<std::uint32_t>(q.z)}; }
-  // A 64-bit mix of the three words (multiply and xor-shift: every bit reaches the slot bits).
-  static std::size_t hash(const Key& k) {
-    std::uint64_t h = (std::uint64_t{k[0]} << 32 | k[1]) * 0x9E3779B97F4A7C15ull;
-    h ^= (h >> 29) + std::uint64_t{k[2]} * 0xC2B2AE3D27D4EB4Full;
-    h ^= h >> 32;
-    return static_cast<std::size_t>(h * 0x94D049BB133111EBull >> 16);
-  }
-  void rehash(std::size_t capacity) {
-    slots_.assign(capacity, kEmpty);
-    mask_ = capacity - 1;
-    for (std::uint32_t index = 0; index < positions_.size(); ++index) {
-      std::size_t slot = hash(key_of(positions_[index])) & mask_;
-      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
-      slots_[slot] = index;
-    }
-  }
-
-  std::vector<std::uint32_t> slots_;
-  std::size_t mask_ = 0;
-  std::vector<Vec3<float>> positions_;
-};
 
 // Vertex `index` of an array of float triples.
 Vec3<float> vector_at(const float* data, std::size_t index) {
@@ -253,27 +203,24 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   const bool file_normals_kept = format != MeshFormat::stl;
   // Faceted (crease angle 0): nothing to weld.
   const bool smooth_missing = (format == MeshFormat::ply || format == MeshFormat::stl) && crease_angle_degrees > 0.0;
-  std::size_t vertices = 0;
-  for (std::size_t i = 0; i < mesh.part_count; ++i) vertices += mesh.parts[i].vertex_count;
-  PositionWelder welder(smooth_missing ? std::min(vertices, 3 * triangles) : 0);
+  // Every part's vertices welded at once (part i's from vertex_base[i]).
+  std::vector<std::size_t> vertex_base(mesh.part_count + 1, 0);
+  for (std::size_t i = 0; i < mesh.part_count; ++i) vertex_base[i + 1] = vertex_base[i] + mesh.parts[i].vertex_count;
+  WeldedPositions welding;
+  if (smooth_missing) {
+    welding = weld_positions(vertex_base.back(), [&](std::size_t v) {
+      const std::size_t i = static_cast<std::size_t>(std::upper_bound(vertex_base.begin(), vertex_base.end(), v) -
+                                                     vertex_base.begin()) - 1;
+      return vector_at(mesh.parts[i].positions, v - vertex_base[i]);
+    });
+  }
   std::vector<TriangleIndices> welded;    // of the triangles to smooth
   std::vector<std::size_t> welded_owner;  // their index in scene.triangles
   for (std::size_t i = 0; i < mesh.part_count; ++i) {
     const ImportedPart& part = mesh.parts[i];
     const bool has_normals = file_normals_kept && part.normals != nullptr;
     const std::size_t material = part.material < scene.materials.size() ? part.material : 0;
-    // A shared vertex is welded once, at its first corner: the same indices
-    // as welding every corner, for a sixth of the lookups in a closed mesh.
-    constexpr std::uint32_t kUnwelded = ~std::uint32_t{0};
-    std::vector<std::uint32_t> welded_vertex;
-    if (smooth_missing && part.vertex_count < 3 * part.triangle_count) {
-      welded_vertex.assign(part.vertex_count, kUnwelded);
-    }
-    const auto weld = [&](std::uint32_t v, const Vec3<float>& p) {
-      if (welded_vertex.empty()) return welder.index_of(p);
-      if (welded_vertex[v] == kUnwelded) welded_vertex[v] = welder.index_of(p);
-      return welded_vertex[v];
-    };
+    const std::uint32_t* weld = smooth_missing ? welding.index_of.data() + vertex_base[i] : nullptr;
     for (std::size_t t = 0; t < part.triangle_count; ++t) {
       SceneTriangle triangle{};
       triangle.material = material;
@@ -290,19 +237,19 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
         triangle.triangle.normals = normals;
       } else if (smooth_missing) {
         const std::uint32_t* v = part.indices + 3 * t;
-        welded.push_back({weld(v[0], triangle.triangle.p[0]), weld(v[1], triangle.triangle.p[1]),
-                          weld(v[2], triangle.triangle.p[2])});
+        welded.push_back({weld[v[0]], weld[v[1]], weld[v[2]]});
         welded_owner.push_back(scene.triangles.size());
       }
       if (part.uvs != nullptr) triangle.triangle.uvs = uvs;
       scene.triangles.push_back(triangle);
     }
   }
+  number_by_first_use(welding.positions, welded);
   const std::vector<std::optional<CornerNormals>> smooth =
-      smooth_vertex_normals(welder.positions(), welded, crease_angle_degrees);
-  for (std::size_t k = 0; k < welded.size(); ++k) {
+      smooth_vertex_normals(welding.positions, welded, crease_angle_degrees);
+  for_each_index(welded.size(), [&](std::size_t k) {
     if (smooth[k]) scene.triangles[welded_owner[k]].triangle.normals = *smooth[k];
-  }
+  });
   scene.warnings = warnings.lines();
   return scene;
 }
