@@ -209,6 +209,32 @@ TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
   }
 }
 
+// A PLY's quads are fanned from their first corner (convex) and their
+// triangles' corners ordered as Assimp's n-gon encoding leaves them: a quad
+// whose first corner is the previous triangle's first starts both its
+// triangles at the corner it fans to last, (a, b, c) as (c, a, b) and
+// (a, c, d) as (c, d, a).
+TEST(MeshImport, PlyQuadsKeepAssimpsCornerOrder) {
+  const testing::TemporaryDirectory temporary("quiver_mesh_test");
+  const fs::path path = temporary.path() / "quads.ply";
+  write_file(path,
+             "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 2\nproperty list uchar uint vertex_indices\nend_header\n"
+             "0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 1 0\n-1 0 0\n4 0 1 2 3\n4 0 3 4 5\n");
+  const std::array<Vec3<float>, 6> vertex{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}, {-1, 0, 0}}};
+  const std::array<std::array<int, 3>, 4> expected{{{0, 1, 2}, {0, 2, 3}, {4, 0, 3}, {4, 5, 0}}};
+  const SceneDesc scene = read_imported_mesh(path, 0.0);
+  ASSERT_EQ(scene.triangles.size(), expected.size());
+  for (std::size_t t = 0; t < expected.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3<float>& p = scene.triangles[t].triangle.p[k];
+      const Vec3<float>& q = vertex[static_cast<std::size_t>(expected[t][k])];
+      EXPECT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z)
+          << "triangle " << t << " corner " << k << " is not vertex " << expected[t][k];
+    }
+  }
+}
+
 // A triangle whose file normals are not all finite, at any corner, gets
 // computed ones instead; the others keep the file's. (PLY refuses such a
 // number; a glTF's normals come through Assimp as they are.)
