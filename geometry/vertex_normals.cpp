@@ -21,7 +21,7 @@ namespace {
 struct Face {
   Vec3<double> normal{0.0, 0.0, 0.0};  // unit; zero for a degenerate face
   std::array<double, 3> angle{};       // radians at each corner
-  bool valid = false;
+  bool valid() const { return normal.x != 0.0 || normal.y != 0.0 || normal.z != 0.0; }
 };
 
 Vec3<double> widened(const Vec3<float>& p) { return {double(p.x), double(p.y), double(p.z)}; }
@@ -45,7 +45,6 @@ Face face_of(const std::array<Vec3<double>, 3>& p) {
   if (!(length > 0.0) || !std::isfinite(length)) return face;
   face.normal = n / length;
   for (std::size_t k = 0; k < 3; ++k) face.angle[k] = corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-  face.valid = true;
   return face;
 }
 
@@ -58,16 +57,27 @@ bool valid_crease_angle(double crease_angle_degrees) {
 std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const Vec3<float>> positions,
                                                                 std::span<const TriangleIndices> triangles,
                                                                 double crease_angle_degrees) {
+  std::vector<std::optional<CornerNormals>> result(triangles.size());
+  smooth_vertex_normals(positions, triangles, crease_angle_degrees,
+                        [&](std::size_t t, const CornerNormals& normals) { result[t] = normals; });
+  return result;
+}
+
+void smooth_vertex_normals(std::span<const Vec3<float>> positions, std::span<const TriangleIndices> triangles,
+                           double crease_angle_degrees,
+                           const std::function<void(std::size_t, const CornerNormals&)>& write_smoothed) {
   if (!valid_crease_angle(crease_angle_degrees)) {
     throw std::invalid_argument("smooth_vertex_normals: the crease angle is not in [0, 180] degrees");
+  }
+  if (triangles.size() >= std::numeric_limits<std::uint32_t>::max() / 3) {
+    throw std::length_error("smooth_vertex_normals: 2^32 / 3 triangles at most");
   }
   for (const TriangleIndices& t : triangles) {
     for (std::uint32_t i : t) {
       if (i >= positions.size()) throw std::invalid_argument("smooth_vertex_normals: a vertex index is out of range");
     }
   }
-  std::vector<std::optional<CornerNormals>> result(triangles.size());
-  if (crease_angle_degrees == 0.0) return result;
+  if (crease_angle_degrees == 0.0) return;
 
   std::vector<Face> faces(triangles.size());
   for_each_index(triangles.size(), [&](std::size_t t) {
@@ -77,18 +87,18 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
 
   // The corners (3 t + k) of valid faces around each position:
   // corners[first[v] .. first[v + 1]).
-  std::vector<std::size_t> first(positions.size() + 1, 0);
+  std::vector<std::uint32_t> first(positions.size() + 1, 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    if (!faces[t].valid) continue;
+    if (!faces[t].valid()) continue;
     for (std::uint32_t v : triangles[t]) ++first[v + 1];
   }
   for (std::size_t v = 0; v < positions.size(); ++v) first[v + 1] += first[v];
-  std::vector<std::size_t> corners(first.back());
+  std::vector<std::uint32_t> corners(first.back());
   {
-    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
     for (std::size_t t = 0; t < triangles.size(); ++t) {
-      if (!faces[t].valid) continue;
-      for (std::size_t k = 0; k < 3; ++k) corners[next[triangles[t][k]]++] = 3 * t + k;
+      if (!faces[t].valid()) continue;
+      for (std::size_t k = 0; k < 3; ++k) corners[next[triangles[t][k]]++] = static_cast<std::uint32_t>(3 * t + k);
     }
   }
 
@@ -99,7 +109,7 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
                                 : std::cos(crease_angle_degrees * (std::numbers::pi / 180.0));
   for_each_index(triangles.size(), [&](std::size_t t) {
     const Face& face = faces[t];
-    if (!face.valid) return;
+    if (!face.valid()) return;
     const Vec3<float> flat = narrowed(face.normal);
     CornerNormals normals{flat, flat, flat};
     bool smoothed = false;  // some corner's normal is not the face normal
@@ -118,9 +128,8 @@ std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const 
       normals[k] = narrowed(sum / length);
       smoothed = smoothed || normals[k].x != flat.x || normals[k].y != flat.y || normals[k].z != flat.z;
     }
-    if (smoothed) result[t] = normals;
+    if (smoothed) write_smoothed(t, normals);
   });
-  return result;
 }
 
 }  // namespace quiver

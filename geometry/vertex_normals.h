@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -42,10 +43,17 @@ bool valid_crease_angle(double crease_angle_degrees);
 // normal rounds to its face normal (no neighbour within the crease angle,
 // or only coplanar ones), so flat parts shade exactly as before.
 // Throws std::invalid_argument for an index out of range or a crease angle
-// outside [0, 180]. Memory is linear in the mesh: a few words per position
-// and per triangle.
+// outside [0, 180], and std::length_error for 2^32 / 3 triangles or more.
+// Memory is linear in the mesh: a few words per position and per triangle.
 std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const Vec3<float>> positions,
                                                                 std::span<const TriangleIndices> triangles,
                                                                 double crease_angle_degrees);
+
+// The same, each engaged entry handed to write_smoothed(triangle, normals)
+// instead of stored (once a triangle, from any thread), for callers that
+// keep the normals beside their triangles.
+void smooth_vertex_normals(std::span<const Vec3<float>> positions, std::span<const TriangleIndices> triangles,
+                           double crease_angle_degrees,
+                           const std::function<void(std::size_t, const CornerNormals&)>& write_smoothed);
 
 }  // namespace quiver

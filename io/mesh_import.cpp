@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "geometry/box.h"
-#include "geometry/parallel_indices.h"
 #include "geometry/position_welding.h"
 #include "io/assimp_loader.h"
 #include "io/file_extension.h"
@@ -245,11 +244,10 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
     }
   }
   number_by_first_use(welding.positions, welded);
-  const std::vector<std::optional<CornerNormals>> smooth =
-      smooth_vertex_normals(welding.positions, welded, crease_angle_degrees);
-  for_each_index(welded.size(), [&](std::size_t k) {
-    if (smooth[k]) scene.triangles[welded_owner[k]].triangle.normals = *smooth[k];
-  });
+  smooth_vertex_normals(welding.positions, welded, crease_angle_degrees,
+                        [&](std::size_t k, const CornerNormals& normals) {
+                          scene.triangles[welded_owner[k]].triangle.normals = normals;
+                        });
   scene.warnings = warnings.lines();
   return scene;
 }

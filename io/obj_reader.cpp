@@ -633,10 +633,10 @@ class ObjReader {
     if (crease_angle_degrees_ == 0.0 || std::none_of(scene_.triangles.begin(), scene_.triangles.end(), faceted)) {
       return;
     }
-    const auto normals = smooth_vertex_normals(positions_, triangle_vertices_, crease_angle_degrees_);
-    for (std::size_t i = 0; i < normals.size(); ++i) {
-      if (normals[i] && faceted(scene_.triangles[i])) scene_.triangles[i].triangle.normals = *normals[i];
-    }
+    smooth_vertex_normals(positions_, triangle_vertices_, crease_angle_degrees_,
+                          [&](std::size_t i, const CornerNormals& normals) {
+                            if (faceted(scene_.triangles[i])) scene_.triangles[i].triangle.normals = normals;
+                          });
   }
 
   // One more `v`, `vt` or `vn` than `stored` stays within kMaxObjVertices.
