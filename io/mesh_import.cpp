@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/box.h"
+#include "geometry/parallel_indices.h"
 #include "geometry/position_welding.h"
 #include "io/assimp_loader.h"
 #include "io/file_extension.h"
@@ -52,6 +53,25 @@ using ImportHandle = std::unique_ptr<void, ImportDeleter>;
 Vec3<float> vector_at(const float* data, std::size_t index) {
   const float* v = data + 3 * index;
   return {v[0], v[1], v[2]};
+}
+
+// Smooth normals for the triangles (indices numbered across the parts, part
+// i's from vertex_base[i]) into triangles[owner[k]]: every vertex welded by
+// position, the positions numbered by the triangles' first use.
+void add_smooth_normals(const ImportedMesh& mesh, const std::vector<std::size_t>& vertex_base,
+                        std::vector<TriangleIndices>& unsmoothed, const std::vector<std::size_t>& owner,
+                        double crease_angle_degrees, std::vector<SceneTriangle>& triangles) {
+  WeldedPositions welding = weld_positions(vertex_base.back(), [&](std::size_t v) {
+    const auto i = static_cast<std::size_t>(std::upper_bound(vertex_base.begin(), vertex_base.end(), v) -
+                                            vertex_base.begin()) - 1;
+    return vector_at(mesh.parts[i].positions, v - vertex_base[i]);
+  });
+  for_each_index(unsmoothed.size(), [&](std::size_t t) {
+    for (std::uint32_t& v : unsmoothed[t]) v = welding.index_of[v];
+  });
+  number_by_first_use(welding.positions, unsmoothed);
+  smooth_vertex_normals(welding.positions, unsmoothed, crease_angle_degrees,
+                        [&](std::size_t k, const CornerNormals& normals) { triangles[owner[k]].triangle.normals = normals; });
 }
 
 // An Assimp texture map mode as quiver's wrap (decal, outside the image
@@ -202,24 +222,15 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
   const bool file_normals_kept = format != MeshFormat::stl;
   // Faceted (crease angle 0): nothing to weld.
   const bool smooth_missing = (format == MeshFormat::ply || format == MeshFormat::stl) && crease_angle_degrees > 0.0;
-  // Every part's vertices welded at once (part i's from vertex_base[i]).
+  // Part i's vertices are numbered from vertex_base[i] for the welding.
   std::vector<std::size_t> vertex_base(mesh.part_count + 1, 0);
   for (std::size_t i = 0; i < mesh.part_count; ++i) vertex_base[i + 1] = vertex_base[i] + mesh.parts[i].vertex_count;
-  WeldedPositions welding;
-  if (smooth_missing) {
-    welding = weld_positions(vertex_base.back(), [&](std::size_t v) {
-      const std::size_t i = static_cast<std::size_t>(std::upper_bound(vertex_base.begin(), vertex_base.end(), v) -
-                                                     vertex_base.begin()) - 1;
-      return vector_at(mesh.parts[i].positions, v - vertex_base[i]);
-    });
-  }
-  std::vector<TriangleIndices> welded;    // of the triangles to smooth
-  std::vector<std::size_t> welded_owner;  // their index in scene.triangles
+  std::vector<TriangleIndices> unsmoothed;     // of the triangles to smooth, by those numbers
+  std::vector<std::size_t> unsmoothed_owner;  // their index in scene.triangles
   for (std::size_t i = 0; i < mesh.part_count; ++i) {
     const ImportedPart& part = mesh.parts[i];
     const bool has_normals = file_normals_kept && part.normals != nullptr;
     const std::size_t material = part.material < scene.materials.size() ? part.material : 0;
-    const std::uint32_t* weld = smooth_missing ? welding.index_of.data() + vertex_base[i] : nullptr;
     for (std::size_t t = 0; t < part.triangle_count; ++t) {
       SceneTriangle triangle{};
       triangle.material = material;
@@ -236,18 +247,17 @@ SceneDesc scene_from(const ImportedMesh& mesh, MeshFormat format, std::string_vi
         triangle.triangle.normals = normals;
       } else if (smooth_missing) {
         const std::uint32_t* v = part.indices + 3 * t;
-        welded.push_back({weld[v[0]], weld[v[1]], weld[v[2]]});
-        welded_owner.push_back(scene.triangles.size());
+        const auto base = static_cast<std::uint32_t>(vertex_base[i]);
+        unsmoothed.push_back({base + v[0], base + v[1], base + v[2]});
+        unsmoothed_owner.push_back(scene.triangles.size());
       }
       if (part.uvs != nullptr) triangle.triangle.uvs = uvs;
       scene.triangles.push_back(triangle);
     }
   }
-  number_by_first_use(welding.positions, welded);
-  smooth_vertex_normals(welding.positions, welded, crease_angle_degrees,
-                        [&](std::size_t k, const CornerNormals& normals) {
-                          scene.triangles[welded_owner[k]].triangle.normals = normals;
-                        });
+  if (!unsmoothed.empty()) {
+    add_smooth_normals(mesh, vertex_base, unsmoothed, unsmoothed_owner, crease_angle_degrees, scene.triangles);
+  }
   scene.warnings = warnings.lines();
   return scene;
 }
