@@ -76,11 +76,23 @@ TEST(SceneInfo, MemoryByKindAddsUpToEachLayer) {
   EXPECT_EQ(transmissive[std::size_t(kind_tag<PlaneKind>)], 0u);
 }
 
+// The context of a report on `desc` as read, loaded in 1 ms and built in 2,
+// with the process's peak when given.
+SceneInfoContext context_of(const SceneDesc& desc, std::optional<std::size_t> peak = std::nullopt) {
+  SceneInfoContext context;
+  context.scene = "mixed";
+  context.load_ms = 1.0;
+  context.build_ms = 2.0;
+  context.peak_resident_bytes = peak;
+  context.read = read_counts(desc);
+  return context;
+}
+
 TEST(SceneInfo, CountRows) {
   const SceneDesc desc = mixed_scene();
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, context_of(desc));
   const std::string report = out.str();
   // read, kept, non-finite, degenerate, opaque, transmissive
   EXPECT_EQ(row(report, "spheres"), (std::vector<std::size_t>{4, 2, 1, 1, 1, 1}));
@@ -104,7 +116,7 @@ TEST(SceneInfo, SaysWhichPolygonsWereBuiltAsTriangles) {
   desc.polygons.push_back(corner);
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, context_of(desc));
   const std::string report = out.str();
   EXPECT_EQ(row(report, "triangles"), (std::vector<std::size_t>{1, 2, 0, 0, 1, 1}));
   EXPECT_EQ(row(report, "polygons"), (std::vector<std::size_t>{2, 1, 0, 0, 1, 0}));
@@ -146,7 +158,7 @@ TEST(SceneInfo, NamesEveryLightTextureInstanceAndFaceTally) {
   desc.face_tallies = {{"box.obj", 3, 1}, {"whole.ply", 2, 2}};
   const Scene scene = build_scene(desc, {});
   std::ostringstream out;
-  write_scene_info(out, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
+  write_scene_info(out, desc, scene, context_of(desc));
   const std::string report = out.str();
   for (const char* line :
        {"lights          5\n", "  0: point position (1 2 3) colour (1 1 1)\n",
@@ -181,10 +193,10 @@ TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
   const Scene scene = build_scene(desc, {});
   ASSERT_GT(scene.acceleration_bytes(), 0u);
   std::ostringstream without;
-  write_scene_info(without, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, std::nullopt, read_counts(desc), std::nullopt, std::nullopt});
+  write_scene_info(without, desc, scene, context_of(desc));
   EXPECT_EQ(without.str().find("peak memory"), std::string::npos);
   std::ostringstream with;
-  write_scene_info(with, desc, scene, {"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc), std::nullopt, std::nullopt});
+  write_scene_info(with, desc, scene, context_of(desc, 123456789));
   const std::string line = "peak memory     123456789 bytes resident at most (loading and building), for " +
                            std::to_string(scene.memory_bytes() + scene.acceleration_bytes()) +
                            " kept (memory and acceleration totals)\n";
@@ -195,7 +207,9 @@ TEST(SceneInfo, PeakMemoryAgainstWhatTheSceneKeeps) {
   EXPECT_GE(peak_resident_bytes(), touched.size());
 
   EXPECT_EQ(with.str().find("build peak"), std::string::npos);
-  SceneInfoContext building{"mixed", 1.0, 2.0, std::nullopt, 123456789, read_counts(desc), 23456789, 3456789};
+  SceneInfoContext building = context_of(desc, 123456789);
+  building.build_peak_resident_bytes = 23456789;
+  building.build_start_resident_bytes = 3456789;
   std::ostringstream build_peak;
   write_scene_info(build_peak, desc, scene, building);
   EXPECT_NE(build_peak.str().find(line + "build peak      23456789 bytes resident at most while the scene was built, "

@@ -250,7 +250,9 @@ TEST(BvhBuild, RootSplitHasTheLeastSahCostOfEveryBinBoundary) {
           grow(right, b);
         }
       }
-      if (n_left > 0 && n_left < boxes.size()) least = std::min(least, cost(left, n_left, right, boxes.size() - n_left));
+      if (n_left > 0 && n_left < boxes.size()) {
+        least = std::min(least, cost(left, n_left, right, boxes.size() - n_left));
+      }
     }
   }
   EXPECT_LE(built, least * (1.0 + 1e-5)) << "the root split costs " << built << ", a bin boundary " << least;

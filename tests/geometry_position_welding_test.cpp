@@ -27,7 +27,9 @@ bool same_bits(const Vec3<float>& a, const Vec3<float>& b) {
 }
 
 TEST(PositionWelding, EqualPositionsShareANumberInTheOrderFirstMet) {
-  const std::vector<Vec3<float>> positions{{1, 2, 3}, {0, 0, 0}, {1, 2, 3}, {-0.f, 0, -0.f}, {1, 2, 3.0000002f}, {0, 0, 0}};
+  const std::vector<Vec3<float>> positions{{1, 2, 3},           {0, 0, 0},
+                                           {1, 2, 3},           {-0.f, 0, -0.f},
+                                           {1, 2, 3.0000002f}, {0, 0, 0}};
   const WeldedPositions welded = weld(positions);
   EXPECT_EQ(welded.index_of, (std::vector<std::uint32_t>{0, 1, 0, 1, 2, 1}));
   ASSERT_EQ(welded.positions.size(), 3u);

@@ -170,3 +170,24 @@ def test_render_options_are_checked_as_the_cli_flags():
             quiver.render(scene, **options)
         _, _, err = run_cli("render", TINY, "-o", "unused.png", *cli_flags(options))
         assert err.strip() == "quiver: " + str(error.value), options
+
+
+
+def test_two_sided_lights_a_surface_seen_from_behind(tmp_path):
+    # An NFF triangle (opaque: one-sided) facing +z, seen from -z with its
+    # light at the eye: one-sided, its back gets only the ambient light;
+    # two-sided, the light reaches it. The CLI's --two-sided agrees.
+    nff = tmp_path / "back.nff"
+    nff.write_text("v\nfrom 0 0 -3\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 16 12\n"
+                   "l 0 0.5 -3\nf 1 1 1 1 0 0 0 0\np 3\n-1 -1 0\n1 -1 0\n0 1 0\n")
+    scene = quiver.load(str(nff))
+    one_sided = quiver.render(scene, aov="id")
+    two_sided = quiver.render(scene, two_sided=True, aov="id")
+    seen = one_sided.id >= 0
+    assert seen.any()
+    np.testing.assert_array_equal(seen, two_sided.id >= 0)
+    assert (two_sided.color[seen].sum(axis=1) > one_sided.color[seen].sum(axis=1)).all()
+    exr = str(tmp_path / "cli.exr")
+    code, _, err = run_cli("render", str(nff), "-o", exr, "-q", "--two-sided")
+    assert code == 0, err
+    same_pixels(exr, two_sided.color, str(tmp_path), "two_sided", "R,G,B")
