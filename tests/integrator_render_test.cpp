@@ -448,6 +448,11 @@ TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
   const std::uint64_t with_ball = render(build_scene(wall, {}), settings).stats.rays.primary;
   EXPECT_GT(with_ball, 4 * pixels);
   EXPECT_LT(with_ball, 4 * pixels + 60 * 200);  // the rim and its neighbours: under 200 pixels
+  // Surfaces refine a pixel once; only its colour's uncertainty refines it
+  // further, which never comes here: at most 8 x 8 spends what 4 x 4 does.
+  settings.aa = parse_anti_aliasing("refine:1e9:4");
+  EXPECT_EQ(render(build_scene(wall, {}), settings).stats.rays.primary, with_ball);
+  settings.aa = parse_anti_aliasing("refine:1e9:8");
   // Another material at nearly the same depth (0.02% nearer) counts as another surface too.
   wall.spheres.clear();
   wall.materials.push_back({});
@@ -469,6 +474,40 @@ TEST(Render, RefineSpendsRaysOnlyWhereAPixelIsUncertain) {
   const RenderResult tiled = render(scene, settings);
   EXPECT_TRUE(same_bits(whole.image.rgb, tiled.image.rgb));
   EXPECT_GT(tiled.stats.rays.primary, whole.stats.rays.primary);
+}
+
+// A pixel whose own first rays meet two materials is refined, even where
+// every pixel's last first-pass ray meets the same one as its neighbours':
+// a strip of a second material, a hair in front of a wall, covering the left
+// half of the first pixel column (where the strata i = 0 sample) only.
+TEST(Render, RefineSeesTwoMaterialsWithinOnePixel) {
+  constexpr int kWidth = 40, kHeight = 30;
+  RenderSettings settings = small_settings(kWidth, kHeight, "refine:1e9:4");  // colour never uncertain
+  settings.isa = best_supported_isa();
+  settings.tile_size = 64;  // one tile: no apron outside the image
+  SceneDesc wall;
+  wall.camera = CameraDesc{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f, 0.f, kWidth, kHeight};
+  wall.lights.push_back({});
+  wall.materials.push_back({});
+  wall.materials.push_back({});
+  wall.planes.push_back({{{0.f, 0.f, 0.f}, {0.f, 0.f, 1.f}}, 0});
+  const std::uint64_t pixels = std::uint64_t(kWidth) * kHeight;
+  EXPECT_EQ(render(build_scene(wall, {}), settings).stats.rays.primary, 4 * pixels);
+  // Where the rays through the first column's centre line meet the strip's plane.
+  constexpr float kStripZ = 1e-3f;
+  const Camera camera(*wall.camera, kWidth, kHeight);
+  const Vec3<double> d = view_direction(camera, 0.5, 0.5 * kHeight);
+  const auto edge = float((kStripZ - 5.0) / d.z * d.x);
+  const Vec3<float> a{edge - 10.f, -10.f, kStripZ}, b{edge, -10.f, kStripZ}, c{edge, 10.f, kStripZ},
+      e{edge - 10.f, 10.f, kStripZ};
+  TriangleDesc lower, upper;
+  lower.p = {a, b, c};
+  upper.p = {a, c, e};
+  wall.triangles.push_back({lower, 1});
+  wall.triangles.push_back({upper, 1});
+  const RenderResult strip = render(build_scene(wall, {}), settings);
+  // The first column's pixels (and, by their means, their neighbours) take 16 rays.
+  EXPECT_GE(strip.stats.rays.primary, 4 * pixels + 12 * std::uint64_t(kHeight));
 }
 
 // The jittered modes (jitter, refine) draw their sample positions from the
