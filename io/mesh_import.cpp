@@ -71,7 +71,9 @@ void add_smooth_normals(const ImportedMesh& mesh, const std::vector<std::size_t>
   });
   number_by_first_use(welding.positions, unsmoothed);
   smooth_vertex_normals(welding.positions, unsmoothed, crease_angle_degrees,
-                        [&](std::size_t k, const CornerNormals& normals) { triangles[owner[k]].triangle.normals = normals; });
+                        [&](std::size_t k, const CornerNormals& normals) {
+                          triangles[owner[k]].triangle.normals = normals;
+                        });
 }
 
 // An Assimp texture map mode as quiver's wrap (decal, outside the image

@@ -620,6 +620,20 @@ TEST(ObjReader, ForgivenInputGivesOneWarningEachAndTheDefaults) {
   EXPECT_EQ(scene.warnings, expected);
 }
 
+// An undefined material after a defined one: its faces get the default
+// material, not the one before it; a defined one after it takes over again.
+TEST(ObjReader, AnUndefinedMaterialAfterADefinedOneGivesTheDefault) {
+  const SceneDesc scene = parse(std::string(kTriangle) +
+                                    "mtllib m.mtl\nusemtl red\nf 1 2 3\nusemtl gone\nf 1 2 3\nusemtl red\nf 1 2 3\n",
+                                {{"m.mtl", "newmtl red\nKd 1 0 0\n"}});
+  ASSERT_EQ(scene.triangles.size(), 3u);
+  expect_vec3(scene.materials.at(scene.triangles[0].material).color, 1.f, 0.f, 0.f);
+  const MaterialDesc& undefined = scene.materials.at(scene.triangles[1].material);
+  expect_vec3(undefined.color, MaterialDesc{}.color.x, MaterialDesc{}.color.y, MaterialDesc{}.color.z);
+  EXPECT_NE(scene.triangles[1].material, scene.triangles[0].material);
+  EXPECT_EQ(scene.triangles[2].material, scene.triangles[0].material);
+}
+
 TEST(ObjReader, StrictMakesEachForgivenInputItsError) {
   EXPECT_TRUE(obj_error_at("mtllib missing.mtl\n", 1, 8, "an MTL library that exists, found 'missing.mtl'", true));
   EXPECT_TRUE(obj_error_at(std::string(kTriangle) + "f 1 2 3 # face\n", 4, 9,
