@@ -3,8 +3,8 @@
 // share no vertices (STL) or split them at seams.
 #pragma once
 
-#include <cstddef>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
