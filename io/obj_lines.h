@@ -1,7 +1,8 @@
 // OBJ text's plain statement lines parsed ahead of the reader, in chunks on
 // the other threads while the reader stores the chunks before them: each
-// `v x y z`, `vn x y z`, `vt u [v [w]]` and `f` line whose tokens all read (numbers by read_obj_number, indices as non-zero
-// integers) becomes its values; every other statement line (and any such
+// `v x y z`, `vn x y z`, `vt u [v [w]]` and `f` line whose tokens all read
+// (numbers by read_obj_number, indices as non-zero integers) becomes its
+// values; every other statement line (and any such
 // line with a '#' in it, a token that does not read, or more or fewer
 // tokens) is kept by position only, for the reader's own line scanner,
 // which reports what is wrong with it. Indices are kept as written: the

@@ -186,14 +186,22 @@ TEST(MeshImport, StlScenesAreZUp) {
   EXPECT_FALSE(read_obj_scene(kObj / "roof.obj").model_up.has_value());
 }
 
+// An ASCII PLY header: `vertices` of x, y, z and then `more` (property
+// lines), `faces` of uint vertex-index lists.
+std::string ascii_ply_header(int vertices, std::string_view more, int faces) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\n" + std::string(more) + "element face " +
+         std::to_string(faces) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+}
+
 TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
   const testing::TemporaryDirectory temporary("quiver_mesh_test");
   const fs::path path = temporary.path() / "quad.ply";
-  write_file(path,
-             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-             "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
-             "element face 1\nproperty list uchar uint vertex_indices\nend_header\n"
-             "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0.6 0 0.8 0 1\n4 0 1 2 3\n");
+  write_file(path, ascii_ply_header(4,
+                                    "property float nx\nproperty float ny\nproperty float nz\nproperty float s\n"
+                                    "property float t\n",
+                                    1) +
+                       "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0.6 0 0.8 0 1\n4 0 1 2 3\n");
   const SceneDesc scene = read_imported_mesh(path);
   ASSERT_EQ(scene.triangles.size(), 2u);
   for (const SceneTriangle& t : scene.triangles) {
@@ -215,15 +223,11 @@ TEST(MeshImport, PlyNormalsAndTextureCoordinatesAreKeptAndPolygonsBecomeFans) {
 // triangles at the corner it fans to last, (a, b, c) as (c, a, b) and
 // (a, c, d) as (c, d, a).
 TEST(MeshImport, PlyQuadsKeepAssimpsCornerOrder) {
-  const testing::TemporaryDirectory temporary("quiver_mesh_test");
-  const fs::path path = temporary.path() / "quads.ply";
-  write_file(path,
-             "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
-             "element face 2\nproperty list uchar uint vertex_indices\nend_header\n"
-             "0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 1 0\n-1 0 0\n4 0 1 2 3\n4 0 3 4 5\n");
+  const std::string ply =
+      ascii_ply_header(6, "", 2) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 1 0\n-1 0 0\n4 0 1 2 3\n4 0 3 4 5\n";
   const std::array<Vec3<float>, 6> vertex{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}, {-1, 0, 0}}};
   const std::array<std::array<int, 3>, 4> expected{{{0, 1, 2}, {0, 2, 3}, {4, 0, 3}, {4, 5, 0}}};
-  const SceneDesc scene = read_imported_mesh(path, 0.0);
+  const SceneDesc scene = read_mesh_bytes(ply, "quads.ply", 0.0);
   ASSERT_EQ(scene.triangles.size(), expected.size());
   for (std::size_t t = 0; t < expected.size(); ++t) {
     for (std::size_t k = 0; k < 3; ++k) {

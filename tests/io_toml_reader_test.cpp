@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/scene_info.h"
 #include "io/parse_error.h"
 #include "io/ply_writer.h"
 #include "io/toml_reader.h"
@@ -481,24 +482,11 @@ TEST(TomlReader, NoObjectsIsAnErrorAtTheEndOfTheFile) {
   }
 }
 
-// A value of /proc/self/status in KiB ("VmRSS", "VmHWM"), or -1.
-long status_kib(const std::string& key) {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind(key + ":", 0) == 0) return std::stol(line.substr(key.size() + 1));
-  }
-  return -1;
-}
-
 // Returns freed heap to the system, then sets the peak resident size
 // (VmHWM) to the current one; false when /proc/self/clear_refs refuses.
 bool reset_peak_resident_size() {
   ::malloc_trim(0);
-  std::ofstream clear_refs("/proc/self/clear_refs");
-  clear_refs << "5";
-  clear_refs.flush();
-  return clear_refs.good();
+  return restart_resident_high_water();
 }
 
 // "[[polygons]]" with n vertices [0, 0, 0]: 4 nodes, then 4 a vertex.
@@ -536,9 +524,9 @@ TEST(TomlReader, NodesAreBoundedBeforeTomlplusplusBuildsThem) {
   for (std::size_t i = 0; i < kMaxTomlNodes; ++i) zeros += ",0";
   for (const std::string& text : {zeros + "]\n", polygon_of(1'000'000)}) {
     if (!reset_peak_resident_size()) GTEST_SKIP() << "/proc/self/clear_refs cannot reset the peak resident size";
-    const long before = status_kib("VmRSS");
+    const std::size_t before = process_status_bytes("VmRSS").value();
     EXPECT_THROW(parse(text), ParseError);
-    const long growth_kib = status_kib("VmHWM") - before;
+    const long growth_kib = long(process_status_bytes("VmHWM").value() / 1024) - long(before / 1024);
     EXPECT_LT(growth_kib, 16 * 1024) << "peak resident size grew by " << growth_kib << " KiB for " << text.size()
                                      << " bytes of TOML";
   }
