@@ -32,6 +32,7 @@
 #include "app/interrupt.h"
 #include "app/mpi_stats.h"
 #include "app/progress_bar.h"
+#include "app/scene_broadcast.h"
 #include "app/stats_json.h"
 #include "app/tile_schedule.h"
 #include "io/image_output.h"
@@ -196,7 +197,7 @@ RankReport own_report(const FrameRenderer& renderer, RankRenderer& rank_renderer
 
 // A rank other than 0: renders the tiles rank 0 sends, sends each back as
 // soon as it is done, and its report once rank 0 says there is no more.
-void run_worker(FrameRenderer& renderer) {
+void run_worker(FrameRenderer& renderer, double start_ms) {
   Film film = renderer.make_film();
   RankRenderer rank_renderer(renderer, film);
   std::deque<std::uint32_t> queue;
@@ -246,7 +247,9 @@ void run_worker(FrameRenderer& renderer) {
   render_thread.join();
   // After every tile (MPI keeps one sender's messages in order); rank 0
   // counts the tiles itself, repeats apart.
-  const std::vector<std::byte> report = encode_rank_report(own_report(renderer, rank_renderer, sent, 0));
+  RankReport own = own_report(renderer, rank_renderer, sent, 0);
+  own.start_ms = start_ms;
+  const std::vector<std::byte> report = encode_rank_report(own);
   MPI_Send(report.data(), int(report.size()), MPI_BYTE, 0, kTagReport, MPI_COMM_WORLD);
 }
 
@@ -466,6 +469,16 @@ class Coordinator {
 
 std::string describe() { return describe_current_exception().second; }
 
+// MPI_Wait without spinning on a core: tests the request, sleeping between tests.
+void wait_quietly(MPI_Request& request) {
+  int done = 0;
+  MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  while (!done) {
+    std::this_thread::sleep_for(kPollInterval);
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  }
+}
+
 // A failure once the render is under way: the other ranks wait on this
 // one, so the job ends here.
 [[noreturn]] void abort_job(const std::string& message) {
@@ -482,7 +495,10 @@ std::string describe() { return describe_current_exception().second; }
 int agree_on(int exit_code, const std::string& message) {
   const int rank = world_rank(), ranks = world_size();
   int worst = 0;
-  MPI_Allreduce(&exit_code, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  // Quietly: the other ranks may wait here while rank 0 reads and builds the scene.
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&exit_code, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
+  wait_quietly(request);
   if (worst == 0) return 0;
   const int mine = exit_code != 0 ? rank : ranks;
   int first = ranks;
@@ -558,17 +574,6 @@ void check_mpi_flags(const MpiRenderArgs& args, int rank, MpiSetup& setup) {
     check_render_options(render_args.options);
     setup.checked.isa = choose_isa(render_args.options.simd, std::getenv("QUIVER_SIMD"));
     setup.checked.output = output;
-  }
-}
-
-// Every rank must render the same frame from the same files: each
-// fingerprints what it read and compares it with rank 0's (a collective).
-void compare_fingerprints(const MpiSetup& setup) {
-  std::uint64_t rank0_fingerprint = setup.fingerprint;
-  MPI_Bcast(&rank0_fingerprint, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  if (rank0_fingerprint != setup.fingerprint) {
-    throw std::runtime_error("the scene files or settings this rank read differ from rank 0's (every rank must read "
-                             "the same files)");
   }
 }
 
@@ -655,33 +660,40 @@ std::pair<int, std::string> write_outputs(const MpiRenderArgs& args, MpiSetup& s
 }  // namespace
 
 int run_mpi_render(const MpiRenderArgs& args) {
+  const Clock::time_point start = Clock::now();
   const int rank = world_rank(), ranks = world_size();
   const RenderArgs& render_args = args.render;
   MpiSetup setup;
   if (int code = on_every_rank([&] { check_mpi_flags(args, rank, setup); }, true)) return code;
   if (rank == 0) install_interrupt_handlers();
+  // Rank 0 alone reads and builds the scene (and fingerprints what it read, for its checkpoint).
   const auto prepare = [&] {
+    if (rank != 0) return;
     setup.prepared.emplace(prepare_render(render_args, setup.checked));
-    if (rank == 0) print_scene_warnings(setup.prepared->desc);
+    print_scene_warnings(setup.prepared->desc);
+    setup.fingerprint =
+        render_fingerprint(setup.prepared->plan.settings, setup.prepared->plan.build, render_args.options.crease_angle,
+                           *setup.prepared->desc.camera, setup.prepared->inputs, QUIVER_VERSION);
   };
   if (int code = on_every_rank(prepare)) return code;
+  try {
+    if (rank != 0) setup.prepared.emplace();
+    broadcast_prepared_render(*setup.prepared, rank, setup.checked.isa);
+  } catch (...) {
+    abort_job(describe());
+  }
   const RenderSettings& settings = setup.prepared->plan.settings;
   if (int code = on_every_rank([&] { setup.renderer.emplace(setup.prepared->scene, settings); })) return code;
-  const auto fingerprint = [&] {
-    setup.fingerprint = render_fingerprint(settings, setup.prepared->plan.build, render_args.options.crease_angle,
-                                           *setup.prepared->desc.camera, setup.prepared->inputs, QUIVER_VERSION);
-  };
-  if (int code = on_every_rank(fingerprint)) return code;
-  if (int code = on_every_rank([&] { compare_fingerprints(setup); })) return code;
   setup.done.assign(setup.renderer->tiles().size(), false);
   if (int code = on_every_rank([&] { if (rank == 0) open_checkpoint(args, setup); })) return code;
 
   const Clock::time_point estimate_start = Clock::now();
   const std::vector<double> costs = estimate_tile_costs(*setup.renderer, rank, ranks);
   const double estimate_ms = ms_since(estimate_start);
+  const double start_ms = ms_since(start);
   if (rank != 0) {
     try {
-      run_worker(*setup.renderer);
+      run_worker(*setup.renderer, start_ms);
     } catch (...) {
       abort_job(describe());
     }
@@ -700,6 +712,7 @@ int run_mpi_render(const MpiRenderArgs& args) {
     abort_job(describe());
   }
   gathered.summary.estimate_ms = estimate_ms;
+  gathered.summary.ranks[0].start_ms = start_ms;
   gathered.costs = costs;
   int code = 0;
   std::string message;

@@ -1,9 +1,10 @@
 // quiver-mpi: one image rendered by every rank of an MPI job
-// (docs/MPI.md). Each rank reads the scene and builds its BVH; rank 0
-// keeps the tile queue (app/tile_schedule.h), hands tiles out to the other
-// ranks and renders some itself, places every tile as it arrives,
-// checkpoints them (app/checkpoint.h) and writes the outputs as `quiver
-// render` does. The image is the same bits as `quiver render`'s.
+// (docs/MPI.md). Rank 0 reads and builds the scene and broadcasts it to the
+// other ranks (app/scene_broadcast.h); it keeps the tile queue
+// (app/tile_schedule.h), hands tiles out to the other ranks and renders some
+// itself, places every tile as it arrives, checkpoints them
+// (app/checkpoint.h) and writes the outputs as `quiver render` does. The
+// image is the same bits as `quiver render`'s.
 // Needs MPI initialised (MPI_THREAD_FUNNELED: only the calling thread makes
 // MPI calls).
 #pragma once

@@ -10,7 +10,7 @@ namespace quiver {
 
 namespace {
 
-constexpr std::uint64_t kReportVersion = 2;
+constexpr std::uint64_t kReportVersion = 3;
 
 void put(std::vector<std::uint64_t>& out, const WaveLanes& lanes) {
   out.insert(out.end(), {lanes.active, lanes.issued_compacted, lanes.issued_uncompacted});
@@ -38,6 +38,7 @@ std::vector<std::byte> encode_rank_report(const RankReport& r) {
                                    r.tiles_repeated,
                                    double_bits(r.render_ms),
                                    double_bits(r.busy_ms),
+                                   double_bits(r.start_ms),
                                    s.rays.primary,
                                    s.rays.primary_hits,
                                    s.rays.shadow,
@@ -60,7 +61,7 @@ std::vector<std::byte> encode_rank_report(const RankReport& r) {
 }
 
 RankReport decode_rank_report(std::span<const std::byte> bytes) {
-  constexpr std::size_t kFixed = 23;
+  constexpr std::size_t kFixed = 24;
   if (bytes.size() % sizeof(std::uint64_t) != 0 || bytes.size() / sizeof(std::uint64_t) < kFixed) {
     throw std::invalid_argument("rank report: wrong size");
   }
@@ -73,14 +74,15 @@ RankReport decode_rank_report(std::span<const std::byte> bytes) {
   r.tiles_repeated = w[3];
   r.render_ms = bits_double(w[4]);
   r.busy_ms = bits_double(w[5]);
+  r.start_ms = bits_double(w[6]);
   TraceStats& s = r.stats;
-  s.rays = {w[6], w[7], w[8], w[9], w[10]};
-  s.phases = {w[11], w[12], w[13], w[14], w[15]};
-  s.shading_active = w[16];
-  s.light_sample_active = w[17];
-  s.light_sample_issued = w[18];
-  s.shadow = {w[19], w[20], w[21]};
-  const std::uint64_t waves = w[22];
+  s.rays = {w[7], w[8], w[9], w[10], w[11]};
+  s.phases = {w[12], w[13], w[14], w[15], w[16]};
+  s.shading_active = w[17];
+  s.light_sample_active = w[18];
+  s.light_sample_issued = w[19];
+  s.shadow = {w[20], w[21], w[22]};
+  const std::uint64_t waves = w[23];
   if (waves > (w.size() - kFixed) / 3 || w.size() != kFixed + 3 * waves) {
     throw std::invalid_argument("rank report: wrong wave count");
   }
@@ -111,6 +113,7 @@ nlohmann::json mpi_stats_json(const MpiJobSummary& job) {
                         {"threads", r.threads},
                         {"tiles", r.tiles},
                         {"tiles_repeated", r.tiles_repeated},
+                        {"start_ms", r.start_ms},
                         {"render_ms", r.render_ms},
                         {"busy_ms", r.busy_ms},
                         {"idle_ms", std::max(0.0, available - r.busy_ms)},

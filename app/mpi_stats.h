@@ -20,6 +20,9 @@ struct RankReport {
   std::uint64_t tiles_repeated = 0;  // tiles rendered again after another rank's result won
   double render_ms = 0.0;            // the rank's wall time from its first tile request to its last tile
   double busy_ms = 0.0;              // its threads' time in tiles, summed
+  // Its wall time from its start to its first tile request: the scene read
+  // and built (rank 0) or received from rank 0, and the cost estimate.
+  double start_ms = 0.0;
   TraceStats stats;                  // every tile it rendered
 };
 
@@ -41,8 +44,8 @@ struct MpiJobSummary {
 // efficiency: every rank's busy_ms over (every rank's threads x the job's render_ms).
 // Keys: ranks, tiles, tiles_resumed, tiles_rendered, tiles_repeated,
 // render_ms, estimate_ms, checkpoint_ms, checkpoints, efficiency,
-// per_rank [{rank, threads, tiles, tiles_repeated, render_ms, busy_ms,
-// idle_ms, rays {primary, shadow, reflection, refraction, total}}].
+// per_rank [{rank, threads, tiles, tiles_repeated, start_ms, render_ms,
+// busy_ms, idle_ms, rays {primary, shadow, reflection, refraction, total}}].
 nlohmann::json mpi_stats_json(const MpiJobSummary& job);
 
 // Every rank's stats summed.

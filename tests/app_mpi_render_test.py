@@ -12,6 +12,10 @@
   bad-input         a bad scene, a bad flag, a stale checkpoint, a checkpoint
                     naming an output under another spelling or a FIFO, under
                     -np 2: one error line, the right exit code, no output
+  one-read          rank 0 alone reads the scene (textures and instanced
+                    meshes): a worker given a scene path that does not exist
+                    (mpirun's per-rank arguments) renders its share of the
+                    same image; every rank reports its time to its first tile
   checkpoint-interval  the checkpoint is written once the interval has
                     passed, not before: one write (the last) under an hour's
                     interval, several under a microsecond's (stats)
@@ -275,6 +279,25 @@ def case_bad_input(work):
         fail("files left behind: %s" % left)
 
 
+def case_one_read(work):
+    flags = ["--width", "64", "--height", "48", "--threads", "1", "--aov", "normal,id"]
+    for scene in ("io/examples/textures.toml", "io/examples/instances.toml"):
+        path = os.path.join(SOURCE, scene)
+        reference, _ = quiver_reference(work, [path], flags)
+        out, stats = os.path.join(work, "one_read.exr"), os.path.join(work, "one_read.json")
+        missing = os.path.join(work, "no_such_scene.toml")
+        rank0 = ["-np", "1", QUIVER_MPI, path, *flags, "-o", out, "--stats", stats, "--quiet"]
+        workers = ["-np", "2", QUIVER_MPI, missing, *flags, "-o", out, "--quiet"]
+        done = run([MPIRUN, "--oversubscribe", "--bind-to", "none", *rank0, ":", *workers])
+        if done.returncode != 0:
+            fail("%s with workers given a missing scene exited %d:\n%s" % (scene, done.returncode, done.stderr))
+        if not same_bytes(out, reference):
+            fail("%s: the image differs from quiver render's" % scene)
+        per_rank = read_json(stats)["mpi"]["per_rank"]
+        if len(per_rank) != 3 or not all(r["start_ms"] > 0 for r in per_rank):
+            fail("%s: expected 3 ranks each with a time to its first tile: %s" % (scene, per_rank))
+
+
 def case_checkpoint_interval(work):
     scene, flags = SCENES["builtin-adaptive-aovs"]
     writes = {}
@@ -314,6 +337,8 @@ def main():
             case_killed(work, 1)
         elif CASE == "bad-input":
             case_bad_input(work)
+        elif CASE == "one-read":
+            case_one_read(work)
         elif CASE == "checkpoint-interval":
             case_checkpoint_interval(work)
         else:

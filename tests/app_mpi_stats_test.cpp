@@ -19,6 +19,7 @@ RankReport report(int threads, std::uint64_t tiles, double busy_ms, std::uint64_
   r.tiles_repeated = 1;
   r.render_ms = 100.0;
   r.busy_ms = busy_ms;
+  r.start_ms = 31.25;
   r.stats.rays = {primary, primary / 2, 3 * primary, 7, 5};
   r.stats.phases = {1, 2, 3, 4, 5};
   r.stats.waves = {{10, 16, 24}, {4, 8, 8}};
@@ -36,6 +37,8 @@ TEST(MpiStats, ARankReportSurvivesItsBytes) {
   EXPECT_EQ(back.tiles, 40u);
   EXPECT_EQ(back.tiles_repeated, 1u);
   EXPECT_EQ(back.busy_ms, 250.5);
+  EXPECT_EQ(back.start_ms, 31.25);
+  EXPECT_EQ(back.render_ms, 100.0);
   EXPECT_EQ(back.stats.rays.shadow, 3000u);
   EXPECT_EQ(back.stats.rays.primary_hits, 500u);
   EXPECT_EQ(back.stats.phases.shadows, 4u);
@@ -79,6 +82,7 @@ TEST(MpiStats, EfficiencyIsBusyTimeOverEveryThreadsTimeAndRaysAddUp) {
   EXPECT_DOUBLE_EQ(j["efficiency"].get<double>(), (180.0 + 360.0) / (3 * 200.0));
   EXPECT_DOUBLE_EQ(j["per_rank"][0]["idle_ms"].get<double>(), 20.0);
   EXPECT_DOUBLE_EQ(j["per_rank"][1]["idle_ms"].get<double>(), 40.0);
+  EXPECT_EQ(j["per_rank"][1]["start_ms"].get<double>(), 31.25);
   EXPECT_EQ(j["per_rank"][1]["rays"]["total"], 3000 + 9000 + 7 + 5);
   const TraceStats merged = merged_trace_stats(job.ranks);
   EXPECT_EQ(merged.rays.primary, 4000u);
