@@ -116,6 +116,7 @@ void transfer(A& archive, T& x) {
       for (Element& e : x) transfer(archive, e);
     }
   } else if constexpr (std::is_trivially_copyable_v<T>) {
+    static_assert(!std::is_pointer_v<T>, "an address means nothing in another process");
     archive.bytes(&x, sizeof x);
   } else if constexpr (IsArray<T>::value) {
     for (auto& e : x) transfer(archive, e);
