@@ -38,22 +38,24 @@ struct Timings {
   double load_ms, build_ms;
 };
 
+// The plan, the timings and the scene through the archive, in that order on every rank.
+template <class Archive>
+void transfer_prepared(Archive archive, PreparedRender& prepared, Timings& timings) {
+  archive.bytes(&prepared.plan, sizeof prepared.plan);
+  archive.bytes(&timings, sizeof timings);
+  transfer_scene(archive, prepared.scene);
+}
+
 }  // namespace
 
 void broadcast_prepared_render(PreparedRender& prepared, int rank, Isa isa) {
   static_assert(std::is_trivially_copyable_v<RenderPlan>);
   Timings timings{prepared.load_ms, prepared.build_ms};
   if (rank == 0) {
-    BroadcastArchive<false> archive;
-    archive.bytes(&prepared.plan, sizeof prepared.plan);
-    archive.bytes(&timings, sizeof timings);
-    transfer_scene(archive, prepared.scene);
+    transfer_prepared(BroadcastArchive<false>{}, prepared, timings);
     return;
   }
-  BroadcastArchive<true> archive;
-  archive.bytes(&prepared.plan, sizeof prepared.plan);
-  archive.bytes(&timings, sizeof timings);
-  transfer_scene(archive, prepared.scene);
+  transfer_prepared(BroadcastArchive<true>{}, prepared, timings);
   prepared.plan.settings.isa = isa;
   prepared.load_ms = timings.load_ms;
   prepared.build_ms = timings.build_ms;

@@ -7,7 +7,8 @@
 //   static constexpr bool kReading;            true: fills the scene; false: reads it
 //   void bytes(void* data, std::size_t size);  copies raw bytes out of or into data
 //   void count(std::size_t& n, std::size_t element_bytes);  a list's length (a
-//       reading archive checks it before anything is allocated for it)
+//       reading archive of bytes it cannot trust checks it before anything is
+//       allocated for it)
 // transfer(archive, x) copies x: a trivially copyable value as its bytes, a
 // vector as its length then its elements (trivially copyable ones as one
 // block), an array or optional element by element, a PerKind kind by kind,

@@ -49,7 +49,9 @@ struct ByteReader {
   }
   void count(std::size_t& n, std::size_t element_bytes) {
     bytes(&n, sizeof n);
-    if (element_bytes != 0 && n > (in.size() - at) / element_bytes) throw std::out_of_range("a list longer than the bytes");
+    if (element_bytes != 0 && n > (in.size() - at) / element_bytes) {
+      throw std::out_of_range("a list longer than the bytes left");
+    }
   }
 };
 
@@ -132,7 +134,7 @@ TEST(SceneFields, ASceneCopiedThroughBytesRendersTheSameBits) {
   EXPECT_GT(hit, a.id.size() / 4) << "the view sees the scene";
 }
 
-TEST(SceneFields, BytesThatEndEarlyAreRefusedBeforeAnyAllocation) {
+TEST(SceneFields, BytesThatEndEarlyAreRefused) {
   SceneDesc desc = rich_scene();
   const Scene scene = build_scene(desc, SceneBuildOptions{});
   ByteWriter writer;
