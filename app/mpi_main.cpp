@@ -34,8 +34,9 @@ int main(int argc, char** argv) {
   }
 
   CLI::App app{"quiver-mpi: render one image over the ranks of an MPI job (mpirun -np N quiver-mpi ...), the same "
-               "image as 'quiver render' with the same options. Every rank reads the scene; rank 0 hands out "
-               "tiles, renders too, checkpoints the finished tiles and writes the outputs. Run it with --threads "
+               "image as 'quiver render' with the same options. Rank 0 alone reads and builds the scene and sends "
+               "it to the other ranks; it hands out tiles, renders too, checkpoints the finished tiles and writes "
+               "the outputs. Run it with --threads "
                "set to the cores each rank may use.\nExit codes: 0 success, 1 failure (bad scene, render or write "
                "error), 2 usage error, 130/143 interrupted by SIGINT/SIGTERM (the finished tiles stay in the "
                "checkpoint; --resume continues).",
