@@ -38,6 +38,7 @@
 #include "io/output_file.h"
 #include "app/interrupt.h"
 #include "app/progress_bar.h"
+#include "app/stage_status.h"
 #include "app/render_job.h"
 #include "app/render_options.h"
 #include "app/scene_build.h"
@@ -112,13 +113,16 @@ int run_render(const RenderArgs& args) {
 
   quiver::install_interrupt_handlers();
   try {
+    const quiver::ProgressStyle style = quiver::progress_style_for(stderr, args.quiet);
     // UsageError from here on exits 2 through report_exception.
-    const quiver::PreparedRender prepared = quiver::prepare_render(args, checked);
+    const quiver::PreparedRender prepared = [&] {
+      quiver::StageStatus status(stderr, style);
+      return quiver::prepare_render(args, checked, &status);
+    }();
     quiver::print_scene_warnings(prepared.desc);
     const quiver::RenderSettings& settings = prepared.plan.settings;
 
     quiver::set_interrupt_phase(quiver::InterruptPhase::rendering);
-    const quiver::ProgressStyle style = quiver::progress_style_for(stderr, args.quiet);
     quiver::ProgressBar progress(stderr, style);
     // No progress shown, no callback: the render then skips estimating its tiles' costs.
     quiver::RenderProgress report_progress;
@@ -205,7 +209,11 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
   }
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc = quiver::load_scene_timed(scene_path, load_options, load_ms);
+    const quiver::ProgressStyle style = quiver::progress_style_for(stderr, false);
+    quiver::SceneDesc desc = [&] {
+      quiver::StageStatus status(stderr, style);
+      return quiver::load_scene_timed(scene_path, load_options, load_ms, &status);
+    }();
     quiver::print_scene_warnings(desc);
     // set_view sets only the camera, lights, ambient and background: the
     // report's are the file's, kept aside rather than in a copy of the whole
@@ -223,7 +231,10 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     if (quiver::restart_resident_high_water()) {
       context.build_start_resident_bytes = quiver::process_status_bytes("VmRSS");
     }
-    const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms);
+    const quiver::Scene scene = [&] {
+      quiver::StageStatus status(stderr, style);
+      return quiver::build_scene_timed(desc, {}, scene_path, build_ms, &status);
+    }();
     if (context.build_start_resident_bytes) context.build_peak_resident_bytes = quiver::process_status_bytes("VmHWM");
     desc.camera = camera_as_read;
     desc.lights = lights_as_read;

@@ -24,6 +24,8 @@
 
 namespace quiver {
 
+class StageStatus;  // app/stage_status.h
+
 // Exit codes of quiver and quiver-mpi.
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitUsage = 2;
@@ -68,7 +70,9 @@ struct PreparedRender {
 };
 
 // The scene file (or the built-in scene), read with the load options; throws.
-SceneDesc load_scene_timed(const std::string& scene, const SceneLoadOptions& options, double& load_ms);
+// `status` (may be null) shows the step ("reading <scene>") while it lasts.
+SceneDesc load_scene_timed(const std::string& scene, const SceneLoadOptions& options, double& load_ms,
+                           StageStatus* status = nullptr);
 
 // What the readers forgave (SceneDesc::warnings), one "quiver: " line each on stderr.
 void print_scene_warnings(const SceneDesc& desc);
@@ -76,12 +80,15 @@ void print_scene_warnings(const SceneDesc& desc);
 // build_scene, timed, its errors (bad material or texture indices) naming the
 // scene; desc.triangles is released while building (empty afterwards: a
 // command keeps the built scene, not a large mesh's description beside it).
+// `status` as for load_scene_timed ("building <scene>").
 Scene build_scene_timed(SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
-                        double& build_ms);
+                        double& build_ms, StageStatus* status = nullptr);
 
 // Reads and builds the scene for a checked render; throws UsageError when an
 // output names a file the scene reads, std::runtime_error for a bad scene.
-PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked);
+// `status` (may be null) shows each step while it lasts.
+PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked,
+                              StageStatus* status = nullptr);
 
 // The stats JSON of `quiver render --stats`.
 nlohmann::json render_stats(const RenderArgs& args, const CheckedRenderArgs& checked, const PreparedRender& prepared,

@@ -10,31 +10,14 @@
 #include <gtest/gtest.h>
 
 #include "app/progress_bar.h"
+#include "tests/support/captured_file.h"
 
 namespace quiver {
 namespace {
 
 using namespace std::chrono_literals;
 
-// Everything written to a temporary FILE.
-class Capture {
- public:
-  Capture() : file_(std::tmpfile()) {}
-  ~Capture() {
-    if (file_) std::fclose(file_);
-  }
-  std::FILE* file() const { return file_; }
-  std::string text() const {
-    std::fflush(file_);
-    std::rewind(file_);
-    std::string out;
-    for (int c = std::fgetc(file_); c != EOF; c = std::fgetc(file_)) out.push_back(char(c));
-    return out;
-  }
-
- private:
-  std::FILE* file_;
-};
+using Capture = testing::CapturedFile;
 
 std::size_t count(const std::string& text, char c) {
   std::size_t n = 0;
