@@ -189,8 +189,9 @@ inline void add_report_flags(CLI::App& render, RenderArgs& args, RawRenderFlags&
                                      "most once; needs an .exr output")
                        ->type_name("LIST");
   render.add_flag("-q,--quiet", args.quiet,
-                  "No progress (a bar with the time left on a terminal, else a line every 5 s) and no summary "
-                  "line (errors are still reported)");
+                  "No progress (a bar with the time left on a terminal, else a line every 5 s; on a terminal, "
+                  "reading or building the scene for over a second shows that step) and no summary line (errors "
+                  "are still reported)");
 }
 
 // Procedures, surfaces, textures, meshes, paths and the view.
