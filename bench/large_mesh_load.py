@@ -11,8 +11,13 @@ and what the scene keeps (quiver info's "peak memory" and "build peak"
 lines). The STL
 and OBJ are written by a child process: a child's peak resident memory
 counts the parent's at the fork, so this process never holds the mesh.
+Then, where Embree applies (its build of the same triangles), the
+harness's build table for the PLY (build/bin/quiver_bench_embree, when
+built; --embree none skips it): quiver's and Embree's build ms, medians of
+--runs, and bytes per triangle.
 
 Usage: /usr/bin/python3 bench/large_mesh_load.py [--triangles 1000000] [--runs 5] [--quiver build/bin/quiver]
+           [--embree build/bin/quiver_bench_embree]
 """
 import argparse
 import multiprocessing
@@ -73,6 +78,15 @@ def info(quiver, path, crease):
             "build peak": number(r"^build peak\s+(\d+) bytes"), "read": number(r"from (\d+) when it began")}
 
 
+def embree_builds(harness, ply, runs):
+    """The harness's build row for the PLY: quiver and Embree build ms and bytes per primitive."""
+    out = subprocess.run([harness, "--width", "16", "--height", "16", "--repeat", str(runs), "--scenes", ply],
+                         capture_output=True, text=True, check=True).stdout
+    header = next(line for line in out.splitlines() if line.startswith("| scene | primitives |"))
+    row = next(line for line in out.splitlines()[out.splitlines().index(header) + 2:] if line.startswith("| "))
+    return [cell.strip() for cell in row.strip("|").split("|")]
+
+
 def write_other_formats(files):
     positions, triangles = read_ply(files["binary PLY"])
     write_stl(files["binary STL"], positions, triangles)
@@ -84,6 +98,8 @@ def main():
     parser.add_argument("--triangles", type=int, default=1_000_000)
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--quiver", default=os.path.join(HERE, "..", "build", "bin", "quiver"))
+    parser.add_argument("--embree", default=os.path.join(HERE, "..", "build", "bin", "quiver_bench_embree"),
+                        help="the Embree harness, or none")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         ply = os.path.join(folder, "sphere.ply")
@@ -112,6 +128,19 @@ def main():
                     name, crease, size, median["load"], size / (median["load"] / 1000), median["load"] / millions,
                     median["build"], median["peak"] / 1e6, median["build peak"] / 1e6, median["read"] / 1e6,
                     median["kept"] / 1e6), flush=True)
+        if args.embree == "none":
+            return
+        if not os.access(args.embree, os.X_OK):
+            print("no Embree comparison: %s is not built (CMake builds it where Embree is installed)" % args.embree)
+            return
+        cells = embree_builds(args.embree, ply, args.runs)
+        print("\nThe binary PLY's builds, `quiver_bench_embree --width 16 --height 16 --repeat %d` (medians, every "
+              "thread; quiver's geometry with its smooth normals):" % args.runs)
+        print("| quiver build ms | Embree build ms (commit) | Embree low / high quality ms "
+              "| quiver geometry + BVH B/tri | Embree buffers + rest B/tri |")
+        print("| ---: | ---: | ---: | ---: | ---: |")
+        print("| %s | %s | %s | %s + %s | %s + %s |" % (cells[3], cells[4], cells[5], cells[6], cells[7], cells[8],
+                                                        cells[9]))
 
 
 if __name__ == "__main__":
