@@ -269,13 +269,20 @@ int run_trace(const TraceArgs& args) {
 
   try {
     double load_ms = 0.0;
-    quiver::SceneDesc desc =
-        quiver::load_scene_timed(
-        args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms);
+    const quiver::ProgressStyle style = quiver::progress_style_for(stderr, false);
+    quiver::SceneDesc desc = [&] {
+      quiver::StageStatus status(stderr, style);
+      return quiver::load_scene_timed(
+          args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms,
+          &status);
+    }();
     quiver::print_scene_warnings(desc);
     const auto [width, height] = quiver::set_trace_view(args.options, desc);
     double build_ms = 0.0;
-    const quiver::Scene scene = quiver::build_scene_timed(desc, {}, args.scene, build_ms);
+    const quiver::Scene scene = [&] {
+      quiver::StageStatus status(stderr, style);
+      return quiver::build_scene_timed(desc, {}, args.scene, build_ms, &status);
+    }();
     const quiver::PrimaryTraceResult result =
         quiver::trace_primary(scene, width, height, isa, args.options.threads, args.options.repeat,
                               {args.options.occluded, args.options.shuffled});
