@@ -14,6 +14,7 @@ std::atomic<bool> stop_flag{false};
 std::atomic<int> stop_signal{0};
 std::atomic<InterruptPhase> phase{InterruptPhase::reading};
 std::atomic<int> ending_exit_code{0};
+std::atomic<bool> status_line{false};
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free &&
                   std::atomic<InterruptPhase>::is_always_lock_free,
               "signal handlers may touch only lock-free atomics");
@@ -22,6 +23,9 @@ static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_alw
 void on_signal(int signal) {
   if (phase.load() == InterruptPhase::ending) ::_exit(ending_exit_code.load());
   if (phase.load() == InterruptPhase::reading) {
+    if (status_line.load()) {
+      [[maybe_unused]] const ssize_t ended = ::write(STDERR_FILENO, "\n", 1);
+    }
     const char* message = signal == SIGINT ? "quiver: interrupted by SIGINT while reading the scene; nothing written\n"
                                            : "quiver: interrupted by SIGTERM while reading the scene; nothing written\n";
     [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, std::strlen(message));
@@ -44,6 +48,9 @@ void install_interrupt_handlers() {
 }
 
 void set_interrupt_phase(InterruptPhase next) { phase.store(next); }
+
+void note_status_line(bool shown) { status_line.store(shown); }
+bool status_line_shown() { return status_line.load(); }
 
 void end_quietly_on_signal(int exit_code) {
   ending_exit_code.store(exit_code);

@@ -25,6 +25,11 @@ void set_interrupt_phase(InterruptPhase phase);
 // nothing, so the error already reported stays the only line.
 void end_quietly_on_signal(int exit_code);
 
+// Whether a status line (app/stage_status.h) is on the terminal now: a
+// signal while reading then starts its message on a line of its own.
+void note_status_line(bool shown);
+bool status_line_shown();
+
 // Raised by the first SIGINT or SIGTERM while `rendering`.
 const std::atomic<bool>& stop_requested();
 

@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "app/interrupt.h"
+
 namespace quiver {
 
 StageStatus::StageStatus(std::FILE* out, ProgressStyle style, Clock::duration delay, Clock::duration interval)
@@ -37,6 +39,7 @@ void StageStatus::end() {
       std::fprintf(out_, "\r%s\r", std::string(shown_width_, ' ').c_str());
       std::fflush(out_);
       shown_width_ = 0;
+      note_status_line(false);
     }
   }
   wake_.notify_all();
@@ -62,6 +65,7 @@ void StageStatus::draw_locked() {
   std::fprintf(out_, "\r%s", line.c_str());
   std::fflush(out_);
   shown_width_ = std::max(shown_width_, width);
+  note_status_line(true);
 }
 
 }  // namespace quiver

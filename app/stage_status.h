@@ -2,8 +2,10 @@
 // and building a large scene): on a terminal, "reading scene.ply: 2.4 s"
 // redrawn in place from a thread of its own, shown once a step has run for
 // `delay` and erased when the steps end, so the progress bar or the
-// messages that follow start on a clean line. Silent elsewhere (a log gets
-// the load and build times in the render's summary line).
+// messages that follow start on a clean line (a signal's message while the
+// line is shown starts on a line of its own: app/interrupt.h). Silent
+// elsewhere (a log gets the load and build times in the render's summary
+// line).
 #pragma once
 
 #include <chrono>

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/interrupt.h"
 #include "tests/support/captured_file.h"
 
 namespace quiver {
@@ -26,7 +27,9 @@ TEST(StageStatus, ATerminalSeesEachStepInPlaceThenAnErasedLine) {
     std::this_thread::sleep_for(40ms);
     status.begin("building it");
     std::this_thread::sleep_for(40ms);
+    EXPECT_TRUE(status_line_shown()) << "a signal now would start its message on a new line";
     status.end();
+    EXPECT_FALSE(status_line_shown());
     const std::string text = out.text();
     const std::size_t reading = text.find("\rreading a long scene name.ply: "), building = text.find("\rbuilding it: ");
     ASSERT_NE(reading, std::string::npos) << text;
