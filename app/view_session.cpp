@@ -4,13 +4,19 @@
 
 #include "app/render_options.h"
 #include "app/render_command_line.h"
+#include "app/stage_status.h"
 
 namespace quiver {
 
 ViewSession::ViewSession(const RenderArgs& args, Isa isa) : args_(args), isa_(isa) {
   output_ = (args.output.empty() ? default_output(args.scene) : std::filesystem::path(args.output)).string();
-  SceneDesc desc = load_scene_timed(
-      args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms_);
+  const ProgressStyle style = progress_style_for(stderr, args.quiet);
+  SceneDesc desc = [&] {
+    StageStatus status(stderr, style);
+    return load_scene_timed(
+        args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms_,
+        &status);
+  }();
   print_scene_warnings(desc);
   view_desc_.camera = desc.camera;
   view_desc_.background = desc.background;
@@ -21,7 +27,10 @@ ViewSession::ViewSession(const RenderArgs& args, Isa isa) : args_(args), isa_(is
   const RenderPlan plan = plan_render(args.options, desc, isa);
   set_view(desc, args.options.camera, plan.settings.width, plan.settings.height);
   first_camera_ = *desc.camera;
-  scene_ = build_scene_timed(desc, plan.build, args.scene, build_ms_);
+  {
+    StageStatus status(stderr, style);
+    scene_ = build_scene_timed(desc, plan.build, args.scene, build_ms_, &status);
+  }
   initial_.from = first_camera_.from;
   initial_.at = first_camera_.at;
   initial_.up = first_camera_.up;
