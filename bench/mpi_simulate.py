@@ -18,9 +18,9 @@ measured render time. Not modelled: tiles given again at the end (rank 0's
 threads and idle ranks repeating a tile still out elsewhere).
 
 Efficiency is T(1 rank) / (N x T(N ranks)), each rank one thread, over the
-render (the tiles) and, in the second figure, over the whole run (the scene
-read and built by rank 0 and broadcast to the other ranks, the cost
-estimate, then the tiles). The broadcast is modelled as a binomial tree:
+render (the tiles) and, in the second figure, over the whole run (rank 0's
+start: the scene read and built, its view, fingerprint, film and checkpoint;
+the scene broadcast to the other ranks; the cost estimate; then the tiles). The broadcast is modelled as a binomial tree:
 ceil(log2 N) rounds, each one message of the built scene (its stores and
 BVHs, memory_bytes) at the measured latency and the bandwidth of the largest
 messages measured.
@@ -44,11 +44,21 @@ def load_frame(path):
     estimates = s.get("tile_cost_estimate") or costs
     estimates = [e for e, ms in zip(estimates, s["tile_ms"]) if ms is not None]
     return {"costs": costs, "estimates": estimates, "width": s["width"], "height": s["height"], "tile_size": s.get("tile_size", 16),
-            "startup_s": (s["load_ms"] + s["build_ms"]) / 1000.0,
+            "startup_s": startup_s(s),
             "scene_bytes": s["memory_bytes"]["scene"] + s["memory_bytes"]["acceleration"],
             # The cost estimate's work, all ranks together (each estimates 1/N of the tiles).
             "estimate_s": s["mpi"]["estimate_ms"] * s["mpi"]["ranks"] / 1000.0,
             "tile_bytes": 3 * 4 * s.get("tile_size", 16) ** 2}
+
+
+def startup_s(stats):
+    """Rank 0's time before its tiles, the cost estimate apart (counted on its own): the rank's start_ms
+    (reading and building the scene, its default view, fingerprint, film and checkpoint), else the
+    stats' load and build alone."""
+    per_rank = stats["mpi"].get("per_rank", [{}])
+    if "start_ms" in per_rank[0]:
+        return (per_rank[0]["start_ms"] - stats["mpi"]["estimate_ms"]) / 1000.0
+    return (stats["load_ms"] + stats["build_ms"]) / 1000.0
 
 
 def message_s(net, nbytes):
