@@ -20,10 +20,10 @@ threads and idle ranks repeating a tile still out elsewhere).
 Efficiency is T(1 rank) / (N x T(N ranks)), each rank one thread, over the
 render (the tiles) and, in the second figure, over the whole run (rank 0's
 start: the scene read and built, its view, fingerprint, film and checkpoint;
-the scene broadcast to the other ranks; the cost estimate; then the tiles). The broadcast is modelled as a binomial tree:
-ceil(log2 N) rounds, each one message of the built scene (its stores and
-BVHs, memory_bytes) at the measured latency and the bandwidth of the largest
-messages measured.
+the scene broadcast to the other ranks; the cost estimate; then the
+tiles). The broadcast is modelled as a binomial tree: ceil(log2 N) rounds,
+each one message of the built scene (its stores and BVHs, memory_bytes) at
+the measured latency and the bandwidth of the largest messages measured.
 """
 import argparse
 import heapq
