@@ -38,7 +38,6 @@
 #include "io/output_file.h"
 #include "app/interrupt.h"
 #include "app/progress_bar.h"
-#include "app/stage_status.h"
 #include "app/render_job.h"
 #include "app/render_options.h"
 #include "app/scene_build.h"
@@ -115,10 +114,7 @@ int run_render(const RenderArgs& args) {
   try {
     const quiver::ProgressStyle style = quiver::progress_style_for(stderr, args.quiet);
     // UsageError from here on exits 2 through report_exception.
-    const quiver::PreparedRender prepared = [&] {
-      quiver::StageStatus status(stderr, style);
-      return quiver::prepare_render(args, checked, &status);
-    }();
+    const quiver::PreparedRender prepared = quiver::prepare_render(args, checked, style);
     quiver::print_scene_warnings(prepared.desc);
     const quiver::RenderSettings& settings = prepared.plan.settings;
 
@@ -210,10 +206,7 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
   try {
     double load_ms = 0.0;
     const quiver::ProgressStyle style = quiver::progress_style_for(stderr, false);
-    quiver::SceneDesc desc = [&] {
-      quiver::StageStatus status(stderr, style);
-      return quiver::load_scene_timed(scene_path, load_options, load_ms, &status);
-    }();
+    quiver::SceneDesc desc = quiver::load_scene_timed(scene_path, load_options, load_ms, style);
     quiver::print_scene_warnings(desc);
     // set_view sets only the camera, lights, ambient and background: the
     // report's are the file's, kept aside rather than in a copy of the whole
@@ -231,10 +224,7 @@ int run_info(const std::string& scene_path, const quiver::SceneLoadOptions& load
     if (quiver::restart_resident_high_water()) {
       context.build_start_resident_bytes = quiver::process_status_bytes("VmRSS");
     }
-    const quiver::Scene scene = [&] {
-      quiver::StageStatus status(stderr, style);
-      return quiver::build_scene_timed(desc, {}, scene_path, build_ms, &status);
-    }();
+    const quiver::Scene scene = quiver::build_scene_timed(desc, {}, scene_path, build_ms, style);
     if (context.build_start_resident_bytes) context.build_peak_resident_bytes = quiver::process_status_bytes("VmHWM");
     desc.camera = camera_as_read;
     desc.lights = lights_as_read;
@@ -270,19 +260,13 @@ int run_trace(const TraceArgs& args) {
   try {
     double load_ms = 0.0;
     const quiver::ProgressStyle style = quiver::progress_style_for(stderr, false);
-    quiver::SceneDesc desc = [&] {
-      quiver::StageStatus status(stderr, style);
-      return quiver::load_scene_timed(
-          args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms,
-          &status);
-    }();
+    quiver::SceneDesc desc = quiver::load_scene_timed(
+        args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms,
+        style);
     quiver::print_scene_warnings(desc);
     const auto [width, height] = quiver::set_trace_view(args.options, desc);
     double build_ms = 0.0;
-    const quiver::Scene scene = [&] {
-      quiver::StageStatus status(stderr, style);
-      return quiver::build_scene_timed(desc, {}, args.scene, build_ms, &status);
-    }();
+    const quiver::Scene scene = quiver::build_scene_timed(desc, {}, args.scene, build_ms, style);
     const quiver::PrimaryTraceResult result =
         quiver::trace_primary(scene, width, height, isa, args.options.threads, args.options.repeat,
                               {args.options.occluded, args.options.shuffled});

@@ -33,7 +33,6 @@
 #include "app/mpi_stats.h"
 #include "app/progress_bar.h"
 #include "app/scene_broadcast.h"
-#include "app/stage_status.h"
 #include "app/stats_json.h"
 #include "app/tile_schedule.h"
 #include "io/image_output.h"
@@ -670,10 +669,8 @@ int run_mpi_render(const MpiRenderArgs& args) {
   // Rank 0 alone reads and builds the scene (and fingerprints what it read, for its checkpoint).
   const auto prepare = [&] {
     if (rank != 0) return;
-    {
-      StageStatus status(stderr, progress_style_for(stderr, render_args.quiet));
-      setup.prepared.emplace(prepare_render(render_args, setup.checked, &status));
-    }
+    const ProgressStyle status = progress_style_for(stderr, render_args.quiet);
+    setup.prepared.emplace(prepare_render(render_args, setup.checked, status));
     print_scene_warnings(setup.prepared->desc);
     setup.fingerprint =
         render_fingerprint(setup.prepared->plan.settings, setup.prepared->plan.build, render_args.options.crease_angle,

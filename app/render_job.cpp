@@ -72,8 +72,9 @@ std::string scene_name(const std::string& scene) { return scene.empty() ? "the b
 }  // namespace
 
 SceneDesc load_scene_timed(const std::string& scene, const SceneLoadOptions& options, double& load_ms,
-                           StageStatus* status) {
-  if (status != nullptr) status->begin("reading " + scene_name(scene));
+                           ProgressStyle status) {
+  StageStatus shown(stderr, status);
+  shown.begin("reading " + scene_name(scene));
   const Clock::time_point start = Clock::now();
   SceneDesc desc = scene.empty() ? default_scene() : load_scene(scene, options);
   load_ms = ms_since(start);
@@ -85,15 +86,16 @@ void print_scene_warnings(const SceneDesc& desc) {
 }
 
 Scene build_scene_timed(SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
-                        double& build_ms, StageStatus* status) {
-  if (status != nullptr) status->begin("building " + scene_name(scene));
+                        double& build_ms, ProgressStyle status) {
+  StageStatus shown(stderr, status);
+  shown.begin("building " + scene_name(scene));
   const Clock::time_point start = Clock::now();
   Scene built = build_named_scene_releasing_triangles(desc, options, scene);
   build_ms = ms_since(start);
   return built;
 }
 
-PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked, StageStatus* status) {
+PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked, ProgressStyle status) {
   PreparedRender p;
   p.desc = load_scene_timed(
       args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, p.load_ms,
@@ -102,7 +104,6 @@ PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& c
   check_outputs_spare_inputs(checked.outputs, p.inputs);
   p.plan = plan_render(args.options, p.desc, checked.isa);
   p.plan.settings.trace.time_phases = !args.stats.empty();  // reported only there
-  if (status != nullptr && !p.desc.camera) status->begin("placing a camera for " + scene_name(args.scene));
   set_view(p.desc, args.options.camera, p.plan.settings.width, p.plan.settings.height);
   p.scene = build_scene_timed(p.desc, p.plan.build, args.scene, p.build_ms, status);
   return p;

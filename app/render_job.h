@@ -15,6 +15,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "app/progress_bar.h"
 #include "app/render_options.h"
 #include "app/render_outputs.h"
 #include "io/scene_loader.h"
@@ -24,7 +25,6 @@
 
 namespace quiver {
 
-class StageStatus;  // app/stage_status.h
 
 // Exit codes of quiver and quiver-mpi.
 inline constexpr int kExitFailure = 1;
@@ -70,9 +70,10 @@ struct PreparedRender {
 };
 
 // The scene file (or the built-in scene), read with the load options; throws.
-// `status` (may be null) shows the step ("reading <scene>") while it lasts.
+// `status`: how a long read shows on stderr (app/stage_status.h: on a
+// terminal, "reading <scene>: 2.4 s" once it lasts a second).
 SceneDesc load_scene_timed(const std::string& scene, const SceneLoadOptions& options, double& load_ms,
-                           StageStatus* status = nullptr);
+                           ProgressStyle status = ProgressStyle::off);
 
 // What the readers forgave (SceneDesc::warnings), one "quiver: " line each on stderr.
 void print_scene_warnings(const SceneDesc& desc);
@@ -82,13 +83,13 @@ void print_scene_warnings(const SceneDesc& desc);
 // command keeps the built scene, not a large mesh's description beside it).
 // `status` as for load_scene_timed ("building <scene>").
 Scene build_scene_timed(SceneDesc& desc, const SceneBuildOptions& options, const std::string& scene,
-                        double& build_ms, StageStatus* status = nullptr);
+                        double& build_ms, ProgressStyle status = ProgressStyle::off);
 
 // Reads and builds the scene for a checked render; throws UsageError when an
 // output names a file the scene reads, std::runtime_error for a bad scene.
-// `status` (may be null) shows each step while it lasts.
+// `status` as for load_scene_timed, for the read and the build.
 PreparedRender prepare_render(const RenderArgs& args, const CheckedRenderArgs& checked,
-                              StageStatus* status = nullptr);
+                              ProgressStyle status = ProgressStyle::off);
 
 // The stats JSON of `quiver render --stats`.
 nlohmann::json render_stats(const RenderArgs& args, const CheckedRenderArgs& checked, const PreparedRender& prepared,

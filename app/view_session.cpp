@@ -2,21 +2,18 @@
 
 #include <filesystem>
 
-#include "app/render_options.h"
+#include "app/progress_bar.h"
 #include "app/render_command_line.h"
-#include "app/stage_status.h"
+#include "app/render_options.h"
 
 namespace quiver {
 
 ViewSession::ViewSession(const RenderArgs& args, Isa isa) : args_(args), isa_(isa) {
   output_ = (args.output.empty() ? default_output(args.scene) : std::filesystem::path(args.output)).string();
   const ProgressStyle style = progress_style_for(stderr, args.quiet);
-  SceneDesc desc = [&] {
-    StageStatus status(stderr, style);
-    return load_scene_timed(
-        args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms_,
-        &status);
-  }();
+  SceneDesc desc = load_scene_timed(
+      args.scene, {args.options.crease_angle, args.options.strict, args.options.allow_outside_paths}, load_ms_,
+      style);
   print_scene_warnings(desc);
   view_desc_.camera = desc.camera;
   view_desc_.background = desc.background;
@@ -27,10 +24,7 @@ ViewSession::ViewSession(const RenderArgs& args, Isa isa) : args_(args), isa_(is
   const RenderPlan plan = plan_render(args.options, desc, isa);
   set_view(desc, args.options.camera, plan.settings.width, plan.settings.height);
   first_camera_ = *desc.camera;
-  {
-    StageStatus status(stderr, style);
-    scene_ = build_scene_timed(desc, plan.build, args.scene, build_ms_, &status);
-  }
+  scene_ = build_scene_timed(desc, plan.build, args.scene, build_ms_, style);
   initial_.from = first_camera_.from;
   initial_.at = first_camera_.at;
   initial_.up = first_camera_.up;

@@ -19,9 +19,10 @@ struct WeldedPositions {
   std::vector<Vec3<float>> positions;   // the distinct positions (-0 as +0)
 };
 
-// Welds position_at(0 .. count - 1) (count below 2^32). The distinct
-// positions are numbered by a fixed partition of their hashes, in the order
-// first met within each: the same numbers for any thread count.
+// Welds position_at(0 .. count - 1) (count below 2^32), each position asked
+// for once, from any thread. The distinct positions are numbered in the
+// order of the first vertex holding each, as a serial welder would: the
+// same numbers for any thread count.
 WeldedPositions weld_positions(std::size_t count, const std::function<Vec3<float>(std::size_t)>& position_at);
 
 // Renumbers `positions` in the order the triangles (indices into it) first

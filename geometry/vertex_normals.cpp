@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "geometry/parallel_indices.h"
 
@@ -52,15 +53,6 @@ Face face_of(const std::array<Vec3<double>, 3>& p) {
 
 bool valid_crease_angle(double crease_angle_degrees) {
   return crease_angle_degrees >= 0.0 && crease_angle_degrees <= kMaxCreaseAngleDegrees;
-}
-
-std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const Vec3<float>> positions,
-                                                                std::span<const TriangleIndices> triangles,
-                                                                double crease_angle_degrees) {
-  std::vector<std::optional<CornerNormals>> result(triangles.size());
-  smooth_vertex_normals(positions, triangles, crease_angle_degrees,
-                        [&](std::size_t t, const CornerNormals& normals) { result[t] = normals; });
-  return result;
 }
 
 void smooth_vertex_normals(std::span<const Vec3<float>> positions, std::span<const TriangleIndices> triangles,

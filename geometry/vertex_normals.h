@@ -14,9 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <span>
-#include <vector>
 
 #include "simd/vec3.h"
 
@@ -37,21 +35,16 @@ using CornerNormals = std::array<Vec3<float>, 3>;
 // true when crease_angle_degrees is in [0, kMaxCreaseAngleDegrees].
 bool valid_crease_angle(double crease_angle_degrees);
 
-// One entry per triangle: the unit normals of its three corners, or
-// nullopt where the triangle stays faceted: a zero-area triangle, every
-// triangle when the crease angle is 0, and a triangle whose every corner
-// normal rounds to its face normal (no neighbour within the crease angle,
-// or only coplanar ones), so flat parts shade exactly as before.
+// The unit normals of each triangle's three corners, handed to
+// write_smoothed(triangle, normals) (once a triangle, from any thread) where
+// they are not all its face normal; a triangle not handed stays faceted: a
+// zero-area triangle, every triangle when the crease angle is 0, and a
+// triangle whose every corner normal rounds to its face normal (no
+// neighbour within the crease angle, or only coplanar ones), so flat parts
+// shade exactly as before.
 // Throws std::invalid_argument for an index out of range or a crease angle
 // outside [0, 180], and std::length_error for 2^32 / 3 triangles or more.
 // Memory is linear in the mesh: a few words per position and per triangle.
-std::vector<std::optional<CornerNormals>> smooth_vertex_normals(std::span<const Vec3<float>> positions,
-                                                                std::span<const TriangleIndices> triangles,
-                                                                double crease_angle_degrees);
-
-// The same, each engaged entry handed to write_smoothed(triangle, normals)
-// instead of stored (once a triangle, from any thread), for callers that
-// keep the normals beside their triangles.
 void smooth_vertex_normals(std::span<const Vec3<float>> positions, std::span<const TriangleIndices> triangles,
                            double crease_angle_degrees,
                            const std::function<void(std::size_t, const CornerNormals&)>& write_smoothed);

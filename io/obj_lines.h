@@ -2,12 +2,12 @@
 // the other threads while the reader stores the chunks before them: each
 // `v x y z`, `vn x y z`, `vt u [v [w]]` and `f` line whose tokens all read
 // (numbers by read_obj_number, indices as non-zero integers) becomes its
-// values; every other statement line (and any such
-// line with a '#' in it, a token that does not read, or more or fewer
-// tokens) is kept by position only, for the reader's own line scanner,
-// which reports what is wrong with it. Indices are kept as written: the
-// reader checks them against the elements defined so far. The text's lines
-// end at "\n" only (the reader scans text with a '\r' itself).
+// values; every other statement line (and any such line with a '#' in it, a
+// token that does not read, or more or fewer tokens) is kept by position
+// only, for the reader's own line scanner, which reports what is wrong with
+// it. Indices are kept as written: the reader checks them against the
+// elements defined so far. The text's lines end at "\n" only (the reader
+// scans text with a '\r' itself).
 #pragma once
 
 #include <cstddef>

@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -22,6 +23,15 @@ namespace quiver {
 namespace {
 
 using Normals = std::vector<std::optional<CornerNormals>>;
+
+// Each triangle's smoothed normals, or nullopt where it stays faceted.
+Normals normals_of(std::span<const Vec3<float>> positions, std::span<const TriangleIndices> triangles,
+                   double crease_angle_degrees) {
+  Normals result(triangles.size());
+  smooth_vertex_normals(positions, triangles, crease_angle_degrees,
+                        [&](std::size_t t, const CornerNormals& normals) { result[t] = normals; });
+  return result;
+}
 
 Vec3<double> unit(double x, double y, double z) {
   const double l = std::sqrt(x * x + y * y + z * z);
@@ -65,13 +75,13 @@ TEST(VertexNormals, CubeEdgesStayHardBelowNinetyDegreesAndAverageAbove) {
   const Mesh m = cube();
   // 60 degrees: each corner sees only its own face's two triangles, so
   // every triangle keeps its face normal (no normals at all).
-  const Normals hard = smooth_vertex_normals(m.positions, m.triangles, 60.0);
+  const Normals hard = normals_of(m.positions, m.triangles, 60.0);
   ASSERT_EQ(hard.size(), 12u);
   for (const auto& n : hard) EXPECT_FALSE(n.has_value());
   // 100 degrees: the three faces at a corner (at 90 degrees) average, each
   // with a corner angle of 90 degrees in all (one triangle of 90, or two of
   // 45), so every corner normal is the diagonal through that corner.
-  const Normals soft = smooth_vertex_normals(m.positions, m.triangles, 100.0);
+  const Normals soft = normals_of(m.positions, m.triangles, 100.0);
   for (std::size_t t = 0; t < 12; ++t) {
     ASSERT_TRUE(soft[t].has_value()) << t;
     for (std::size_t k = 0; k < 3; ++k) {
@@ -111,7 +121,7 @@ Mesh uv_sphere() {
 
 TEST(VertexNormals, AFineSpheresNormalsAreRadial) {
   const Mesh m = uv_sphere();
-  const Normals normals = smooth_vertex_normals(m.positions, m.triangles, kDefaultCreaseAngleDegrees);
+  const Normals normals = normals_of(m.positions, m.triangles, kDefaultCreaseAngleDegrees);
   double worst = 0.0, worst_faceted = 0.0;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     ASSERT_TRUE(normals[t].has_value()) << t;
@@ -133,7 +143,7 @@ TEST(VertexNormals, TheSameBitsForAnyThreadCount) {
   const Mesh m = uv_sphere();
   const auto normals_with = [&](int threads) {
     oneapi::tbb::task_arena arena(threads);
-    return arena.execute([&] { return smooth_vertex_normals(m.positions, m.triangles, kDefaultCreaseAngleDegrees); });
+    return arena.execute([&] { return normals_of(m.positions, m.triangles, kDefaultCreaseAngleDegrees); });
   };
   const Normals one = normals_with(1);
   for (int threads : {2, 3, 8}) {
@@ -177,7 +187,7 @@ TEST(VertexNormals, AFlatGridsNormalsAreThePlanes) {
     }
   }
   for (const double crease : {1.0, 60.0, 180.0}) {
-    const Normals normals = smooth_vertex_normals(m.positions, m.triangles, crease);
+    const Normals normals = normals_of(m.positions, m.triangles, crease);
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
       for (std::size_t k = 0; k < 3; ++k) {
         // A triangle without normals shades with its face normal.
@@ -197,8 +207,8 @@ TEST(VertexNormals, TheWeightIsTheCornerAngleNotTheFaceCountOrArea) {
   const std::vector<Vec3<float>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 1}, {0.25f, 0.75f, 0}};
   const std::vector<TriangleIndices> whole = {{0, 1, 2}, {0, 2, 3}};
   const std::vector<TriangleIndices> split = {{0, 1, 4}, {0, 4, 2}, {0, 2, 3}};
-  const Normals a = smooth_vertex_normals(p, whole, 180.0);
-  const Normals b = smooth_vertex_normals(p, split, 180.0);
+  const Normals a = normals_of(p, whole, 180.0);
+  const Normals b = normals_of(p, split, 180.0);
   ASSERT_TRUE(a[0].has_value() && a[1].has_value() && b[2].has_value() && b[0].has_value() && b[1].has_value());
   // Equal corner angles (90 degrees each): the mean of the two unit normals.
   const Vec3<double> expected = unit(1.0 / std::sqrt(2.0), 0.0, 1.0 + 1.0 / std::sqrt(2.0));
@@ -219,8 +229,8 @@ TEST(VertexNormals, DegenerateFacesContributeNothingAndStayFaceted) {
   std::vector<TriangleIndices> with_degenerate = roof;
   with_degenerate.push_back({0, 1, 4});
   with_degenerate.push_back({0, 1, 1});
-  const Normals clean = smooth_vertex_normals(p, roof, 60.0);
-  const Normals dirty = smooth_vertex_normals(p, with_degenerate, 60.0);
+  const Normals clean = normals_of(p, roof, 60.0);
+  const Normals dirty = normals_of(p, with_degenerate, 60.0);
   ASSERT_TRUE(clean[0].has_value());
   EXPECT_FALSE(dirty[2].has_value());
   EXPECT_FALSE(dirty[3].has_value());
@@ -234,7 +244,7 @@ TEST(VertexNormals, DegenerateFacesContributeNothingAndStayFaceted) {
   // The shared edge's corners get the bisector, +z up to rounding.
   EXPECT_LT(degrees_between((*clean[0])[0], {0.0, 0.0, 1.0}), 1e-5);
   // Below the 30 degrees between them, both stay faceted.
-  for (const auto& n : smooth_vertex_normals(p, roof, 29.0)) EXPECT_FALSE(n.has_value());
+  for (const auto& n : normals_of(p, roof, 29.0)) EXPECT_FALSE(n.has_value());
 }
 
 TEST(VertexNormals, AVertexOfMoreThanTheValenceBoundKeepsItsFaceNormals) {
@@ -248,7 +258,7 @@ TEST(VertexNormals, AVertexOfMoreThanTheValenceBoundKeepsItsFaceNormals) {
     p.push_back({float(std::cos(phi)), 0.f, float(std::sin(phi))});
     fan.push_back({0, 1 + (s + 1) % n, 1 + s});
   }
-  const Normals normals = smooth_vertex_normals(p, fan, 60.0);
+  const Normals normals = normals_of(p, fan, 60.0);
   for (std::size_t t = 0; t < fan.size(); ++t) {
     ASSERT_TRUE(normals[t].has_value());
     const Vec3<double> f = face_normal(p, fan[t]);
@@ -256,7 +266,7 @@ TEST(VertexNormals, AVertexOfMoreThanTheValenceBoundKeepsItsFaceNormals) {
     EXPECT_GT(degrees_between((*normals[t])[1], f), 0.1);
   }
   fan.pop_back();  // at the bound, the apex is smoothed too (but for the open seam)
-  const Normals bounded = smooth_vertex_normals(p, fan, 60.0);
+  const Normals bounded = normals_of(p, fan, 60.0);
   EXPECT_GT(degrees_between((*bounded[n / 2])[0], face_normal(p, fan[n / 2])), 1.0);
 }
 
@@ -264,15 +274,15 @@ TEST(VertexNormals, BadArgumentsThrow) {
   const Mesh m = cube();
   for (const double crease : {-1.0, 180.5, std::numeric_limits<double>::quiet_NaN(),
                               std::numeric_limits<double>::infinity()}) {
-    EXPECT_THROW(smooth_vertex_normals(m.positions, m.triangles, crease), std::invalid_argument) << crease;
+    EXPECT_THROW(normals_of(m.positions, m.triangles, crease), std::invalid_argument) << crease;
   }
   std::vector<TriangleIndices> out_of_range = m.triangles;
   out_of_range.push_back({0, 1, 8});
-  EXPECT_THROW(smooth_vertex_normals(m.positions, out_of_range, 60.0), std::invalid_argument);
+  EXPECT_THROW(normals_of(m.positions, out_of_range, 60.0), std::invalid_argument);
   EXPECT_TRUE(valid_crease_angle(0.0));
   EXPECT_TRUE(valid_crease_angle(180.0));
   // 0 is faceted: nothing at all, even where 180 would smooth.
-  for (const auto& n : smooth_vertex_normals(m.positions, m.triangles, 0.0)) EXPECT_FALSE(n.has_value());
+  for (const auto& n : normals_of(m.positions, m.triangles, 0.0)) EXPECT_FALSE(n.has_value());
 }
 
 }  // namespace
